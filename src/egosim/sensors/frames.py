@@ -1,0 +1,88 @@
+"""Poses and the transforms map -> base_link -> sensor.
+
+The map frame is ENU (x east, y north, z up). base_link is the vehicle body
+frame (x forward, y left, z up). A sensor frame is placed on base_link by a
+MountPose. The transforms are the ones a tf2_msgs/TFMessage carries: the child
+frame's origin and orientation expressed in the parent frame.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from egosim.sensors.rotation import Matrix3, Quaternion, quaternion_from_matrix, rotation_matrix
+
+Vector3 = npt.NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class RigidPose:
+    """Position (m) and REP 103 roll/pitch/yaw (rad) of a frame in its parent."""
+
+    x: float = 0.0
+    y: float = 0.0
+    z: float = 0.0
+    roll: float = 0.0
+    pitch: float = 0.0
+    yaw: float = 0.0
+
+    @property
+    def translation(self) -> Vector3:
+        return np.array([self.x, self.y, self.z], dtype=np.float64)
+
+    @property
+    def rotation(self) -> Matrix3:
+        """Rotation taking vectors of this frame into the parent frame."""
+        return rotation_matrix(self.roll, self.pitch, self.yaw)
+
+
+@dataclass(frozen=True)
+class Pose(RigidPose):
+    """The vehicle's base_link in the map (ENU) frame."""
+
+
+@dataclass(frozen=True)
+class MountPose(RigidPose):
+    """A sensor frame relative to base_link (x forward, y left, z up)."""
+
+
+@dataclass(frozen=True)
+class Transform:
+    """Child frame in the parent frame: translation (m) and quaternion (x, y, z, w)."""
+
+    parent_frame: str
+    child_frame: str
+    translation: tuple[float, float, float]
+    rotation: Quaternion
+
+
+def transform_of(pose: RigidPose, parent_frame: str, child_frame: str) -> Transform:
+    """The tf transform parent -> child for a child frame placed at `pose`."""
+    return Transform(
+        parent_frame=parent_frame,
+        child_frame=child_frame,
+        translation=(float(pose.x), float(pose.y), float(pose.z)),
+        rotation=quaternion_from_matrix(pose.rotation),
+    )
+
+
+def map_to_base_link(
+    vehicle_pose: Pose, map_frame: str = "map", base_frame: str = "base_link"
+) -> Transform:
+    return transform_of(vehicle_pose, map_frame, base_frame)
+
+
+def base_link_to_sensor(
+    mount: MountPose, sensor_frame: str, base_frame: str = "base_link"
+) -> Transform:
+    return transform_of(mount, base_frame, sensor_frame)
+
+
+def sensor_in_map(vehicle_pose: Pose, mount: MountPose) -> tuple[Vector3, Matrix3]:
+    """Origin (map, m) and rotation (sensor -> map) of a mounted sensor."""
+    vehicle_rotation = vehicle_pose.rotation
+    origin = vehicle_pose.translation + vehicle_rotation @ mount.translation
+    return origin, vehicle_rotation @ mount.rotation

@@ -1,0 +1,79 @@
+"""GPS receiver: the antenna's position as WGS84 latitude, longitude, altitude.
+
+Matches morai_msgs/GPSMessage: eastOffset/northOffset are the map's local
+origin in UTM, so UTM(latitude, longitude) - (eastOffset, northOffset) is the
+antenna's position in the map frame.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from egosim.sensors.frames import MountPose, Pose, sensor_in_map
+from egosim.sensors.noise import gaussian, require_non_negative
+from egosim.world.map.georef import GeoReference
+
+GPS_STATUS_FIX = 1
+"""GPSMessage.status of a valid fix (0 would mean no fix; the model always has one)."""
+
+
+@dataclass(frozen=True)
+class GpsNoise:
+    """Zero-mean Gaussian position error, standard deviations in metres.
+
+    horizontal_std_m applies to east and north independently.
+    """
+
+    horizontal_std_m: float = 0.0
+    vertical_std_m: float = 0.0
+
+    def __post_init__(self) -> None:
+        require_non_negative("GPS noise std", [self.horizontal_std_m, self.vertical_std_m])
+
+    @property
+    def enu_std_m(self) -> np.ndarray:
+        return np.array([self.horizontal_std_m, self.horizontal_std_m, self.vertical_std_m])
+
+
+@dataclass(frozen=True)
+class GpsFix:
+    latitude: float
+    """Degrees, WGS84 (or the georeference's ellipsoid)."""
+    longitude: float
+    """Degrees."""
+    altitude: float
+    """Metres above the ellipsoid: origin_up + z."""
+    east_offset: float
+    """UTM easting of the map origin, m."""
+    north_offset: float
+    """UTM northing of the map origin, m."""
+    status: int
+
+
+@dataclass(frozen=True)
+class GpsModel:
+    georeference: GeoReference
+    mount: MountPose = field(default_factory=MountPose)
+    noise: GpsNoise = field(default_factory=GpsNoise)
+
+    def antenna_position(self, vehicle_pose: Pose) -> np.ndarray:
+        """Antenna in the map frame: vehicle position + R_vehicle @ mount offset."""
+        origin, _ = sensor_in_map(vehicle_pose, self.mount)
+        return origin
+
+    def measure(self, vehicle_pose: Pose, rng: np.random.Generator | None = None) -> GpsFix:
+        """A fix of the antenna; `rng` is required only when noise is configured."""
+        x, y, z = self.antenna_position(vehicle_pose) + gaussian(self.noise.enu_std_m, rng, "GPS")
+        latitude, longitude, altitude = self.georeference.local_to_geodetic(
+            float(x), float(y), float(z)
+        )
+        return GpsFix(
+            latitude=latitude,
+            longitude=longitude,
+            altitude=altitude,
+            east_offset=self.georeference.origin_east,
+            north_offset=self.georeference.origin_north,
+            status=GPS_STATUS_FIX,
+        )

@@ -1,0 +1,146 @@
+"""Spinning multi-channel 3D LiDAR, cast instantaneously against boxes and ground.
+
+Beams: `channels` elevations evenly spaced over [min, max] and azimuths every
+`horizontal_resolution_deg` over 360 deg, starting at the sensor's +x and
+turning counter-clockwise (towards +y). Points come out azimuth-major (all
+channels of the first azimuth, then the next), in the sensor frame, one per
+beam whose nearest hit lies within [min_range, max_range]. A hit closer than
+min_range blocks the beam and yields no point, as on a real unit. A whole scan
+is taken at one instant (no motion distortion).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import numpy.typing as npt
+
+from egosim.sensors.errors import SensorConfigError
+from egosim.sensors.frames import MountPose, Pose, sensor_in_map
+from egosim.sensors.raycast import FloatArray, ObstacleBoxes, Surface, cast_rays
+
+DEFAULT_LIDAR_MOUNT = MountPose(x=0.0, y=0.0, z=1.8)
+"""On the roof above base_link, m."""
+
+
+@dataclass(frozen=True)
+class LidarIntensity:
+    """intensity = scale * reflectivity(surface) * |cos(incidence)| * exp(-2 * extinction * r).
+
+    A Lambertian surface seen through a uniformly absorbing atmosphere (the
+    two-way term of the lidar equation), scaled to 0..255 as calibrated
+    reflectivity is on common units.
+    """
+
+    ground_reflectivity: float = 0.2
+    object_reflectivity: float = 0.6
+    extinction_per_m: float = 0.005
+    scale: float = 255.0
+
+    def of(self, surface: npt.NDArray[np.int8], cos_incidence: FloatArray, distance: FloatArray):
+        reflectivity = np.where(
+            surface == Surface.OBJECT, self.object_reflectivity, self.ground_reflectivity
+        )
+        return (
+            self.scale
+            * reflectivity
+            * cos_incidence
+            * np.exp(-2.0 * self.extinction_per_m * distance)
+        )
+
+
+@dataclass(frozen=True)
+class LidarConfig:
+    """Defaults describe a VLP-16-like unit."""
+
+    channels: int = 16
+    min_elevation_deg: float = -15.0
+    max_elevation_deg: float = 15.0
+    horizontal_resolution_deg: float = 0.2
+    min_range_m: float = 0.5
+    max_range_m: float = 100.0
+    rate_hz: float = 10.0
+    mount: MountPose = DEFAULT_LIDAR_MOUNT
+    intensity: LidarIntensity = field(default_factory=LidarIntensity)
+
+    def __post_init__(self) -> None:
+        if self.channels < 1:
+            raise SensorConfigError(f"channels must be >= 1, got {self.channels}")
+        if not -90.0 <= self.min_elevation_deg <= self.max_elevation_deg <= 90.0:
+            raise SensorConfigError("elevations must satisfy -90 <= min <= max <= 90 deg")
+        if self.channels > 1 and self.min_elevation_deg == self.max_elevation_deg:
+            raise SensorConfigError("several channels need min_elevation < max_elevation")
+        steps = 360.0 / self.horizontal_resolution_deg
+        if self.horizontal_resolution_deg <= 0.0 or abs(steps - round(steps)) > 1e-6:
+            raise SensorConfigError("horizontal_resolution_deg must divide 360 deg")
+        if not 0.0 <= self.min_range_m < self.max_range_m:
+            raise SensorConfigError("ranges must satisfy 0 <= min_range < max_range")
+        if self.rate_hz <= 0.0:
+            raise SensorConfigError(f"rate_hz must be > 0, got {self.rate_hz}")
+
+    @property
+    def horizontal_steps(self) -> int:
+        return round(360.0 / self.horizontal_resolution_deg)
+
+    @property
+    def elevations_rad(self) -> FloatArray:
+        return np.radians(
+            np.linspace(self.min_elevation_deg, self.max_elevation_deg, self.channels)
+        )
+
+    @property
+    def azimuths_rad(self) -> FloatArray:
+        return np.arange(self.horizontal_steps) * (2.0 * np.pi / self.horizontal_steps)
+
+
+def beam_directions(config: LidarConfig) -> FloatArray:
+    """Unit vectors (channels * horizontal_steps, 3) in the sensor frame, azimuth-major."""
+    azimuth, elevation = np.meshgrid(config.azimuths_rad, config.elevations_rad, indexing="ij")
+    azimuth, elevation = azimuth.ravel(), elevation.ravel()
+    return np.stack(
+        [
+            np.cos(elevation) * np.cos(azimuth),
+            np.cos(elevation) * np.sin(azimuth),
+            np.sin(elevation),
+        ],
+        axis=1,
+    )
+
+
+class LidarModel:
+    def __init__(self, config: LidarConfig | None = None) -> None:
+        self.config = config or LidarConfig()
+        self._directions = beam_directions(self.config)
+
+    @property
+    def beam_count(self) -> int:
+        return len(self._directions)
+
+    def scan(
+        self,
+        vehicle_pose: Pose,
+        boxes: ObstacleBoxes | None = None,
+        exclude_index: int | None = None,
+    ) -> npt.NDArray[np.float32]:
+        """Points (M, 4) float32: x, y, z in the sensor frame (m), intensity.
+
+        `exclude_index` names the box the sensor rides on, which it never sees.
+        """
+        config = self.config
+        origin, sensor_to_map = sensor_in_map(vehicle_pose, config.mount)
+        hits = cast_rays(
+            origin,
+            self._directions @ sensor_to_map.T,
+            boxes if boxes is not None else ObstacleBoxes.empty(),
+            config.max_range_m,
+            exclude_index,
+        )
+        returned = (hits.distance >= config.min_range_m) & (hits.distance <= config.max_range_m)
+        distance = hits.distance[returned]
+        points = np.empty((len(distance), 4), dtype=np.float32)
+        points[:, :3] = self._directions[returned] * distance[:, None]
+        points[:, 3] = config.intensity.of(
+            hits.surface[returned], hits.cos_incidence[returned], distance
+        )
+        return points

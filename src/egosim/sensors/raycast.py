@@ -1,0 +1,252 @@
+"""Rays against the ground plane z = 0 and yaw-oriented boxes, all in the map frame.
+
+Boxes are intersected with the slab method in each box's own frame. A broad
+phase keeps the work proportional to the beams that can reach a box: boxes
+beyond range are dropped, each remaining box only sees the beams whose
+horizontal bearing falls inside the sector its footprint circle subtends, and
+of those only the beams inside the cone its bounding sphere subtends.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import IntEnum
+
+import numpy as np
+import numpy.typing as npt
+
+from egosim.sensors.errors import SensorConfigError
+
+FloatArray = npt.NDArray[np.float64]
+IndexArray = npt.NDArray[np.intp]
+
+
+class Surface(IntEnum):
+    NONE = 0
+    GROUND = 1
+    OBJECT = 2
+
+
+@dataclass(frozen=True)
+class ObstacleBoxes:
+    """N upright boxes in the map frame.
+
+    centres (N, 3) m: the box's geometric centre, so it spans z +- height / 2.
+    sizes (N, 3) m: length (along its heading), width, height.
+    yaws (N,) rad: heading of the length axis, counter-clockwise from east.
+    """
+
+    centres: FloatArray
+    sizes: FloatArray
+    yaws: FloatArray
+
+    def __post_init__(self) -> None:
+        centres = np.asarray(self.centres, dtype=np.float64).reshape(-1, 3)
+        sizes = np.asarray(self.sizes, dtype=np.float64).reshape(-1, 3)
+        yaws = np.asarray(self.yaws, dtype=np.float64).reshape(-1)
+        if not len(centres) == len(sizes) == len(yaws):
+            raise SensorConfigError(
+                f"boxes need as many centres, sizes and yaws: "
+                f"{len(centres)}, {len(sizes)}, {len(yaws)}"
+            )
+        if np.any(sizes <= 0.0):
+            raise SensorConfigError("box sizes must be > 0")
+        object.__setattr__(self, "centres", centres)
+        object.__setattr__(self, "sizes", sizes)
+        object.__setattr__(self, "yaws", yaws)
+
+    @classmethod
+    def empty(cls) -> ObstacleBoxes:
+        return cls(np.empty((0, 3)), np.empty((0, 3)), np.empty(0))
+
+    def __len__(self) -> int:
+        return len(self.yaws)
+
+
+@dataclass(frozen=True)
+class RayHits:
+    """Nearest hit per ray: distance (inf if none), surface, |cos| of incidence."""
+
+    distance: FloatArray
+    surface: npt.NDArray[np.int8]
+    cos_incidence: FloatArray
+
+
+def cast_ground(origin: FloatArray, directions: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Distance along unit `directions` to the plane z = 0 (inf if not reached), and |cos|."""
+    down = -directions[:, 2]
+    distance = np.full(len(directions), np.inf)
+    if origin[2] > 0.0:
+        reaching = down > 0.0
+        distance[reaching] = origin[2] / down[reaching]
+    return distance, np.abs(down)
+
+
+def cast_rays(
+    origin: FloatArray,
+    directions: FloatArray,
+    boxes: ObstacleBoxes,
+    max_range: float,
+    exclude_index: int | None = None,
+) -> RayHits:
+    """Nearest of ground and box hits for rays from `origin` along unit `directions`."""
+    ground_distance, ground_cos = cast_ground(origin, directions)
+    box_distance, box_cos = cast_boxes(origin, directions, boxes, max_range, exclude_index)
+    box_first = box_distance < ground_distance
+    distance = np.where(box_first, box_distance, ground_distance)
+    surface = np.where(box_first, Surface.OBJECT, Surface.GROUND).astype(np.int8)
+    surface[np.isinf(distance)] = Surface.NONE
+    return RayHits(distance, surface, np.where(box_first, box_cos, ground_cos))
+
+
+def cast_boxes(
+    origin: FloatArray,
+    directions: FloatArray,
+    boxes: ObstacleBoxes,
+    max_range: float,
+    exclude_index: int | None = None,
+) -> tuple[FloatArray, FloatArray]:
+    """Distance to the nearest box entry per ray (inf if none) and |cos| of incidence.
+
+    A ray starting inside a box does not see that box.
+    """
+    distance = np.full(len(directions), np.inf)
+    cos_incidence = np.zeros(len(directions))
+    candidates = _boxes_in_range(origin, boxes, max_range, exclude_index)
+    if len(candidates) == 0 or len(directions) == 0:
+        return distance, cos_incidence
+
+    ray_index, box_index = _pairs_in_sector(origin, directions, boxes, candidates)
+    ray_index, box_index = _pairs_in_cone(origin, directions, boxes, ray_index, box_index)
+    pair_distance, pair_cos, hit = _slab_intersections(
+        origin, directions, boxes, ray_index, box_index
+    )
+    ray_index, pair_distance, pair_cos = ray_index[hit], pair_distance[hit], pair_cos[hit]
+
+    np.minimum.at(distance, ray_index, pair_distance)
+    nearest = pair_distance == distance[ray_index]
+    cos_incidence[ray_index[nearest]] = pair_cos[nearest]
+    return distance, cos_incidence
+
+
+def _boxes_in_range(
+    origin: FloatArray, boxes: ObstacleBoxes, max_range: float, exclude_index: int | None
+) -> IndexArray:
+    bounding_radius = 0.5 * np.linalg.norm(boxes.sizes, axis=1)
+    centre_distance = np.linalg.norm(boxes.centres - origin, axis=1)
+    keep = centre_distance - bounding_radius <= max_range
+    if exclude_index is not None:
+        keep[exclude_index] = False
+    return np.flatnonzero(keep)
+
+
+def _pairs_in_sector(
+    origin: FloatArray, directions: FloatArray, boxes: ObstacleBoxes, candidates: IndexArray
+) -> tuple[IndexArray, IndexArray]:
+    """(ray, box) pairs whose horizontal bearing lies in the box footprint's sector.
+
+    A ray whose horizontal projection misses the footprint's circumscribed
+    circle misses the box, so this never drops a hit. A vertical ray can only
+    hit a box whose circle contains the origin; those boxes take every ray.
+    """
+    bearing = np.arctan2(directions[:, 1], directions[:, 0])
+    by_bearing = np.argsort(bearing, kind="stable")
+    sorted_bearing = bearing[by_bearing]
+
+    offset = boxes.centres[candidates, :2] - origin[:2]
+    horizontal_distance = np.hypot(offset[:, 0], offset[:, 1])
+    footprint_radius = 0.5 * np.hypot(boxes.sizes[candidates, 0], boxes.sizes[candidates, 1])
+    surrounds = horizontal_distance <= footprint_radius
+    centre_bearing = np.arctan2(offset[:, 1], offset[:, 0])
+    half_width = np.arcsin(
+        np.minimum(footprint_radius / np.maximum(horizontal_distance, 1e-12), 1.0)
+    )
+    low = np.where(surrounds, -np.pi, centre_bearing - half_width)
+    high = np.where(surrounds, np.pi, centre_bearing + half_width)
+
+    # A sector crossing +-pi is split into two intervals inside [-pi, pi].
+    wraps_low = low < -np.pi
+    wraps_high = high > np.pi
+    interval_box = np.concatenate([candidates, candidates[wraps_low], candidates[wraps_high]])
+    interval_low = np.concatenate(
+        [np.maximum(low, -np.pi), low[wraps_low] + 2 * np.pi, np.full(wraps_high.sum(), -np.pi)]
+    )
+    interval_high = np.concatenate(
+        [np.minimum(high, np.pi), np.full(wraps_low.sum(), np.pi), high[wraps_high] - 2 * np.pi]
+    )
+    first = np.searchsorted(sorted_bearing, interval_low, side="left")
+    stop = np.searchsorted(sorted_bearing, interval_high, side="right")
+    counts = np.maximum(stop - first, 0)
+
+    box_index = np.repeat(interval_box, counts)
+    interval_start = np.repeat(first - (np.cumsum(counts) - counts), counts)
+    sorted_position = interval_start + np.arange(counts.sum())
+    return by_bearing[sorted_position], box_index
+
+
+def _pairs_in_cone(
+    origin: FloatArray,
+    directions: FloatArray,
+    boxes: ObstacleBoxes,
+    ray_index: IndexArray,
+    box_index: IndexArray,
+) -> tuple[IndexArray, IndexArray]:
+    """Keeps the pairs whose ray meets the box's bounding sphere (or starts inside it)."""
+    offset = boxes.centres - origin
+    radius_sq = 0.25 * np.einsum("ij,ij->i", boxes.sizes, boxes.sizes)
+    distance_sq = np.einsum("ij,ij->i", offset, offset)
+    tangent_length = np.sqrt(np.maximum(distance_sq - radius_sq, 0.0))
+    along = np.einsum("ij,ij->i", directions[ray_index], offset[box_index])
+    keep = (along >= tangent_length[box_index]) | (distance_sq <= radius_sq)[box_index]
+    return ray_index[keep], box_index[keep]
+
+
+def _slab_intersections(
+    origin: FloatArray,
+    directions: FloatArray,
+    boxes: ObstacleBoxes,
+    ray_index: IndexArray,
+    box_index: IndexArray,
+) -> tuple[FloatArray, FloatArray, npt.NDArray[np.bool_]]:
+    """Entry distance, |cos| at the entry face and whether each (ray, box) pair hits."""
+    cos_yaw = np.cos(boxes.yaws)[box_index]
+    sin_yaw = np.sin(boxes.yaws)[box_index]
+    world_offset = origin - boxes.centres[box_index]
+    world_direction = directions[ray_index]
+
+    # Rz(-yaw) takes map vectors into the box frame.
+    local_origin = np.stack(
+        [
+            cos_yaw * world_offset[:, 0] + sin_yaw * world_offset[:, 1],
+            -sin_yaw * world_offset[:, 0] + cos_yaw * world_offset[:, 1],
+            world_offset[:, 2],
+        ],
+        axis=1,
+    )
+    local_direction = np.stack(
+        [
+            cos_yaw * world_direction[:, 0] + sin_yaw * world_direction[:, 1],
+            -sin_yaw * world_direction[:, 0] + cos_yaw * world_direction[:, 1],
+            world_direction[:, 2],
+        ],
+        axis=1,
+    )
+    half_size = 0.5 * boxes.sizes[box_index]
+
+    parallel = local_direction == 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        to_low_face = (-half_size - local_origin) / local_direction
+        to_high_face = (half_size - local_origin) / local_direction
+    enter = np.minimum(to_low_face, to_high_face)
+    leave = np.maximum(to_low_face, to_high_face)
+    # A ray parallel to a slab is inside it for all t, or for none.
+    inside_slab = np.abs(local_origin) <= half_size
+    enter = np.where(parallel, np.where(inside_slab, -np.inf, np.inf), enter)
+    leave = np.where(parallel, np.where(inside_slab, np.inf, -np.inf), leave)
+
+    entry_axis = np.argmax(enter, axis=1)
+    rows = np.arange(len(enter))
+    entry = enter[rows, entry_axis]
+    exit_ = leave.min(axis=1)
+    hit = (entry <= exit_) & (entry > 0.0)
+    return entry, np.abs(local_direction[rows, entry_axis]), hit
