@@ -1,0 +1,32 @@
+"""morai_msgs and the ROS standard types: lookup, construction, ROS 1 bytes, md5, definitions.
+
+profile = get_profile("26.r1")
+ctrl = profile.message("morai_msgs/CtrlCmd")
+data = ctrl.serialize(ctrl.new(longlCmdType=1, accel=0.5))
+ctrl.md5sum, ctrl.definition           # as sent in a TCPROS connection header
+profile.service("morai_msgs/MoraiEventCmdSrv").request
+"""
+
+from .definitions import DEFAULT_PROFILE, PROFILES
+from .errors import (
+    DefinitionError,
+    MsgsError,
+    SerializationError,
+    UnknownProfileError,
+    UnknownTypeError,
+)
+from .profile import MessageType, Profile, ServiceType, get_profile
+
+__all__ = [
+    "DEFAULT_PROFILE",
+    "PROFILES",
+    "DefinitionError",
+    "MessageType",
+    "MsgsError",
+    "Profile",
+    "SerializationError",
+    "ServiceType",
+    "UnknownProfileError",
+    "UnknownTypeError",
+    "get_profile",
+]

@@ -1,0 +1,174 @@
+"""A protocol profile: every type of one morai_msgs release plus the ROS standard types."""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass, field
+from typing import Any
+
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+from rosbags.typesys.msg import denormalize_msgtype, normalize_msgtype
+from rosbags.typesys.store import Typestore
+
+from . import fulltext
+from .defaults import default_message
+from .definitions import (
+    DEFAULT_PROFILE,
+    SERVICE_SEPARATOR,
+    ServiceText,
+    load_package_definitions,
+)
+from .errors import DefinitionError, SerializationError, UnknownTypeError
+
+# Standard types egosim publishes or that morai_msgs embeds; listed by `egosim msgs`.
+STANDARD_TYPES: tuple[str, ...] = (
+    "std_msgs/Header",
+    "std_msgs/String",
+    "geometry_msgs/Point",
+    "geometry_msgs/Pose",
+    "geometry_msgs/Quaternion",
+    "geometry_msgs/Transform",
+    "geometry_msgs/TransformStamped",
+    "geometry_msgs/Twist",
+    "geometry_msgs/Vector3",
+    "sensor_msgs/Imu",
+    "sensor_msgs/NavSatFix",
+    "sensor_msgs/PointCloud2",
+    "sensor_msgs/PointField",
+    "sensor_msgs/CompressedImage",
+    "nav_msgs/Odometry",
+    "nav_msgs/Path",
+    "rosgraph_msgs/Clock",
+    "rosgraph_msgs/Log",
+    "tf2_msgs/TFMessage",
+    "visualization_msgs/MarkerArray",
+)
+
+
+@dataclass(eq=False)
+class MessageType:
+    """One ROS 1 message type: its identity on the wire and its (de)serialisation."""
+
+    name: str
+    md5sum: str
+    definition: str
+    store: Typestore = field(repr=False)
+
+    @property
+    def store_name(self) -> str:
+        return normalize_msgtype(self.name)
+
+    @property
+    def fields(self) -> list[tuple[str, Any]]:
+        """(name, rosbags field description) pairs, in wire order."""
+        return list(self.store.fielddefs[self.store_name][1])
+
+    def new(self, **values: Any) -> Any:
+        """A message with `values` set and every other field at its ROS default."""
+        return default_message(self.store, self.store_name, **values)
+
+    def serialize(self, message: Any) -> bytes:
+        try:
+            return bytes(self.store.serialize_ros1(message, self.store_name))
+        except Exception as exc:
+            raise SerializationError(f"cannot serialize {self.name}: {exc}") from exc
+
+    def deserialize(self, data: bytes | memoryview) -> Any:
+        try:
+            return self.store.deserialize_ros1(data, self.store_name)
+        except Exception as exc:
+            raise SerializationError(
+                f"cannot deserialize {len(data)} bytes as {self.name}: {exc}"
+            ) from exc
+
+
+@dataclass(frozen=True, eq=False)
+class ServiceType:
+    """One ROS 1 service type: its md5 and its request and response messages."""
+
+    name: str
+    md5sum: str
+    request: MessageType
+    response: MessageType
+    definition: str  # the .srv text, as `rossrv show` prints it
+
+
+class Profile:
+    """Every type of one protocol release, ready to serialise."""
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+        self.store = get_typestore(Stores.ROS1_NOETIC)
+        self._own_texts: dict[str, str] = {}
+        self._package_messages: list[str] = []
+        self._services: dict[str, ServiceText] = {}
+        types: dict[str, Any] = {}
+        for package in load_package_definitions(name):
+            for short, text in package.messages.items():
+                ros_name = f"{package.package}/{short}"
+                types.update(self._parse(text, ros_name))
+                self._package_messages.append(ros_name)
+            for short, srv in package.services.items():
+                ros_name = f"{package.package}/{short}"
+                types.update(self._parse(srv.request, f"{ros_name}Request"))
+                types.update(self._parse(srv.response, f"{ros_name}Response"))
+                self._services[ros_name] = srv
+        self.store.register(types)
+        self._messages: dict[str, MessageType] = {}
+
+    def _parse(self, text: str, ros_name: str) -> dict[str, Any]:
+        store_name = normalize_msgtype(ros_name)
+        try:
+            parsed = get_types_from_msg(text, store_name)
+        except Exception as exc:
+            raise DefinitionError(f"{self.name}: cannot parse {ros_name}: {exc}") from exc
+        self._own_texts[store_name] = text
+        return parsed
+
+    def _own_text(self, store_name: str) -> str:
+        if store_name in self._own_texts:
+            return self._own_texts[store_name]
+        return self.store.gendefhash(store_name, {})[0]
+
+    def message(self, name: str) -> MessageType:
+        """The message type `pkg/Name` (also accepts rosbags' `pkg/msg/Name`)."""
+        ros_name = denormalize_msgtype(normalize_msgtype(name))
+        if ros_name not in self._messages:
+            store_name = normalize_msgtype(ros_name)
+            if store_name not in self.store.fielddefs:
+                raise UnknownTypeError(f"no message type {name!r} in profile {self.name}")
+            self._messages[ros_name] = MessageType(
+                name=ros_name,
+                md5sum=self.store.generate_msgdef(store_name)[1],
+                definition=fulltext.full_text(self.store, store_name, self._own_text),
+                store=self.store,
+            )
+        return self._messages[ros_name]
+
+    def service(self, name: str) -> ServiceType:
+        """The service type `pkg/Name`."""
+        if name not in self._services:
+            raise UnknownTypeError(f"no service type {name!r} in profile {self.name}")
+        request, response = self.message(f"{name}Request"), self.message(f"{name}Response")
+        srv = self._services[name]
+        return ServiceType(
+            name=name,
+            md5sum=fulltext.service_md5(self.store, request.store_name, response.store_name),
+            request=request,
+            response=response,
+            definition=f"{srv.request}{SERVICE_SEPARATOR}\n{srv.response}",
+        )
+
+    def message_names(self) -> list[str]:
+        """The package's own message types, then the standard ones, each sorted."""
+        package = sorted(set(self._package_messages) - set(STANDARD_TYPES))
+        return package + sorted(STANDARD_TYPES)
+
+    def service_names(self) -> list[str]:
+        return sorted(self._services)
+
+
+@functools.cache
+def get_profile(name: str = DEFAULT_PROFILE) -> Profile:
+    """The profile `name`, built once per process."""
+    return Profile(name)
