@@ -1,0 +1,62 @@
+# egosim: `make run` starts the simulator, `make test` runs every test.
+PYTHON ?= python3
+VENV := .venv
+BIN := $(VENV)/bin
+ARGS ?=
+# Debian's ROS 1 (Noetic): test peers only, never a runtime dependency.
+ROS_PEER_DEBS := python3-rospy python3-rosmaster python3-rostopic python3-rosservice \
+	python3-rosparam python3-rosnode python3-rosbag python3-genpy ros-core-dev \
+	g++ pkg-config
+SOURCES := $(wildcard src tests benchmarks examples)
+
+.PHONY: run test lint ros-peers benchmarks clean
+
+$(BIN)/python:
+	@$(PYTHON) -m venv $(VENV) 2>/dev/null || { \
+		if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+			apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3-venv \
+			&& $(PYTHON) -m venv $(VENV); \
+		else \
+			echo "error: '$(PYTHON) -m venv' failed: install python3-venv" >&2; exit 1; \
+		fi; }
+	$(BIN)/python -m pip install -q --upgrade pip
+
+$(VENV)/.installed: $(BIN)/python pyproject.toml
+	$(BIN)/pip install -q -e .
+	@touch $@
+
+$(VENV)/.installed-test: $(BIN)/python pyproject.toml
+	$(BIN)/pip install -q -e ".[test]"
+	@touch $@ $(VENV)/.installed
+
+run: $(VENV)/.installed
+	$(BIN)/egosim run $(ARGS)
+
+ros-peers:
+	@if /usr/bin/python3 -c "import rospy, rosmaster, rostopic, rosservice, rosbag, genpy" 2>/dev/null \
+		&& [ -f /usr/include/ros/ros.h ]; then \
+		echo "ROS 1 test peers: present"; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+		echo "ROS 1 test peers: installing $(ROS_PEER_DEBS)"; \
+		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+			--no-install-recommends $(ROS_PEER_DEBS); \
+	else \
+		echo "########################################################################"; \
+		echo "# WARNING: Debian's ROS 1 test peers are missing and this is not root. #"; \
+		echo "# Every test marked 'ros' or 'roscpp' (interop and end-to-end) will    #"; \
+		echo "# SKIP. Install them: sudo apt-get install $(ROS_PEER_DEBS)"; \
+		echo "########################################################################"; \
+	fi
+
+lint: $(VENV)/.installed-test
+	$(BIN)/ruff check $(SOURCES)
+	$(BIN)/ruff format --check $(SOURCES)
+
+test: $(VENV)/.installed-test ros-peers lint
+	$(BIN)/pytest
+
+benchmarks: $(VENV)/.installed-test
+	@for script in benchmarks/*.py; do echo "== $$script"; $(BIN)/python $$script || exit 1; done
+
+clean:
+	rm -rf $(VENV) .pytest_cache .ruff_cache build *.egg-info src/*.egg-info
