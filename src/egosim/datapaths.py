@@ -1,0 +1,40 @@
+"""File names that come from the network resolve only inside configured data roots.
+
+ScenarioLoad.file_name, SaveSensorData.file_dir and MoraiSimProcHandle.rosbag_file_name
+are chosen by any ROS peer; following them blindly would let a peer read or
+write anywhere the simulator can.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+
+
+class PathOutsideRootsError(ValueError):
+    """The name resolves outside every data root (absolute elsewhere, `..`, symlink out)."""
+
+
+def resolve_in_roots(name: str, roots: Sequence[Path], *, must_exist: bool = True) -> Path:
+    """The real path of `name` inside one of `roots`, trying each root in order.
+
+    A relative `name` is taken relative to each root; an absolute one must
+    already lie inside a root. Symlinks are resolved before the check, so a
+    link pointing out of a root is refused like `..` is.
+    """
+    if not name or "\x00" in name:
+        raise PathOutsideRootsError(f"invalid file name {name!r}")
+    real_roots = [Path(root).resolve() for root in roots]
+    candidates = [Path(name)] if Path(name).is_absolute() else [r / name for r in real_roots]
+    refused = None
+    for candidate in candidates:
+        resolved = candidate.resolve()
+        if not any(resolved.is_relative_to(root) for root in real_roots):
+            refused = resolved
+            continue
+        if must_exist and not resolved.exists():
+            continue
+        return resolved
+    if refused is not None:
+        raise PathOutsideRootsError(f"{name!r} resolves outside the data roots ({refused})")
+    raise FileNotFoundError(f"{name!r} not found in the data roots {[str(r) for r in real_roots]}")
