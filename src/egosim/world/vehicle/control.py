@@ -1,0 +1,108 @@
+"""Control commands as CtrlCmd defines them, and the gate that validates them.
+
+The gate clamps out-of-range values, rejects a command carrying NaN or an
+infinity (keeping the last valid one), and falls back to a safe brake when no
+command has arrived for `timeout` seconds of simulation time. It reads no
+clock: the caller passes the simulation time.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields, replace
+from enum import IntEnum
+
+from egosim.world.vehicle.catalogue import VehicleModel
+
+DEFAULT_COMMAND_TIMEOUT = 0.5
+"""Seconds of silence after which the gate brakes the car."""
+
+
+class LongitudinalMode(IntEnum):
+    """CtrlCmd.longlCmdType."""
+
+    PEDALS = 1
+    VELOCITY = 2
+    ACCELERATION = 3
+
+
+@dataclass(frozen=True)
+class ControlCommand:
+    """One CtrlCmd in SI units."""
+
+    mode: int = LongitudinalMode.PEDALS
+    """A LongitudinalMode value; anything else is rejected by the gate."""
+    accel: float = 0.0
+    """Accelerator pedal 0..1 (PEDALS mode)."""
+    brake: float = 0.0
+    """Brake pedal 0..1 (PEDALS mode)."""
+    front_steer: float = 0.0
+    """Front road-wheel angle, rad, positive to the left."""
+    rear_steer: float = 0.0
+    """Rear road-wheel angle, rad, positive to the left."""
+    velocity: float = 0.0
+    """Target speed in the direction the gear drives, m/s (VELOCITY mode)."""
+    acceleration: float = 0.0
+    """Target rate of change of that speed, m/s² (ACCELERATION mode)."""
+
+
+@dataclass(frozen=True)
+class CommandVerdict:
+    """What the gate did with a command."""
+
+    accepted: bool
+    reason: str = ""
+    """Why it was rejected; empty when accepted."""
+    clamped: tuple[str, ...] = ()
+    """Fields brought into range."""
+
+
+SAFE_BRAKE = ControlCommand(mode=LongitudinalMode.PEDALS, brake=1.0)
+
+
+class CommandGate:
+    """Holds the command in force for a vehicle model."""
+
+    def __init__(self, model: VehicleModel, timeout: float = DEFAULT_COMMAND_TIMEOUT) -> None:
+        self._ranges = {
+            "accel": (0.0, 1.0),
+            "brake": (0.0, 1.0),
+            "front_steer": (-model.max_steer_front, model.max_steer_front),
+            "rear_steer": (-model.max_steer_rear, model.max_steer_rear),
+            "velocity": (0.0, math.inf),
+        }
+        self.timeout = timeout
+        self._command = SAFE_BRAKE
+        self._received_at: float | None = None
+
+    def submit(self, command: ControlCommand, sim_time: float) -> CommandVerdict:
+        """Accept `command` at sim_time (s), clamped into range, unless it is invalid."""
+        non_finite = [
+            f.name for f in fields(command) if not math.isfinite(getattr(command, f.name))
+        ]
+        if non_finite:
+            return CommandVerdict(False, reason=f"non-finite {', '.join(non_finite)}")
+        if command.mode not in LongitudinalMode.__members__.values():
+            return CommandVerdict(False, reason=f"unknown longitudinal mode {command.mode}")
+        changes = {}
+        for name, (low, high) in self._ranges.items():
+            value = getattr(command, name)
+            if not low <= value <= high:
+                changes[name] = min(max(value, low), high)
+        self._command = replace(command, mode=LongitudinalMode(command.mode), **changes)
+        self._received_at = sim_time
+        return CommandVerdict(True, clamped=tuple(changes))
+
+    def timed_out(self, sim_time: float) -> bool:
+        """True before the first command and after `timeout` s without one."""
+        return self._received_at is None or sim_time - self._received_at > self.timeout
+
+    def active_command(self, sim_time: float) -> ControlCommand:
+        """The command in force: the last valid one, or a full brake with the steering held."""
+        if self.timed_out(sim_time):
+            return replace(
+                SAFE_BRAKE,
+                front_steer=self._command.front_steer,
+                rear_steer=self._command.rear_steer,
+            )
+        return self._command

@@ -1,0 +1,182 @@
+"""The ego vehicle: command gate, pedal controllers and dynamics behind one object."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from egosim.world.vehicle.catalogue import DEFAULT_EGO_MODEL, VehicleModel, vehicle_model
+from egosim.world.vehicle.control import (
+    DEFAULT_COMMAND_TIMEOUT,
+    CommandGate,
+    CommandVerdict,
+    ControlCommand,
+    LongitudinalMode,
+)
+from egosim.world.vehicle.dynamics import ActuatorInputs, advance, kinematic_lateral_motion
+from egosim.world.vehicle.gear import Gear
+from egosim.world.vehicle.pedal_control import AccelerationTracker, Pedals, SpeedController
+from egosim.world.vehicle.state import VehicleState
+from egosim.world.vehicle.wheels import Wheels, wheel_statuses
+
+DEFAULT_MAX_SUBSTEP = 0.005
+"""Longest integration step (s); a step(dt) is split into equal substeps no longer than this."""
+
+Vector3 = tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class Pose:
+    """Centre of gravity in the map (ENU, m) and REP 103 roll, pitch, yaw (rad, yaw 0 = east)."""
+
+    x: float = 0.0
+    y: float = 0.0
+    z: float = 0.0
+    roll: float = 0.0
+    pitch: float = 0.0
+    yaw: float = 0.0
+
+
+@dataclass(frozen=True)
+class RoadSurface:
+    """The road under the vehicle: height (m) and the REP 103 roll and pitch (rad) it imposes.
+
+    Pitch is positive nose down: facing up a 10 % grade is pitch = -atan(0.1).
+    """
+
+    z: float
+    pitch: float = 0.0
+    roll: float = 0.0
+
+
+@dataclass(frozen=True)
+class VehicleStatus:
+    """Everything EgoVehicleStatus needs from the vehicle, SI units.
+
+    Vectors in the body frame are (x forward, y left, z up).
+    """
+
+    pose: Pose
+    velocity: Vector3
+    """Body-frame velocity of the CG, m/s."""
+    acceleration: Vector3
+    """Body-frame kinematic acceleration of the CG (no gravity), m/s²."""
+    yaw_rate: float
+    """rad/s, counter-clockwise positive."""
+    speed: float
+    """Magnitude of the velocity, m/s (never negative)."""
+    accel_pedal: float
+    """Accelerator pedal actually applied, 0..1."""
+    brake_pedal: float
+    """Brake pedal actually applied, 0..1."""
+    front_steer: float
+    """Front road-wheel angle, rad, positive to the left."""
+    rear_steer: float
+    """Rear road-wheel angle, rad, positive to the left."""
+    gear: Gear
+    wheels: Wheels
+
+
+class Vehicle:
+    """One vehicle of a catalogue model; advanced by step(dt) on the road it is given."""
+
+    def __init__(
+        self,
+        model: VehicleModel,
+        pose: Pose | None = None,
+        *,
+        gear: Gear = Gear.DRIVE,
+        command_timeout: float = DEFAULT_COMMAND_TIMEOUT,
+        max_substep: float = DEFAULT_MAX_SUBSTEP,
+    ) -> None:
+        self.model = model
+        self.gear = gear
+        self.sim_time = 0.0
+        """Seconds of simulation this vehicle has been stepped through."""
+        self.max_substep = max_substep
+        self._state = VehicleState()
+        self._gate = CommandGate(model, command_timeout)
+        self._acceleration_tracker = AccelerationTracker(model)
+        self._speed_controller = SpeedController(model, self._acceleration_tracker)
+        self._pedals = Pedals(accel=0.0, brake=0.0)
+        self.teleport(pose or Pose())
+
+    @classmethod
+    def from_catalogue(
+        cls, name: str = DEFAULT_EGO_MODEL, pose: Pose | None = None, **options: float | Gear
+    ) -> Vehicle:
+        """A vehicle of the catalogue model `name`; options as for the constructor."""
+        return cls(vehicle_model(name), pose, **options)  # type: ignore[arg-type]
+
+    def command(self, command: ControlCommand) -> CommandVerdict:
+        """Hand the vehicle a control command, received now (at sim_time)."""
+        return self._gate.submit(command, self.sim_time)
+
+    def set_gear(self, gear: Gear) -> None:
+        self.gear = gear
+
+    def teleport(
+        self, pose: Pose, speed: float = 0.0, front_steer: float = 0.0, rear_steer: float = 0.0
+    ) -> None:
+        """Put the vehicle at pose, moving at speed (m/s, body x) with these wheel angles (rad).
+
+        The lateral motion is the kinematic one for that speed and steering.
+        """
+        state = self._state
+        state.x, state.y, state.z = pose.x, pose.y, pose.z
+        state.roll, state.pitch, state.yaw = pose.roll, pose.pitch, pose.yaw
+        state.vx = speed
+        state.front_steer, state.rear_steer = front_steer, rear_steer
+        state.vy, state.yaw_rate = kinematic_lateral_motion(
+            self.model, speed, front_steer, rear_steer
+        )
+        state.vx_rate = state.vy_rate = state.yaw_acceleration = 0.0
+        self._acceleration_tracker.reset()
+
+    def step(self, dt: float, surface: RoadSurface | None = None) -> None:
+        """Advance dt seconds; surface, when given, is the road under the vehicle now."""
+        if not dt > 0.0:
+            raise ValueError(f"step needs a positive dt, got {dt}")
+        state = self._state
+        if surface is not None:
+            state.z, state.pitch, state.roll = surface.z, surface.pitch, surface.roll
+        substeps = math.ceil(dt / self.max_substep)
+        substep = dt / substeps
+        for _ in range(substeps):
+            command = self._gate.active_command(self.sim_time)
+            self._pedals = self._pedals_for(command, substep)
+            inputs = ActuatorInputs(
+                accel_pedal=self._pedals.accel,
+                brake_pedal=self._pedals.brake,
+                front_steer_target=command.front_steer,
+                rear_steer_target=command.rear_steer,
+                gear=self.gear,
+            )
+            advance(self.model, state, inputs, substep)
+            self.sim_time += substep
+
+    def _pedals_for(self, command: ControlCommand, dt: float) -> Pedals:
+        if command.mode == LongitudinalMode.VELOCITY:
+            return self._speed_controller.pedals(command.velocity, self.gear, self._state, dt)
+        if command.mode == LongitudinalMode.ACCELERATION:
+            return self._acceleration_tracker.pedals(
+                command.acceleration, self.gear, self._state, dt
+            )
+        return Pedals(accel=command.accel, brake=command.brake)
+
+    def status(self) -> VehicleStatus:
+        """The vehicle's state after the last step."""
+        state = self._state
+        return VehicleStatus(
+            pose=Pose(state.x, state.y, state.z, state.roll, state.pitch, state.yaw),
+            velocity=(state.vx, state.vy, 0.0),
+            acceleration=(state.ax, state.ay, 0.0),
+            yaw_rate=state.yaw_rate,
+            speed=math.hypot(state.vx, state.vy),
+            accel_pedal=self._pedals.accel,
+            brake_pedal=self._pedals.brake,
+            front_steer=state.front_steer,
+            rear_steer=state.rear_steer,
+            gear=self.gear,
+            wheels=wheel_statuses(self.model, state),
+        )
