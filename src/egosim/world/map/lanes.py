@@ -1,0 +1,287 @@
+"""The lane-graph map: lanes, signals, crosswalks, sidewalks and queries over them."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field, fields
+
+import numpy as np
+import numpy.typing as npt
+
+from egosim.world.map.errors import MapGeometryError, UnknownLaneError
+from egosim.world.map.georef import GeoReference
+from egosim.world.map.polyline import segment_headings, stations
+from egosim.world.map.projection import LaneProjection, LaneProjections, SegmentTable
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.int64]
+
+# Gap between lanes on the flattened station axis, so a station never reaches the next lane.
+_LANE_KEY_GAP_M = 1.0
+
+
+def _frozen_array(values: object, shape_hint: str) -> FloatArray:
+    array = np.array(values, dtype=np.float64)
+    if not np.all(np.isfinite(array)):
+        raise MapGeometryError(f"{shape_hint} holds non-finite values")
+    array.flags.writeable = False
+    return array
+
+
+def _equal_fields(a: object, b: object) -> bool:
+    """Dataclass equality that compares numpy arrays by value."""
+    if type(a) is not type(b):
+        return NotImplemented
+    for f in fields(a):  # type: ignore[arg-type]
+        x, y = getattr(a, f.name), getattr(b, f.name)
+        same = np.array_equal(x, y) if isinstance(x, np.ndarray) else x == y
+        if not same:
+            return False
+    return True
+
+
+@dataclass(frozen=True, eq=False)
+class Lane:
+    """One directed lane. Station s runs from 0 at the first centreline point to `length`."""
+
+    id: str
+    centerline: FloatArray
+    widths: FloatArray
+    speed_limit: float
+    successors: tuple[str, ...] = ()
+    predecessors: tuple[str, ...] = ()
+    left_neighbor: str | None = None
+    right_neighbor: str | None = None
+    stop_line_s: float | None = None
+    traffic_light_id: str | None = None
+    is_junction: bool = False
+    stations: FloatArray = field(init=False, repr=False)
+    length: float = field(init=False)
+
+    def __post_init__(self) -> None:
+        points = np.asarray(self.centerline, dtype=np.float64)
+        if points.ndim != 2 or points.shape[0] < 2 or points.shape[1] not in (2, 3):
+            raise MapGeometryError(f"lane {self.id}: centerline must be (N >= 2, 3)")
+        if points.shape[1] == 2:
+            points = np.column_stack((points, np.zeros(len(points))))
+        widths = np.broadcast_to(np.asarray(self.widths, dtype=np.float64), (len(points),))
+        if np.any(widths <= 0.0):
+            raise MapGeometryError(f"lane {self.id}: widths must be positive")
+        station = stations(points)
+        if np.any(np.diff(station) <= 1e-9):
+            raise MapGeometryError(f"lane {self.id}: centerline repeats a point")
+        object.__setattr__(self, "centerline", _frozen_array(points, f"lane {self.id}"))
+        object.__setattr__(self, "widths", _frozen_array(widths, f"lane {self.id} widths"))
+        object.__setattr__(self, "stations", _frozen_array(station, f"lane {self.id}"))
+        object.__setattr__(self, "length", float(station[-1]))
+        if self.stop_line_s is not None and not 0.0 <= self.stop_line_s <= self.length:
+            raise MapGeometryError(f"lane {self.id}: stop line outside the lane")
+
+    __eq__ = _equal_fields
+    __hash__ = None  # type: ignore[assignment]
+
+
+@dataclass(frozen=True)
+class TrafficLightSite:
+    """A signal head. `id` is the protocol's trafficLightIndex."""
+
+    id: str
+    position: tuple[float, float, float]
+    heading: float
+    light_type: int
+    lane_ids: tuple[str, ...]
+    intersection_id: int
+
+
+@dataclass(frozen=True)
+class IntersectionSite:
+    """A signalised junction. Lights in one approach group always show the same aspect."""
+
+    id: int
+    center: tuple[float, float]
+    light_ids: tuple[str, ...]
+    approach_groups: tuple[tuple[str, ...], ...]
+
+
+@dataclass(frozen=True)
+class Crosswalk:
+    """A zebra crossing from `start` to `end` (the walking direction), `width` m wide."""
+
+    id: str
+    start: tuple[float, float]
+    end: tuple[float, float]
+    width: float
+    intersection_id: int | None
+
+
+@dataclass(frozen=True, eq=False)
+class Sidewalk:
+    """A polyline pedestrians walk along; closed when the last point equals the first."""
+
+    id: str
+    points: FloatArray
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "points", _frozen_array(self.points, f"sidewalk {self.id}"))
+
+    __eq__ = _equal_fields
+    __hash__ = None  # type: ignore[assignment]
+
+
+class LaneMap:
+    """A road network in a local ENU frame (x east, y north, z up, metres)."""
+
+    def __init__(
+        self,
+        name: str,
+        lanes: Iterable[Lane],
+        traffic_lights: Iterable[TrafficLightSite],
+        intersections: Iterable[IntersectionSite],
+        crosswalks: Iterable[Crosswalk],
+        sidewalks: Iterable[Sidewalk],
+        georef: GeoReference,
+    ) -> None:
+        self.name = name
+        self.lanes: dict[str, Lane] = {lane.id: lane for lane in lanes}
+        if not self.lanes:
+            raise MapGeometryError(f"map {name} has no lanes")
+        self.traffic_lights: dict[str, TrafficLightSite] = {t.id: t for t in traffic_lights}
+        self.intersections: dict[int, IntersectionSite] = {i.id: i for i in intersections}
+        self.crosswalks: dict[str, Crosswalk] = {c.id: c for c in crosswalks}
+        self.sidewalks: dict[str, Sidewalk] = {s.id: s for s in sidewalks}
+        self.georef = georef
+        self.lane_ids: tuple[str, ...] = tuple(self.lanes)
+        self._index = {lane_id: i for i, lane_id in enumerate(self.lane_ids)}
+        self._check_references()
+
+        ordered = [self.lanes[i] for i in self.lane_ids]
+        self.lane_lengths: FloatArray = np.array([lane.length for lane in ordered])
+        self._segments = SegmentTable(
+            self.lane_ids,
+            [lane.centerline for lane in ordered],
+            [lane.stations for lane in ordered],
+            [lane.widths for lane in ordered],
+        )
+        counts = np.array([len(lane.centerline) for lane in ordered])
+        self._first_point = np.concatenate(([0], np.cumsum(counts)[:-1]))
+        self._last_segment = self._first_point + counts - 2
+        self._points = np.concatenate([lane.centerline for lane in ordered])
+        self._point_station = np.concatenate([lane.stations for lane in ordered])
+        self._point_heading = np.concatenate(
+            [np.append(segment_headings(lane.centerline), np.nan) for lane in ordered]
+        )
+        self._lane_key_base = np.concatenate(
+            ([0.0], np.cumsum(self.lane_lengths + _LANE_KEY_GAP_M)[:-1])
+        )
+        self._point_key = np.repeat(self._lane_key_base, counts) + self._point_station
+
+    def _check_references(self) -> None:
+        for lane in self.lanes.values():
+            named = (*lane.successors, *lane.predecessors, lane.left_neighbor, lane.right_neighbor)
+            missing = [i for i in named if i is not None and i not in self.lanes]
+            if missing:
+                raise MapGeometryError(f"lane {lane.id} refers to unknown lanes {missing}")
+            if (
+                lane.traffic_light_id is not None
+                and lane.traffic_light_id not in self.traffic_lights
+            ):
+                raise MapGeometryError(f"lane {lane.id}: unknown light {lane.traffic_light_id}")
+
+    def lane_index(self, lane_id: str) -> int:
+        try:
+            return self._index[lane_id]
+        except KeyError:
+            raise UnknownLaneError(lane_id) from None
+
+    def lane(self, lane_id: str) -> Lane:
+        try:
+            return self.lanes[lane_id]
+        except KeyError:
+            raise UnknownLaneError(lane_id) from None
+
+    def project(self, x: float, y: float, heading: float | None = None) -> LaneProjection:
+        """The lane a point belongs to; `heading` (rad) prefers lanes within ±90° of it."""
+        hint = None if heading is None else np.array([heading], dtype=np.float64)
+        return self.project_many(np.array([[x, y]], dtype=np.float64), hint)[0]
+
+    def project_many(
+        self, xy: npt.ArrayLike, headings: npt.ArrayLike | None = None
+    ) -> LaneProjections:
+        """`project` for an (N, 2) array of points (and optional (N,) heading hints)."""
+        points = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
+        hint = None if headings is None else np.asarray(headings, dtype=np.float64).reshape(-1)
+        return self._segments.project(points, hint)
+
+    def pose_at(self, lane_id: str, s: float) -> tuple[float, float, float, float]:
+        """(x, y, z, heading) on the centreline at station s, clamped to [0, length]."""
+        x, y, z, heading = self.poses_at(np.array([self.lane_index(lane_id)]), np.array([s]))[0]
+        return float(x), float(y), float(z), float(heading)
+
+    def poses_at(self, lane_indices: npt.ArrayLike, s: npt.ArrayLike) -> FloatArray:
+        """(N, 4) array of x, y, z, heading for lane indices and stations (clamped)."""
+        lanes = np.asarray(lane_indices, dtype=np.int64).reshape(-1)
+        station = np.clip(
+            np.asarray(s, dtype=np.float64).reshape(-1), 0.0, self.lane_lengths[lanes]
+        )
+        first = self._first_point[lanes]
+        j = np.searchsorted(self._point_key, self._lane_key_base[lanes] + station, side="right") - 1
+        j = np.clip(j, first, self._last_segment[lanes])
+        span = self._point_station[j + 1] - self._point_station[j]
+        t = ((station - self._point_station[j]) / span)[:, None]
+        xyz = self._points[j] + t * (self._points[j + 1] - self._points[j])
+        return np.column_stack((xyz, self._point_heading[j]))
+
+    def lookahead(
+        self, lane_id: str, s: float, distance: float, route: Sequence[str] = ()
+    ) -> FloatArray:
+        """(M, 2) centreline points from (lane_id, s) onward over `distance` metres.
+
+        At each lane end the path continues on the earliest not-yet-used `route` lane that
+        is a successor, else on the first successor; it stops early at a dead end.
+        """
+        lane = self.lane(lane_id)
+        start = min(max(s, 0.0), lane.length)
+        remaining = distance
+        pieces = [np.array([self.pose_at(lane_id, start)[:2]])]
+        route_pos = 0
+        while True:
+            end = min(lane.length, start + remaining)
+            inside = (lane.stations > start) & (lane.stations < end)
+            pieces.append(lane.centerline[inside, :2])
+            pieces.append(np.array([self.pose_at(lane.id, end)[:2]]))
+            remaining -= end - start
+            if remaining <= 1e-9 or not lane.successors:
+                break
+            next_id, route_pos = _next_lane(lane.successors, route, route_pos)
+            lane, start = self.lanes[next_id], 0.0
+        path = np.concatenate(pieces)
+        step = np.hypot(*np.diff(path, axis=0).T)
+        return path[np.concatenate(([True], step > 1e-9))]
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        """(xmin, ymin, xmax, ymax) of every lane's area."""
+        half = np.concatenate([lane.widths for lane in self.lanes.values()])[:, None] / 2.0
+        lo = (self._points[:, :2] - half).min(axis=0)
+        hi = (self._points[:, :2] + half).max(axis=0)
+        return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
+
+
+def _next_lane(
+    successors: tuple[str, ...], route: Sequence[str], route_pos: int
+) -> tuple[str, int]:
+    for k in range(route_pos, len(route)):
+        if route[k] in successors:
+            return route[k], k + 1
+    return successors[0], route_pos
+
+
+__all__ = [
+    "Crosswalk",
+    "IntersectionSite",
+    "Lane",
+    "LaneMap",
+    "LaneProjection",
+    "LaneProjections",
+    "Sidewalk",
+    "TrafficLightSite",
+]

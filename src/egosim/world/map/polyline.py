@@ -1,0 +1,88 @@
+"""Plane-curve helpers for building lane centrelines (pure numpy)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+
+
+def stations(points: FloatArray) -> FloatArray:
+    """Cumulative planar arclength at each vertex of an (N, 2+) polyline."""
+    steps = np.hypot(*np.diff(points[:, :2], axis=0).T)
+    return np.concatenate(([0.0], np.cumsum(steps)))
+
+
+def segment_headings(points: FloatArray) -> FloatArray:
+    """Heading (rad, CCW from +x) of each of the N-1 segments."""
+    delta = np.diff(points[:, :2], axis=0)
+    return np.arctan2(delta[:, 1], delta[:, 0])
+
+
+def offset_left(points: FloatArray, distance: float) -> FloatArray:
+    """Parallel curve `distance` metres to the left (negative: right) of an (N, 2) polyline.
+
+    Interior vertices move along the bisector by distance / cos(half turn) so every
+    segment stays exactly `distance` from its parent.
+    """
+    delta = np.diff(points, axis=0)
+    normals = np.column_stack((-delta[:, 1], delta[:, 0])) / np.hypot(*delta.T)[:, None]
+    vertex_normals = np.empty_like(points)
+    vertex_normals[0] = normals[0]
+    vertex_normals[-1] = normals[-1]
+    bisector = normals[:-1] + normals[1:]
+    bisector /= np.hypot(*bisector.T)[:, None]
+    cos_half = np.sum(bisector * normals[1:], axis=1)
+    vertex_normals[1:-1] = bisector / cos_half[:, None]
+    return points + distance * vertex_normals
+
+
+def between(points: FloatArray, start: float, end: float) -> FloatArray:
+    """The part of an (N, 2) polyline between stations `start` < `end`."""
+    s = stations(points)
+    inner = points[(s > start) & (s < end)]
+    ends = np.column_stack([np.interp([start, end], s, points[:, k]) for k in range(2)])
+    return np.vstack((ends[:1], inner, ends[1:]))
+
+
+def trim(points: FloatArray, start: float, end: float) -> FloatArray:
+    """The (N, 2) polyline without its first `start` and last `end` metres."""
+    return between(points, start, float(stations(points)[-1]) - end)
+
+
+def arc(
+    center: tuple[float, float], radius: float, start: float, sweep: float, step: float = 2.0
+) -> FloatArray:
+    """Points on a circular arc from angle `start` over `sweep` rad (CCW positive)."""
+    count = max(2, math.ceil(abs(sweep) * radius / step) + 1)
+    angles = start + np.linspace(0.0, sweep, count)
+    return np.column_stack(
+        (center[0] + radius * np.cos(angles), center[1] + radius * np.sin(angles))
+    )
+
+
+def connector_curve(
+    start: FloatArray, start_heading: float, end: FloatArray, end_heading: float, step: float = 1.0
+) -> FloatArray:
+    """Cubic Bézier leaving `start` along `start_heading` and reaching `end` along `end_heading`.
+
+    The handle length (2/3 tan(θ/4) / sin(θ/2) of the chord) makes a symmetric turn of
+    angle θ a near-exact circular arc and θ -> 0 a straight line.
+    """
+    chord = float(np.hypot(*(end - start)))
+    turn = abs(math.remainder(end_heading - start_heading, math.tau))
+    if turn < 1e-9:
+        handle = chord / 3.0
+    else:
+        handle = chord * (2.0 / 3.0) * math.tan(turn / 4.0) / math.sin(turn / 2.0)
+    p0 = start
+    p1 = start + handle * np.array([math.cos(start_heading), math.sin(start_heading)])
+    p2 = end - handle * np.array([math.cos(end_heading), math.sin(end_heading)])
+    p3 = end
+    count = max(4, math.ceil(chord * (1.0 + turn / 2.0) / step) + 1)
+    t = np.linspace(0.0, 1.0, count)[:, None]
+    u = 1.0 - t
+    return u**3 * p0 + 3 * u**2 * t * p1 + 3 * u * t**2 * p2 + t**3 * p3

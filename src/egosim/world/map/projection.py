@@ -1,0 +1,167 @@
+"""Vectorised projection of points onto lane centrelines."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from egosim.world.map.spatial_index import SegmentGrid
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.int64]
+
+# Cost of a candidate lane = distance (m) + HEADING_WEIGHT_M_PER_RAD * heading error: a car
+# drifting 1.5 m off its lane still beats a connector crossing it at 90 deg.
+HEADING_WEIGHT_M_PER_RAD = 2.0
+# Lanes pointing more than 90 deg away from the hint lose to any lane pointing the right way
+# within this distance.
+WRONG_WAY_PENALTY_M = 50.0
+# Grid cell edge; a point on a road finds its lane in the 3 x 3 cells around it.
+GRID_CELL_M = 10.0
+
+
+@dataclass(frozen=True)
+class LaneProjection:
+    """Where a point lies relative to one lane."""
+
+    lane_id: str
+    s: float
+    lateral: float
+    heading: float
+    distance_left: float
+    distance_right: float
+    width: float
+
+
+@dataclass(frozen=True, eq=False)
+class LaneProjections:
+    """LaneProjection for many points, as parallel arrays (lane_index into `lane_ids`)."""
+
+    lane_ids: tuple[str, ...]
+    lane_index: IntArray
+    s: FloatArray
+    lateral: FloatArray
+    heading: FloatArray
+    distance_left: FloatArray
+    distance_right: FloatArray
+    width: FloatArray
+
+    def __len__(self) -> int:
+        return len(self.lane_index)
+
+    def __getitem__(self, i: int) -> LaneProjection:
+        return LaneProjection(
+            lane_id=self.lane_ids[int(self.lane_index[i])],
+            s=float(self.s[i]),
+            lateral=float(self.lateral[i]),
+            heading=float(self.heading[i]),
+            distance_left=float(self.distance_left[i]),
+            distance_right=float(self.distance_right[i]),
+            width=float(self.width[i]),
+        )
+
+
+class SegmentTable:
+    """All centreline segments of a map, flattened, with the grid that finds them."""
+
+    def __init__(
+        self,
+        lane_ids: tuple[str, ...],
+        centrelines: list[FloatArray],
+        stations: list[FloatArray],
+        widths: list[FloatArray],
+    ) -> None:
+        self.lane_ids = lane_ids
+        self.start = np.concatenate([c[:-1, :2] for c in centrelines])
+        self.delta = np.concatenate([np.diff(c[:, :2], axis=0) for c in centrelines])
+        self.length_sq = np.einsum("ij,ij->i", self.delta, self.delta)
+        self.length = np.sqrt(self.length_sq)
+        self.heading = np.arctan2(self.delta[:, 1], self.delta[:, 0])
+        self.lane = np.repeat(np.arange(len(centrelines)), [len(c) - 1 for c in centrelines])
+        self.s0 = np.concatenate([s[:-1] for s in stations])
+        self.width0 = np.concatenate([w[:-1] for w in widths])
+        self.width1 = np.concatenate([w[1:] for w in widths])
+        self.grid = SegmentGrid(self.start, self.start + self.delta, GRID_CELL_M)
+
+    def project(self, xy: FloatArray, headings: FloatArray | None) -> LaneProjections:
+        """Best lane for each point: least distance + heading error (see module constants)."""
+        n = len(xy)
+        best_seg = np.zeros(n, dtype=np.int64)
+        best_t = np.zeros(n)
+        pending = np.arange(n)
+        ring = 1
+        while pending.size:
+            if ring > self.grid.max_ring:
+                point, seg = _all_pairs(pending.size, len(self.start))
+                accept_all = True
+            else:
+                point, seg = self.grid.candidates(xy[pending], ring)
+                accept_all = False
+            hint = None if headings is None else headings[pending]
+            found, seg_best, t_best, cost = self._best_pairs(xy[pending], hint, point, seg)
+            done = found & (accept_all | (cost <= ring * self.grid.cell_size))
+            best_seg[pending[done]] = seg_best[done]
+            best_t[pending[done]] = t_best[done]
+            pending = pending[~done]
+            ring *= 2
+        return self._describe(xy, best_seg, best_t)
+
+    def _best_pairs(
+        self, xy: FloatArray, hint: FloatArray | None, point: IntArray, seg: IntArray
+    ) -> tuple[npt.NDArray[np.bool_], IntArray, FloatArray, FloatArray]:
+        n = len(xy)
+        found = np.zeros(n, dtype=bool)
+        seg_best = np.zeros(n, dtype=np.int64)
+        t_best = np.zeros(n)
+        cost_best = np.full(n, np.inf)
+        if point.size == 0:
+            return found, seg_best, t_best, cost_best
+        rel = xy[point] - self.start[seg]
+        t = np.clip(np.einsum("ij,ij->i", rel, self.delta[seg]) / self.length_sq[seg], 0.0, 1.0)
+        gap = rel - t[:, None] * self.delta[seg]
+        cost = np.hypot(gap[:, 0], gap[:, 1])
+        if hint is not None:
+            error = np.abs(
+                np.remainder(self.heading[seg] - hint[point] + math.pi, math.tau) - math.pi
+            )
+            cost += HEADING_WEIGHT_M_PER_RAD * error + np.where(
+                error > math.pi / 2, WRONG_WAY_PENALTY_M, 0.0
+            )
+        # The first pair reaching each point's minimum wins; pairs are grouped by point.
+        points, group_start = np.unique(point, return_index=True)
+        group_min = np.minimum.reduceat(cost, group_start)
+        is_min = np.flatnonzero(cost == group_min[np.searchsorted(points, point)])
+        first = is_min[np.unique(point[is_min], return_index=True)[1]]
+        found[points] = True
+        seg_best[points] = seg[first]
+        t_best[points] = t[first]
+        cost_best[points] = group_min
+        return found, seg_best, t_best, cost_best
+
+    def _describe(self, xy: FloatArray, seg: IntArray, t: FloatArray) -> LaneProjections:
+        rel = xy - self.start[seg]
+        gap = rel - t[:, None] * self.delta[seg]
+        distance = np.hypot(gap[:, 0], gap[:, 1])
+        cross = self.delta[seg, 0] * rel[:, 1] - self.delta[seg, 1] * rel[:, 0]
+        lateral = np.where(cross >= 0.0, distance, -distance)
+        width = self.width0[seg] + t * (self.width1[seg] - self.width0[seg])
+        return LaneProjections(
+            lane_ids=self.lane_ids,
+            lane_index=self.lane[seg],
+            s=self.s0[seg] + t * self.length[seg],
+            lateral=lateral,
+            heading=self.heading[seg],
+            distance_left=width / 2.0 - lateral,
+            distance_right=width / 2.0 + lateral,
+            width=width,
+        )
+
+
+def _all_pairs(n_points: int, n_segments: int) -> tuple[IntArray, IntArray]:
+    return (
+        np.repeat(np.arange(n_points), n_segments),
+        np.tile(np.arange(n_segments), n_points),
+    )
