@@ -117,10 +117,14 @@ def cast_boxes(
         return distance, cos_incidence
 
     ray_index, box_index = _pairs_in_sector(origin, directions, boxes, candidates)
-    ray_index, box_index = _pairs_in_cone(origin, directions, boxes, ray_index, box_index)
-    pair_distance, pair_cos, hit = _slab_intersections(
-        origin, directions, boxes, ray_index, box_index
+    pair_direction = directions[ray_index]
+    in_cone = _in_bounding_cone(origin, boxes, pair_direction, box_index)
+    ray_index, box_index, pair_direction = (
+        ray_index[in_cone],
+        box_index[in_cone],
+        pair_direction[in_cone],
     )
+    pair_distance, pair_cos, hit = _slab_entry(origin, boxes, pair_direction, box_index)
     ray_index, pair_distance, pair_cos = ray_index[hit], pair_distance[hit], pair_cos[hit]
 
     np.minimum.at(distance, ray_index, pair_distance)
@@ -184,69 +188,65 @@ def _pairs_in_sector(
     return by_bearing[sorted_position], box_index
 
 
-def _pairs_in_cone(
-    origin: FloatArray,
-    directions: FloatArray,
-    boxes: ObstacleBoxes,
-    ray_index: IndexArray,
-    box_index: IndexArray,
-) -> tuple[IndexArray, IndexArray]:
-    """Keeps the pairs whose ray meets the box's bounding sphere (or starts inside it)."""
+def _in_bounding_cone(
+    origin: FloatArray, boxes: ObstacleBoxes, pair_direction: FloatArray, box_index: IndexArray
+) -> npt.NDArray[np.bool_]:
+    """Whether each pair's ray meets the box's bounding sphere (or starts inside it)."""
     offset = boxes.centres - origin
     radius_sq = 0.25 * np.einsum("ij,ij->i", boxes.sizes, boxes.sizes)
     distance_sq = np.einsum("ij,ij->i", offset, offset)
     tangent_length = np.sqrt(np.maximum(distance_sq - radius_sq, 0.0))
-    along = np.einsum("ij,ij->i", directions[ray_index], offset[box_index])
-    keep = (along >= tangent_length[box_index]) | (distance_sq <= radius_sq)[box_index]
-    return ray_index[keep], box_index[keep]
+    # Rays into a sphere the origin is inside of always pass.
+    tangent_length[distance_sq <= radius_sq] = -np.inf
+    along = np.einsum("ij,ij->i", pair_direction, offset[box_index])
+    return along >= tangent_length[box_index]
 
 
-def _slab_intersections(
-    origin: FloatArray,
-    directions: FloatArray,
-    boxes: ObstacleBoxes,
-    ray_index: IndexArray,
-    box_index: IndexArray,
+def _slab_entry(
+    origin: FloatArray, boxes: ObstacleBoxes, pair_direction: FloatArray, box_index: IndexArray
 ) -> tuple[FloatArray, FloatArray, npt.NDArray[np.bool_]]:
-    """Entry distance, |cos| at the entry face and whether each (ray, box) pair hits."""
-    cos_yaw = np.cos(boxes.yaws)[box_index]
-    sin_yaw = np.sin(boxes.yaws)[box_index]
-    world_offset = origin - boxes.centres[box_index]
-    world_direction = directions[ray_index]
+    """Entry distance, |cos| at the entry face and whether each (ray, box) pair hits.
 
-    # Rz(-yaw) takes map vectors into the box frame.
-    local_origin = np.stack(
+    Works one box axis at a time on flat arrays: the ray's parameter interval
+    inside each pair of parallel faces, intersected over the three axes.
+    """
+    cos_yaw, sin_yaw = np.cos(boxes.yaws), np.sin(boxes.yaws)
+    offset = origin - boxes.centres
+    # Rz(-yaw) takes map vectors into each box's frame.
+    box_origin = np.stack(
         [
-            cos_yaw * world_offset[:, 0] + sin_yaw * world_offset[:, 1],
-            -sin_yaw * world_offset[:, 0] + cos_yaw * world_offset[:, 1],
-            world_offset[:, 2],
-        ],
-        axis=1,
+            cos_yaw * offset[:, 0] + sin_yaw * offset[:, 1],
+            -sin_yaw * offset[:, 0] + cos_yaw * offset[:, 1],
+            offset[:, 2],
+        ]
     )
-    local_direction = np.stack(
-        [
-            cos_yaw * world_direction[:, 0] + sin_yaw * world_direction[:, 1],
-            -sin_yaw * world_direction[:, 0] + cos_yaw * world_direction[:, 1],
-            world_direction[:, 2],
-        ],
-        axis=1,
-    )
-    half_size = 0.5 * boxes.sizes[box_index]
+    pair_cos, pair_sin = cos_yaw[box_index], sin_yaw[box_index]
+    east, north, up = pair_direction.T
+    local_direction = (pair_cos * east + pair_sin * north, -pair_sin * east + pair_cos * north, up)
+    half_size = 0.5 * boxes.sizes.T
 
-    parallel = local_direction == 0.0
-    with np.errstate(divide="ignore", invalid="ignore"):
-        to_low_face = (-half_size - local_origin) / local_direction
-        to_high_face = (half_size - local_origin) / local_direction
-    enter = np.minimum(to_low_face, to_high_face)
-    leave = np.maximum(to_low_face, to_high_face)
-    # A ray parallel to a slab is inside it for all t, or for none.
-    inside_slab = np.abs(local_origin) <= half_size
-    enter = np.where(parallel, np.where(inside_slab, -np.inf, np.inf), enter)
-    leave = np.where(parallel, np.where(inside_slab, np.inf, -np.inf), leave)
-
-    entry_axis = np.argmax(enter, axis=1)
-    rows = np.arange(len(enter))
-    entry = enter[rows, entry_axis]
-    exit_ = leave.min(axis=1)
+    count = len(box_index)
+    entry = np.full(count, -np.inf)
+    exit_ = np.full(count, np.inf)
+    entry_cos = np.zeros(count)
+    for axis, direction in enumerate(local_direction):
+        start = box_origin[axis][box_index]
+        half = half_size[axis][box_index]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            inverse = 1.0 / direction
+            to_low_face = (-half - start) * inverse
+            to_high_face = (half - start) * inverse
+        near = np.minimum(to_low_face, to_high_face)
+        far = np.maximum(to_low_face, to_high_face)
+        parallel = direction == 0.0
+        if parallel.any():
+            # A ray parallel to a slab is inside it for all t, or for none.
+            inside = np.abs(start[parallel]) <= half[parallel]
+            near[parallel] = np.where(inside, -np.inf, np.inf)
+            far[parallel] = np.where(inside, np.inf, -np.inf)
+        later = near > entry
+        entry[later] = near[later]
+        entry_cos[later] = np.abs(direction[later])
+        np.minimum(exit_, far, out=exit_)
     hit = (entry <= exit_) & (entry > 0.0)
-    return entry, np.abs(local_direction[rows, entry_axis]), hit
+    return entry, entry_cos, hit
