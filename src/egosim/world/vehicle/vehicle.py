@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from egosim.world.vehicle.catalogue import DEFAULT_EGO_MODEL, VehicleModel, vehicle_model
 from egosim.world.vehicle.control import (
@@ -103,10 +104,10 @@ class Vehicle:
 
     @classmethod
     def from_catalogue(
-        cls, name: str = DEFAULT_EGO_MODEL, pose: Pose | None = None, **options: float | Gear
+        cls, name: str = DEFAULT_EGO_MODEL, pose: Pose | None = None, **options: Any
     ) -> Vehicle:
         """A vehicle of the catalogue model `name`; options as for the constructor."""
-        return cls(vehicle_model(name), pose, **options)  # type: ignore[arg-type]
+        return cls(vehicle_model(name), pose, **options)
 
     def command(self, command: ControlCommand) -> CommandVerdict:
         """Hand the vehicle a control command, received now (at sim_time)."""
