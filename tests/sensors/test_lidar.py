@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from egosim.sensors import LidarConfig, LidarModel, MountPose, ObstacleBoxes, Pose
+from egosim.sensors import LidarConfig, LidarIntensity, LidarModel, MountPose, ObstacleBoxes, Pose
 from egosim.sensors.errors import SensorConfigError
 
 FLOAT32_TOLERANCE = 1e-5  # relative
@@ -161,3 +161,19 @@ def test_scans_are_deterministic() -> None:
 def test_invalid_configurations_are_refused(settings: dict) -> None:
     with pytest.raises(SensorConfigError):
         LidarConfig(**settings)
+
+
+def test_intensity_follows_reflectivity_incidence_and_range() -> None:
+    intensity = LidarIntensity(
+        ground_reflectivity=0.2, object_reflectivity=0.6, extinction_per_m=0.005
+    )
+    scene = boxes(((20.0, 0.0, 1.0), (2.0, 2.0, 2.0), 0.0))
+    ahead = point_at_azimuth(horizontal_ring(intensity=intensity).scan(Pose(), scene), 0.0)
+    assert ahead[3] == pytest.approx(255.0 * 0.6 * np.exp(-2 * 0.005 * 19.0), rel=1e-5)
+    # The steepest beam meets the ground 15 deg from grazing, height / sin(15 deg) away.
+    config = LidarConfig(intensity=intensity)
+    steepest = LidarModel(config).scan(Pose())[0]
+    ground_range = config.mount.z / np.sin(np.radians(15.0))
+    assert np.linalg.norm(steepest[:3]) == pytest.approx(ground_range, rel=1e-5)
+    expected = 255.0 * 0.2 * np.sin(np.radians(15.0)) * np.exp(-2 * 0.005 * ground_range)
+    assert steepest[3] == pytest.approx(expected, rel=1e-5)

@@ -76,4 +76,4 @@ def test_incidence_and_surface_of_hits() -> None:
     hits = cast_rays(np.array([0.0, 0.0, 1.0]), np.stack([down, ahead, up]), scene, MAX_RANGE)
     np.testing.assert_array_equal(hits.surface, [Surface.GROUND, Surface.OBJECT, Surface.NONE])
     np.testing.assert_allclose(hits.distance[:2], (1.0 / np.cos(0.5), 9.0))
-    np.testing.assert_allclose(hits.cos_incidence[:2], (np.cos(0.5), 1.0))
+    np.testing.assert_allclose(hits.cos_incidence, (np.cos(0.5), 1.0, 0.0))

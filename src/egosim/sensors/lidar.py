@@ -38,7 +38,9 @@ class LidarIntensity:
     extinction_per_m: float = 0.005
     scale: float = 255.0
 
-    def of(self, surface: npt.NDArray[np.int8], cos_incidence: FloatArray, distance: FloatArray):
+    def of(
+        self, surface: npt.NDArray[np.int8], cos_incidence: FloatArray, distance: FloatArray
+    ) -> FloatArray:
         reflectivity = np.where(
             surface == Surface.OBJECT, self.object_reflectivity, self.ground_reflectivity
         )

@@ -95,8 +95,11 @@ def cast_rays(
     box_first = box_distance < ground_distance
     distance = np.where(box_first, box_distance, ground_distance)
     surface = np.where(box_first, Surface.OBJECT, Surface.GROUND).astype(np.int8)
-    surface[np.isinf(distance)] = Surface.NONE
-    return RayHits(distance, surface, np.where(box_first, box_cos, ground_cos))
+    cos_incidence = np.where(box_first, box_cos, ground_cos)
+    missed = np.isinf(distance)
+    surface[missed] = Surface.NONE
+    cos_incidence[missed] = 0.0
+    return RayHits(distance, surface, cos_incidence)
 
 
 def cast_boxes(
