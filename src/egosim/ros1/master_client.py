@@ -1,0 +1,112 @@
+"""Client of the Master API and the Parameter Server API (ROS wiki: Master_API,
+Parameter Server API). Every call carries the caller's id; results are unwrapped from the
+``[code, statusMessage, value]`` triple, and a code other than 1 raises MasterError."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from . import rpc
+from .errors import MasterError, MasterUnreachableError, PeerUnreachableError
+
+SUCCESS = 1
+
+
+class MasterClient:
+    def __init__(self, master_uri: str, caller_id: str, timeout: float = 5.0) -> None:
+        self.master_uri = master_uri
+        self.caller_id = caller_id
+        self.timeout = timeout
+
+    def _raw(self, method: str, *args: Any, timeout: float | None = None) -> list[Any]:
+        try:
+            return rpc.call(
+                self.master_uri,
+                method,
+                self.caller_id,
+                *args,
+                timeout=self.timeout if timeout is None else timeout,
+            )
+        except PeerUnreachableError as exc:
+            raise MasterUnreachableError(str(exc)) from exc
+
+    def _call(self, method: str, *args: Any, timeout: float | None = None) -> Any:
+        code, message, value = self._raw(method, *args, timeout=timeout)
+        if code != SUCCESS:
+            raise MasterError(f"{method}{args}: {message}")
+        return value
+
+    # Master API: registration
+    def register_service(self, service: str, service_api: str, caller_api: str) -> None:
+        self._call("registerService", service, service_api, caller_api)
+
+    def unregister_service(
+        self, service: str, service_api: str, timeout: float | None = None
+    ) -> int:
+        return self._call("unregisterService", service, service_api, timeout=timeout)
+
+    def register_subscriber(self, topic: str, topic_type: str, caller_api: str) -> list[str]:
+        return list(self._call("registerSubscriber", topic, topic_type, caller_api))
+
+    def unregister_subscriber(
+        self, topic: str, caller_api: str, timeout: float | None = None
+    ) -> int:
+        return self._call("unregisterSubscriber", topic, caller_api, timeout=timeout)
+
+    def register_publisher(self, topic: str, topic_type: str, caller_api: str) -> list[str]:
+        return list(self._call("registerPublisher", topic, topic_type, caller_api))
+
+    def unregister_publisher(
+        self, topic: str, caller_api: str, timeout: float | None = None
+    ) -> int:
+        return self._call("unregisterPublisher", topic, caller_api, timeout=timeout)
+
+    # Master API: name service and system state
+    def lookup_node(self, node_name: str) -> str:
+        return self._call("lookupNode", node_name)
+
+    def get_published_topics(self, subgraph: str = "") -> list[tuple[str, str]]:
+        return [(topic, kind) for topic, kind in self._call("getPublishedTopics", subgraph)]
+
+    def get_topic_types(self) -> list[tuple[str, str]]:
+        return [(topic, kind) for topic, kind in self._call("getTopicTypes")]
+
+    def get_system_state(self) -> tuple[list[Any], list[Any], list[Any]]:
+        publishers, subscribers, services = self._call("getSystemState")
+        return publishers, subscribers, services
+
+    def get_uri(self, timeout: float | None = None) -> str:
+        return self._call("getUri", timeout=timeout)
+
+    def lookup_service(self, service: str) -> str:
+        return self._call("lookupService", service)
+
+    # Parameter Server API
+    def delete_param(self, key: str) -> None:
+        self._call("deleteParam", key)
+
+    def set_param(self, key: str, value: Any) -> None:
+        self._call("setParam", key, value)
+
+    def get_param(self, key: str) -> Any:
+        """The value (a dict for a namespace); KeyError when the key is not set."""
+        code, _message, value = self._raw("getParam", key)
+        if code != SUCCESS:
+            raise KeyError(key)
+        return value
+
+    def search_param(self, key: str) -> str | None:
+        code, _message, value = self._raw("searchParam", key)
+        return value if code == SUCCESS and value else None
+
+    def subscribe_param(self, caller_api: str, key: str) -> Any:
+        return self._call("subscribeParam", caller_api, key)
+
+    def unsubscribe_param(self, caller_api: str, key: str, timeout: float | None = None) -> int:
+        return self._call("unsubscribeParam", caller_api, key, timeout=timeout)
+
+    def has_param(self, key: str) -> bool:
+        return bool(self._call("hasParam", key))
+
+    def get_param_names(self) -> list[str]:
+        return list(self._call("getParamNames"))

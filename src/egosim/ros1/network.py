@@ -1,0 +1,74 @@
+"""Where a node listens and how it names itself: ROS_MASTER_URI, ROS_IP, ROS_HOSTNAME."""
+
+from __future__ import annotations
+
+import ipaddress
+import os
+import socket
+from collections.abc import Mapping
+from dataclasses import dataclass
+from urllib.parse import urlsplit
+
+DEFAULT_MASTER_URI = "http://localhost:11311/"
+LOOPBACK = "127.0.0.1"
+ALL_INTERFACES = "0.0.0.0"
+
+
+def _is_loopback(host: str) -> bool:
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        try:
+            return ipaddress.ip_address(socket.gethostbyname(host)).is_loopback
+        except OSError:
+            return False
+
+
+@dataclass(frozen=True)
+class NetworkConfig:
+    """``advertise_host`` goes into URIs given to peers; ``bind_host`` is what sockets bind."""
+
+    master_uri: str
+    advertise_host: str
+    bind_host: str
+
+    @classmethod
+    def from_env(
+        cls,
+        env: Mapping[str, str] | None = None,
+        master_uri: str | None = None,
+        host: str | None = None,
+        bind_host: str | None = None,
+    ) -> NetworkConfig:
+        """ROS_IP wins over ROS_HOSTNAME (as in rospy); with neither, everything stays on loopback.
+        A non-loopback advertised host means listening on all interfaces unless ``bind_host``."""
+        env = os.environ if env is None else env
+        uri = master_uri or env.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
+        advertise = host or env.get("ROS_IP") or env.get("ROS_HOSTNAME") or LOOPBACK
+        if bind_host is None:
+            bind_host = LOOPBACK if _is_loopback(advertise) else ALL_INTERFACES
+        return cls(master_uri=uri, advertise_host=advertise, bind_host=bind_host)
+
+
+def master_bind_address(master_uri: str) -> tuple[str, int]:
+    """The address an embedded master binds: the (IPv4) address of the URI's host and its port."""
+    parts = urlsplit(master_uri)
+    host = parts.hostname or "localhost"
+    return socket.gethostbyname(host), parts.port or 11311
+
+
+def http_uri(host: str, port: int) -> str:
+    return f"http://{host}:{port}/"
+
+
+def rosrpc_uri(host: str, port: int) -> str:
+    return f"rosrpc://{host}:{port}"
+
+
+def parse_rosrpc_uri(uri: str) -> tuple[str, int]:
+    parts = urlsplit(uri)
+    if parts.scheme != "rosrpc" or not parts.hostname or not parts.port:
+        raise ValueError(f"not a rosrpc:// URI: {uri!r}")
+    return parts.hostname, parts.port

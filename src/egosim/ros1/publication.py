@@ -1,0 +1,261 @@
+"""The publishing side of a TCPROS topic (ROS wiki: ROS/TCPROS, "Topics").
+
+publish() is called from the simulation loop, so it only appends to one bounded queue per
+subscriber connection; a writer thread per connection does the sending. A subscriber that
+stops reading loses its oldest messages (counted) and delays nobody else.
+"""
+
+from __future__ import annotations
+
+import logging
+import socket
+import threading
+from collections import deque
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+
+from .connection_header import error_header, write_header
+from .errors import ConnectionRefusedByPeerError, NodeShutdownError
+from .tcpros import close_quietly, send_frame, set_nodelay
+from .types import MessageTypeInfo
+
+log = logging.getLogger(__name__)
+
+ANY_MD5 = "*"
+
+#: Chooses the type served on one connection from the subscriber's header, or raises
+#: ConnectionRefusedByPeerError(reason).
+Negotiator = Callable[[Mapping[str, str]], MessageTypeInfo]
+#: Serialized message per md5sum: a mapping, or a function called at most once per md5.
+Variants = Mapping[str, bytes] | Callable[[str], bytes]
+
+#: How often an idle writer checks whether its subscriber hung up (s).
+_IDLE_CHECK_S = 1.0
+
+
+@dataclass
+class ConnectionStats:
+    connection_id: int
+    peer: str
+    md5sum: str
+    bytes_sent: int = 0
+    messages_sent: int = 0
+    dropped: int = 0
+    connected: bool = True
+
+
+class _Outbox:
+    """One subscriber connection: a bounded queue drained by its own writer thread."""
+
+    def __init__(
+        self,
+        sock: socket.socket,
+        stats: ConnectionStats,
+        queue_size: int,
+        on_closed: Callable[[_Outbox], None],
+    ) -> None:
+        self.sock = sock
+        self.stats = stats
+        self.md5sum = stats.md5sum
+        self._queue: deque[bytes] = deque()
+        self._queue_size = queue_size
+        self._ready = threading.Condition()
+        self._closed = False
+        self._on_closed = on_closed
+        self._thread = threading.Thread(
+            target=self._write, name=f"tcpros out {stats.peer}", daemon=True
+        )
+        self._thread.start()
+
+    def put(self, data: bytes) -> None:
+        with self._ready:
+            if len(self._queue) >= self._queue_size:
+                self._queue.popleft()
+                self.stats.dropped += 1
+            self._queue.append(data)
+            self._ready.notify()
+
+    def close(self) -> None:
+        with self._ready:
+            if self._closed:
+                return
+            self._closed = True
+            self._ready.notify()
+        self.stats.connected = False
+        close_quietly(self.sock)
+
+    def _peer_hung_up(self) -> bool:
+        try:
+            return self.sock.recv(1, socket.MSG_PEEK | socket.MSG_DONTWAIT) == b""
+        except BlockingIOError:
+            return False
+        except OSError:
+            return True
+
+    def _write(self) -> None:
+        try:
+            while True:
+                with self._ready:
+                    while not self._queue and not self._closed:
+                        if not self._ready.wait(_IDLE_CHECK_S) and self._peer_hung_up():
+                            return
+                    if self._closed:
+                        return
+                    batch = list(self._queue)
+                    self._queue.clear()
+                for data in batch:
+                    send_frame(self.sock, data)
+                    self.stats.bytes_sent += len(data) + 4
+                    self.stats.messages_sent += 1
+        except OSError as exc:
+            log.info(
+                "subscriber %s of connection %d left: %s",
+                self.stats.peer,
+                self.stats.connection_id,
+                exc,
+            )
+        finally:
+            self.close()
+            self._on_closed(self)
+
+
+class Publisher:
+    """A topic advertised by a node. Create it with ``Node.advertise``."""
+
+    def __init__(
+        self,
+        topic: str,
+        msg_type: MessageTypeInfo,
+        caller_id: str,
+        *,
+        latch: bool = False,
+        queue_size: int = 100,
+        negotiate: Negotiator | None = None,
+        on_close: Callable[[Publisher], None] | None = None,
+    ) -> None:
+        if queue_size < 1:
+            raise ValueError("queue_size must be at least 1")
+        self.topic = topic
+        self.msg_type = msg_type
+        self.caller_id = caller_id
+        self.latch = latch
+        self.queue_size = queue_size
+        self._negotiate = negotiate
+        self._on_close = on_close
+        self._lock = threading.Lock()
+        # Replaced, never mutated, so publish() iterates it without taking the lock.
+        self._outboxes: tuple[_Outbox, ...] = ()
+        self._latched: bytes | Variants | None = None
+        self._closed = False
+        self.messages_published = 0
+
+    @property
+    def num_subscribers(self) -> int:
+        return len(self._outboxes)
+
+    @property
+    def connections(self) -> list[ConnectionStats]:
+        return [outbox.stats for outbox in self._outboxes]
+
+    def publish(self, data: bytes) -> None:
+        """Queue one serialized message for every subscriber (same bytes for all)."""
+        if self._closed:
+            raise NodeShutdownError(f"publisher of {self.topic} is closed")
+        if self.latch:
+            self._latched = data
+        self.messages_published += 1
+        for outbox in self._outboxes:
+            outbox.put(data)
+
+    def publish_variants(self, variants: Variants) -> None:
+        """Queue one message serialized per md5sum; each subscriber gets the variant of the type
+        negotiated for its connection. A callable is invoked at most once per md5sum."""
+        if self._closed:
+            raise NodeShutdownError(f"publisher of {self.topic} is closed")
+        if self.latch:
+            self._latched = variants
+        self.messages_published += 1
+        produced: dict[str, bytes] = {}
+        for outbox in self._outboxes:
+            data = produced.get(outbox.md5sum)
+            if data is None:
+                data = produced[outbox.md5sum] = _variant(variants, outbox.md5sum)
+            outbox.put(data)
+
+    def accept(
+        self, sock: socket.socket, header: Mapping[str, str], peer: str, connection_id: int
+    ) -> None:
+        """Answer a subscriber's connection header and start serving it; the socket is ours."""
+        try:
+            served = self._choose_type(header)
+        except ConnectionRefusedByPeerError as exc:
+            log.warning(
+                "refused subscriber %s (%s) of %s: %s",
+                header.get("callerid"),
+                peer,
+                self.topic,
+                exc.reason,
+            )
+            write_header(sock, error_header(exc.reason))
+            close_quietly(sock)
+            return
+        write_header(
+            sock,
+            {
+                "callerid": self.caller_id,
+                "topic": self.topic,
+                "type": served.name,
+                "md5sum": served.md5sum,
+                "message_definition": served.definition,
+                "latching": "1" if self.latch else "0",
+            },
+        )
+        if header.get("tcp_nodelay") == "1":
+            set_nodelay(sock)
+        stats = ConnectionStats(connection_id, header.get("callerid", peer), served.md5sum)
+        outbox = _Outbox(sock, stats, self.queue_size, self._forget)
+        with self._lock:
+            if self._closed:
+                outbox.close()
+                return
+            self._outboxes = (*self._outboxes, outbox)
+            latched = self._latched
+        if latched is not None:
+            outbox.put(_variant(latched, served.md5sum))
+
+    def _choose_type(self, header: Mapping[str, str]) -> MessageTypeInfo:
+        if "md5sum" not in header or "callerid" not in header:
+            raise ConnectionRefusedByPeerError("connection header lacks md5sum or callerid")
+        served = self._negotiate(header) if self._negotiate else self.msg_type
+        wanted = header["md5sum"]
+        if ANY_MD5 not in (wanted, served.md5sum) and wanted != served.md5sum:
+            raise ConnectionRefusedByPeerError(
+                f"Client [{header['callerid']}] wants topic [{self.topic}] to have datatype/md5sum "
+                f"[{header.get('type', '?')}/{wanted}], but our version has "
+                f"[{served.name}/{served.md5sum}]. Dropping connection."
+            )
+        return served
+
+    def _forget(self, outbox: _Outbox) -> None:
+        with self._lock:
+            self._outboxes = tuple(o for o in self._outboxes if o is not outbox)
+
+    def close(self) -> None:
+        """Disconnect all subscribers and unregister from the master."""
+        with self._lock:
+            if self._closed:
+                return
+            self._closed = True
+            outboxes, self._outboxes = self._outboxes, ()
+        for outbox in outboxes:
+            outbox.close()
+        if self._on_close is not None:
+            self._on_close(self)
+
+
+def _variant(variants: bytes | Variants, md5sum: str) -> bytes:
+    if isinstance(variants, bytes):
+        return variants
+    if callable(variants):
+        return variants(md5sum)
+    return variants[md5sum]

@@ -1,0 +1,119 @@
+"""XML-RPC plumbing shared by the master and slave APIs: a threaded server and timed calls."""
+
+from __future__ import annotations
+
+import http.client
+import logging
+import socketserver
+import threading
+import xmlrpc.client
+from collections.abc import Callable
+from typing import Any
+from xmlrpc.server import SimpleXMLRPCRequestHandler, SimpleXMLRPCServer
+
+from .errors import PeerUnreachableError
+
+log = logging.getLogger(__name__)
+
+
+class _TimeoutTransport(xmlrpc.client.Transport):
+    def __init__(self, timeout: float) -> None:
+        super().__init__()
+        self._timeout = timeout
+
+    def make_connection(self, host: Any) -> http.client.HTTPConnection:
+        conn = super().make_connection(host)
+        conn.timeout = self._timeout
+        return conn
+
+
+def call(uri: str, method: str, *args: Any, timeout: float = 5.0) -> Any:
+    """Call ``method`` on the XML-RPC server at ``uri``; a fresh connection keeps it thread-safe.
+
+    Raises PeerUnreachableError when nothing answers (refused, reset, timed out).
+    """
+    proxy = xmlrpc.client.ServerProxy(uri, transport=_TimeoutTransport(timeout))
+    try:
+        return getattr(proxy, method)(*args)
+    except (OSError, http.client.HTTPException) as exc:
+        raise PeerUnreachableError(f"no XML-RPC answer from {uri} to {method}: {exc}") from exc
+    finally:
+        proxy("close")()
+
+
+class _RequestHandler(SimpleXMLRPCRequestHandler):
+    # Any path is accepted: roscpp posts to "/RPC2", rospy to "/".
+    rpc_paths = ()
+    # A peer that opens a connection and never finishes its request is dropped.
+    timeout = 10
+
+    def do_POST(self) -> None:  # noqa: N802 (name given by BaseHTTPRequestHandler)
+        self.server.peer.address = self.client_address  # type: ignore[attr-defined]
+        super().do_POST()
+
+    def log_message(self, format: str, *args: Any) -> None:
+        log.warning("XML-RPC peer %s: %s", self.address_string(), format % args)
+
+
+class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
+    """Serves one handler object's public methods on a daemon thread."""
+
+    daemon_threads = True
+    block_on_close = False
+    allow_reuse_address = True
+
+    def __init__(self, address: tuple[str, int], name: str) -> None:
+        self.peer = threading.local()
+        self._name = name
+        super().__init__(address, requestHandler=_RequestHandler, logRequests=False)
+        self.register_multicall_functions()
+        self._thread: threading.Thread | None = None
+
+    @property
+    def port(self) -> int:
+        return self.server_address[1]
+
+    def register_api(self, functions: dict[str, Callable[..., Any]]) -> None:
+        for method, function in functions.items():
+            self.register_function(function, method)
+
+    def start(self) -> None:
+        self._thread = threading.Thread(
+            target=self.serve_forever, kwargs={"poll_interval": 0.05}, name=self._name, daemon=True
+        )
+        self._thread.start()
+
+    def stop(self) -> None:
+        if self._thread is not None:
+            self.shutdown()
+            self._thread.join()
+        self.server_close()
+
+    def _marshaled_dispatch(
+        self, data: bytes, dispatch_method: Any = None, path: Any = None
+    ) -> bytes:
+        try:
+            params, method = xmlrpc.client.loads(data, use_builtin_types=self.use_builtin_types)
+        except Exception as exc:
+            self._log_bad_request(f"request is not XML-RPC: {exc}")
+            return _fault(f"request is not XML-RPC: {exc}")
+        try:
+            response = self._dispatch(method, params)
+            return xmlrpc.client.dumps(
+                (response,), methodresponse=True, allow_none=self.allow_none, encoding=self.encoding
+            ).encode(self.encoding, "xmlcharrefreplace")
+        except Exception as exc:
+            self._log_bad_request(f"{method}{_short(params)} failed: {exc!r}")
+            return _fault(f"{type(exc).__name__}: {exc}")
+
+    def _log_bad_request(self, what: str) -> None:
+        log.warning("%s: XML-RPC from %s: %s", self._name, getattr(self.peer, "address", "?"), what)
+
+
+def _fault(message: str) -> bytes:
+    return xmlrpc.client.dumps(xmlrpc.client.Fault(1, message), methodresponse=True).encode()
+
+
+def _short(params: tuple[Any, ...]) -> str:
+    text = repr(params)
+    return text if len(text) < 200 else text[:200] + "...)"

@@ -1,0 +1,125 @@
+"""The Slave API every node serves over XML-RPC (ROS wiki: Slave_API).
+
+Replies are ``[code, statusMessage, value]`` like the master's.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from .node import Node
+
+SUCCESS, FAILURE, ERROR = 1, 0, -1
+TCPROS = "TCPROS"
+
+Reply = list[Any]
+
+
+class SlaveApi:
+    def __init__(self, node: Node) -> None:
+        self._node = node
+
+    def functions(self) -> dict[str, Callable[..., Reply]]:
+        return {
+            "getBusStats": self.get_bus_stats,
+            "getBusInfo": self.get_bus_info,
+            "getMasterUri": self.get_master_uri,
+            "shutdown": self.shutdown,
+            "getPid": self.get_pid,
+            "getSubscriptions": self.get_subscriptions,
+            "getPublications": self.get_publications,
+            "paramUpdate": self.param_update,
+            "publisherUpdate": self.publisher_update,
+            "requestTopic": self.request_topic,
+        }
+
+    def get_bus_stats(self, caller_id: str) -> Reply:
+        """Publish stats are ``[topic, messagesPublished, [[connectionId, bytesSent, numSent,
+        connected, numDropped]]]``: numDropped (oldest messages dropped because the subscriber
+        did not keep up) extends the spec's tuple. Subscribe stats follow the spec, with a drop
+        estimate of -1 (unknown). Service stats: ``[numRequests, bytesReceived, bytesSent]``."""
+        node = self._node
+        publish = [
+            [
+                pub.topic,
+                pub.messages_published,
+                [
+                    [c.connection_id, c.bytes_sent, c.messages_sent, c.connected, c.dropped]
+                    for c in pub.connections
+                ],
+            ]
+            for pub in node.publishers
+        ]
+        subscribe = [
+            [
+                sub.topic,
+                [[c.connection_id, c.bytes_received, -1, c.connected] for c in sub.connections],
+            ]
+            for sub in node.subscribers
+        ]
+        services = node.services
+        service = [
+            sum(s.requests for s in services),
+            sum(s.bytes_received for s in services),
+            sum(s.bytes_sent for s in services),
+        ]
+        return [SUCCESS, "", [publish, subscribe, service]]
+
+    def get_bus_info(self, caller_id: str) -> Reply:
+        node = self._node
+        info: list[list[Any]] = []
+        for pub in node.publishers:
+            for c in pub.connections:
+                info.append([c.connection_id, c.peer, "o", TCPROS, pub.topic, c.connected, ""])
+        for sub in node.subscribers:
+            for c in sub.connections:
+                info.append(
+                    [c.connection_id, c.publisher_id, "i", TCPROS, sub.topic, c.connected, ""]
+                )
+        return [SUCCESS, "bus info", info]
+
+    def get_master_uri(self, caller_id: str) -> Reply:
+        return [SUCCESS, "", self._node.master_uri]
+
+    def shutdown(self, caller_id: str, msg: str = "") -> Reply:
+        # The node stops this very server, so it must not do so from the request's thread.
+        reason = f"requested by {caller_id}: {msg}" if msg else f"requested by {caller_id}"
+        threading.Thread(target=self._node.shutdown, args=(reason,), daemon=True).start()
+        return [SUCCESS, "shutdown", 0]
+
+    def get_pid(self, caller_id: str) -> Reply:
+        return [SUCCESS, "", os.getpid()]
+
+    def get_subscriptions(self, caller_id: str) -> Reply:
+        return [
+            SUCCESS,
+            "subscriptions",
+            [[s.topic, s.msg_type.name] for s in self._node.subscribers],
+        ]
+
+    def get_publications(self, caller_id: str) -> Reply:
+        return [
+            SUCCESS,
+            "publications",
+            [[p.topic, p.msg_type.name] for p in self._node.publishers],
+        ]
+
+    def param_update(self, caller_id: str, parameter_key: str, parameter_value: Any) -> Reply:
+        self._node.param_updated(parameter_key, parameter_value)
+        return [SUCCESS, "", 0]
+
+    def publisher_update(self, caller_id: str, topic: str, publishers: list[str]) -> Reply:
+        self._node.publishers_updated(topic, publishers)
+        return [SUCCESS, "", 0]
+
+    def request_topic(self, caller_id: str, topic: str, protocols: list[Any]) -> Reply:
+        if self._node.publisher(topic) is None:
+            return [ERROR, f"not a publisher of [{topic}]", []]
+        if not any(p and p[0] == TCPROS for p in protocols):
+            return [FAILURE, "no supported protocol implementations", []]
+        host, port = self._node.tcpros_address
+        return [SUCCESS, f"ready on {host}:{port}", [TCPROS, host, port]]

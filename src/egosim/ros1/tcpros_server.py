@@ -1,0 +1,78 @@
+"""The one TCP server of a node that accepts TCPROS connections for its topics and services.
+
+Each accepted connection gets a thread that reads the connection header (bounded in size and
+time) and hands the socket to whoever serves the named topic or service.
+"""
+
+from __future__ import annotations
+
+import logging
+import socket
+import threading
+from collections.abc import Callable, Mapping
+
+from .connection_header import read_header
+from .errors import ProtocolError
+from .tcpros import Limits, close_quietly
+
+log = logging.getLogger(__name__)
+
+#: Serves one connection; returns True if it took the socket over (and will close it).
+Dispatch = Callable[[socket.socket, Mapping[str, str], str], bool]
+
+
+class TcprosServer:
+    def __init__(self, bind_host: str, dispatch: Dispatch, limits: Limits) -> None:
+        self._dispatch = dispatch
+        self._limits = limits
+        self._listener = socket.create_server((bind_host, 0), backlog=128)
+        self._lock = threading.Lock()
+        self._pending: set[socket.socket] = set()
+        self._closed = False
+        self._thread = threading.Thread(target=self._accept, name="tcpros accept", daemon=True)
+        self._thread.start()
+
+    @property
+    def port(self) -> int:
+        return self._listener.getsockname()[1]
+
+    def _accept(self) -> None:
+        while True:
+            try:
+                sock, address = self._listener.accept()
+            except OSError:
+                return  # listener closed
+            peer = f"{address[0]}:{address[1]}"
+            with self._lock:
+                if self._closed:
+                    sock.close()
+                    return
+                self._pending.add(sock)
+            threading.Thread(
+                target=self._handle, args=(sock, peer), name=f"tcpros from {peer}", daemon=True
+            ).start()
+
+    def _handle(self, sock: socket.socket, peer: str) -> None:
+        keep = False
+        try:
+            sock.settimeout(self._limits.header_timeout)
+            header = read_header(sock, self._limits.max_header_bytes)
+            sock.settimeout(None)
+            keep = self._dispatch(sock, header, peer)
+        except (ProtocolError, OSError) as exc:
+            if not self._closed:
+                log.warning("TCPROS peer %s: %s", peer, exc)
+        finally:
+            with self._lock:
+                self._pending.discard(sock)
+            if not keep:
+                close_quietly(sock)
+
+    def close(self) -> None:
+        with self._lock:
+            self._closed = True
+            pending, self._pending = self._pending, set()
+        close_quietly(self._listener)
+        for sock in pending:
+            close_quietly(sock)
+        self._thread.join(timeout=2.0)
