@@ -16,19 +16,17 @@ SPEED_LIMIT_MPS = 50.0 / 3.6
 
 
 def build_loop() -> LaneMap:
-    """Four roads around the origin, joined end to start: R1 south straight (east-bound),
-    R2 east half circle (north-bound), R3 north straight (west-bound), R4 west half circle
-    (south-bound). The reference line is the inner kerb; lane 1 is the inner lane."""
+    """Two roads joined end to start into an oval around the origin: R1 is the east half
+    (north-bound: half of the south straight, the east bend, half of the north straight),
+    R2 the west half (south-bound). The reference line is the inner kerb, so lane 1 is the
+    inner lane. Roads meet mid-straight, where their lane ends join exactly."""
     half = STRAIGHT_M / 2
-    references = (
-        np.array([[-half, -RADIUS_M], [half, -RADIUS_M]]),
-        arc((half, 0.0), RADIUS_M, -math.pi / 2, math.pi),
-        np.array([[half, RADIUS_M], [-half, RADIUS_M]]),
-        arc((-half, 0.0), RADIUS_M, math.pi / 2, math.pi),
-    )
+    east = np.vstack(([[0.0, -RADIUS_M]], arc((half, 0.0), RADIUS_M, -math.pi / 2, math.pi)))
+    east = np.vstack((east, [[0.0, RADIUS_M]]))
+    west = -east
     builder = RoadNetworkBuilder(LANE_WIDTH_M)
-    for road_id, reference in enumerate(references, start=1):
+    for road_id, reference in enumerate((east, west), start=1):
         builder.add_road(RoadSpec(road_id, reference, 2, 0, SPEED_LIMIT_MPS))
-    for road_id in range(1, 5):
-        builder.link(road_id, road_id % 4 + 1)
+    builder.link(1, 2)
+    builder.link(2, 1)
     return builder.build("loop", BUILTIN_GEOREF)

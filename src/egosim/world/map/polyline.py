@@ -26,7 +26,8 @@ def offset_left(points: FloatArray, distance: float) -> FloatArray:
     """Parallel curve `distance` metres to the left (negative: right) of an (N, 2) polyline.
 
     Interior vertices move along the bisector by distance / cos(half turn) so every
-    segment stays exactly `distance` from its parent.
+    segment stays exactly `distance` from its parent; end vertices move square to their
+    segment, so lines meant to join end to end should end on straight pieces.
     """
     delta = np.diff(points, axis=0)
     normals = np.column_stack((-delta[:, 1], delta[:, 0])) / np.hypot(*delta.T)[:, None]
