@@ -1,0 +1,107 @@
+"""The network settings file: MORAI's Network Settings tab as a YAML override of the table.
+
+ego_input: MoraiCmdController      # or WeBOTCmdController, GVDirectCmd, GVStateCmd,
+                                   # GhostCtrlCmd
+rows:
+  ego_status: {name: /Ego_topic, rate_hz: 100}
+  collision: {enabled: false}
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, replace
+from typing import Any
+
+from ..yamltext import YamlDocument, parse_yaml
+from .table import DEFAULT_EGO_INPUT, EGO_INPUT_ROWS, ROWS, ROWS_BY_KEY, Direction, Row
+
+ROS_NAME = re.compile(r"^[~/]?[A-Za-z][\w/]*$")
+ROW_FIELDS = {"name", "rate_hz", "enabled"}
+
+
+@dataclass(frozen=True)
+class NetworkSettings:
+    """The effective table: every row with its name, rate and on/off decided."""
+
+    ego_input: str
+    rows: tuple[Row, ...]
+
+    def row(self, key: str) -> Row:
+        return next(row for row in self.rows if row.key == key)
+
+    def enabled_rows(self) -> list[Row]:
+        return [row for row in self.rows if row.enabled]
+
+
+def default_network_settings() -> NetworkSettings:
+    return settings_for(DEFAULT_EGO_INPUT, {})
+
+
+def settings_for(ego_input: str, overrides: dict[str, Row]) -> NetworkSettings:
+    live_input_row = EGO_INPUT_ROWS[ego_input]
+    rows = []
+    for row in ROWS:
+        row = overrides.get(row.key, row)  # noqa: PLW2901 - the override replaces the default
+        if row.key in EGO_INPUT_ROWS.values():
+            row = replace(row, enabled=row.key == live_input_row)  # noqa: PLW2901
+        rows.append(row)
+    return NetworkSettings(ego_input, tuple(rows))
+
+
+def parse_network_settings(text: str, label: str) -> NetworkSettings:
+    """Settings from a YAML text; errors name the file, line and field."""
+    document = parse_yaml(text, label)
+    data = document.data if document.data is not None else {}
+    if not isinstance(data, dict):
+        raise document.error((), "expected a mapping with 'ego_input' and/or 'rows'")
+    unknown = set(data) - {"ego_input", "rows"}
+    if unknown:
+        key = sorted(unknown)[0]
+        raise document.error((key,), "unknown setting (known: ego_input, rows)")
+    ego_input = data.get("ego_input", DEFAULT_EGO_INPUT)
+    if ego_input not in EGO_INPUT_ROWS:
+        raise document.error(("ego_input",), f"must be one of {', '.join(EGO_INPUT_ROWS)}")
+    rows = data.get("rows") or {}
+    if not isinstance(rows, dict):
+        raise document.error(("rows",), "expected a mapping of row key to settings")
+    overrides = {key: _override(document, key, value) for key, value in rows.items()}
+    return settings_for(ego_input, overrides)
+
+
+def _override(document: YamlDocument, key: Any, value: Any) -> Row:
+    path = ("rows", str(key))
+    if key not in ROWS_BY_KEY:
+        raise document.error(path, "unknown row (see `egosim topics` for the keys)")
+    if not isinstance(value, dict):
+        raise document.error(path, "expected a mapping with name, rate_hz, enabled")
+    row = ROWS_BY_KEY[key]
+    for field_name in value:
+        if field_name not in ROW_FIELDS:
+            raise document.error((*path, str(field_name)), "unknown field (name, rate_hz, enabled)")
+    name = value.get("name", row.name)
+    if not isinstance(name, str) or not ROS_NAME.match(name):
+        raise document.error((*path, "name"), f"not a valid ROS name: {name!r}")
+    enabled = value.get("enabled", row.enabled)
+    if not isinstance(enabled, bool):
+        raise document.error((*path, "enabled"), "expected true or false")
+    if key in EGO_INPUT_ROWS.values() and "enabled" in value:
+        raise document.error((*path, "enabled"), "ego command inputs are chosen by ego_input")
+    rate = value.get("rate_hz", row.rate_hz)
+    if "rate_hz" in value:
+        if row.direction is not Direction.PUBLISH:
+            raise document.error((*path, "rate_hz"), "only publishers have a rate")
+        if isinstance(rate, bool) or not isinstance(rate, int | float):
+            raise document.error((*path, "rate_hz"), "expected a number of Hz")
+        if not (math.isfinite(rate) and rate > 0):
+            raise document.error((*path, "rate_hz"), "must be a positive number of Hz")
+    return replace(row, name=name, enabled=enabled, rate_hz=rate)
+
+
+def load_network_settings(path: str | None) -> NetworkSettings:
+    """The settings of the file at `path`, or the defaults when no file is given."""
+    if path is None:
+        return default_network_settings()
+    with open(path, encoding="utf-8") as file:
+        return parse_network_settings(file.read(), path)

@@ -1,0 +1,118 @@
+"""The network settings file overrides the protocol table like MORAI's Network Settings tab."""
+
+from __future__ import annotations
+
+import pytest
+
+from egosim.bridge.network import default_network_settings, parse_network_settings
+from egosim.bridge.table import EGO_INPUT_ROWS, ROWS, Direction
+from egosim.cli import main
+from egosim.msgs import get_profile
+from egosim.yamltext import YamlFileError
+from tests.contract import load_contract
+
+DOCUMENT_NAMES = {
+    "/ctrl_cmd",
+    "/commands/vel",
+    "/gv_direct_cmd",
+    "/gv_state_cmd",
+    "/ghost_ctrl_cmd",
+    "/NpcGhost_Topic",
+    "/Ego_topic",
+    "/Object_topic",
+    "/CollisionData",
+    "/GetTrafficLightStatus",
+    "/SetTrafficLight",
+    "/InsnStatus",
+    "/InsnControl",
+    "/ScenarioLoad",
+    "/SaveSensorData",
+    "/lamps",
+    "/ReplayInfo_topic",
+    "/SensorPosControl",
+    "/sim/process/state/msg/MoraiSimProcStatus",
+    "/ego_setting",
+    "/VehicleCollisionData",
+    "/Service_MoraiEventCmd",
+    "/Service_MoraiMapSpec",
+    "/Service_MoraiSL",
+    "/Morai_SimProc",
+    "/Morai_TLSrv",
+    "/Service_MoraiVehicleSpec",
+}
+
+
+def test_table_holds_every_name_of_the_protocol_document() -> None:
+    assert {row.name for row in ROWS} >= DOCUMENT_NAMES
+
+
+def test_every_row_type_exists_in_the_contract() -> None:
+    profile = get_profile("26.r1")
+    contract = load_contract("26.r1")
+    for row in ROWS:
+        if row.direction is Direction.SERVICE:
+            assert row.type_name in contract["services"]
+        else:
+            profile.message(row.type_name)
+
+
+def test_defaults_enable_only_the_morai_command_input() -> None:
+    settings = default_network_settings()
+    live = [key for key in EGO_INPUT_ROWS.values() if settings.row(key).enabled]
+    assert live == ["ctrl_cmd"]
+
+
+def test_overrides_rename_rerate_and_disable() -> None:
+    settings = parse_network_settings(
+        "ego_input: GhostCtrlCmd\n"
+        "rows:\n"
+        "  ego_status: {name: /car/status, rate_hz: 100}\n"
+        "  collision: {enabled: false}\n",
+        "net.yaml",
+    )
+    assert settings.row("ego_status").name == "/car/status"
+    assert settings.row("ego_status").rate_hz == 100
+    assert not settings.row("collision").enabled
+    assert settings.row("ghost_ctrl_cmd").enabled
+    assert not settings.row("ctrl_cmd").enabled
+
+
+@pytest.mark.parametrize(
+    ("text", "line", "field"),
+    [
+        ("rows:\n  ego_status:\n    rate_hz: 0\n", 3, "rows.ego_status.rate_hz"),
+        ("rows:\n  nope: {}\n", 2, "rows.nope"),
+        ("rows:\n  ego_status: {colour: red}\n", 2, "rows.ego_status.colour"),
+        ("rows:\n  ctrl_cmd: {rate_hz: 5}\n", 2, "rows.ctrl_cmd.rate_hz"),
+        ("rows:\n  ctrl_cmd:\n    enabled: true\n", 3, "rows.ctrl_cmd.enabled"),
+        ("ego_input: Joystick\n", 1, "ego_input"),
+        ("rows:\n  lamps: {name: 'bad name'}\n", 2, "rows.lamps.name"),
+    ],
+)
+def test_errors_name_file_line_and_field(text: str, line: int, field: str) -> None:
+    with pytest.raises(YamlFileError) as error:
+        parse_network_settings(text, "net.yaml")
+    assert str(error.value).startswith(f"net.yaml:{line}: {field}: ")
+
+
+def test_syntax_error_names_the_line() -> None:
+    with pytest.raises(YamlFileError, match=r"^net\.yaml:2: invalid YAML"):
+        parse_network_settings("rows:\n  a: b: c\n", "net.yaml")
+
+
+def test_topics_command_prints_the_effective_table(
+    tmp_path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    network = tmp_path / "net.yaml"
+    network.write_text("rows:\n  object_status: {name: /objects, rate_hz: 5}\n")
+    assert main(["topics", "--network", str(network)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    row = next(line.split() for line in lines if line.startswith("object_status"))
+    assert row[2:] == ["/objects", "morai_msgs/ObjectStatusList", "5", "Hz", "yes"]
+
+
+def test_topics_command_reports_a_bad_file(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+    network = tmp_path / "net.yaml"
+    network.write_text("ego_input: 3\n")
+    assert main(["topics", "--network", str(network)]) == 1
+    assert "net.yaml:1: ego_input" in capsys.readouterr().err
