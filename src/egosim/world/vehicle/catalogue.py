@@ -109,14 +109,16 @@ def _estimated_model(
     cornering_coeff_front: float = 8.0,
     cornering_coeff_rear: float = 12.0,
     max_steer_rate: float = 0.6,
+    yaw_dynamic_index: float = 1.0,
 ) -> VehicleModel:
     """A model whose unpublished quantities follow from the published ones.
 
     The CG position follows from the static axle loads (the front axle carries
-    b/L of the weight). Yaw inertia is m·a·b, i.e. a yaw dynamic index of 1, the
-    usual value for passenger cars. Axle cornering stiffness is a cornering
-    coefficient (N/rad per N of axle load) times the static axle load; a higher
-    rear coefficient gives the mild understeer production cars are tuned for.
+    b/L of the weight). Yaw inertia is k·m·a·b with the yaw dynamic index k,
+    close to 1 for passenger cars and larger for vehicles with long overhangs.
+    Axle cornering stiffness is a cornering coefficient (N/rad per N of axle
+    load) times the static axle load; a higher rear coefficient gives the mild
+    understeer production cars are tuned for.
     The largest front wheel angle is the one that puts the outer front wheel on
     the published kerb-to-kerb turning circle.
     """
@@ -133,7 +135,7 @@ def _estimated_model(
         rear_overhang=length - wheelbase - front_overhang,
         track_width=track_width,
         mass=mass,
-        yaw_inertia=mass * cg_to_front_axle * cg_to_rear_axle,
+        yaw_inertia=yaw_dynamic_index * mass * cg_to_front_axle * cg_to_rear_axle,
         cg_to_front_axle=cg_to_front_axle,
         cg_to_rear_axle=cg_to_rear_axle,
         cg_height=cg_height,
@@ -171,7 +173,7 @@ VEHICLE_CATALOGUE: dict[str, VehicleModel] = {
             front_axle_load_fraction=0.60,
             cg_height=0.55,
             min_turning_radius=5.3,
-            max_drive_torque=2000.0,
+            max_drive_torque=1700.0,
             max_power=90e3,
             max_brake_decel=9.0,
             drag_area=0.29 * 2.33,
@@ -191,7 +193,7 @@ VEHICLE_CATALOGUE: dict[str, VehicleModel] = {
             front_axle_load_fraction=0.60,
             cg_height=0.52,
             min_turning_radius=5.3,
-            max_drive_torque=2000.0,
+            max_drive_torque=1700.0,
             max_power=90e3,
             max_brake_decel=9.0,
             drag_area=0.24 * 2.25,
@@ -211,7 +213,7 @@ VEHICLE_CATALOGUE: dict[str, VehicleModel] = {
             front_axle_load_fraction=0.61,
             cg_height=0.53,
             min_turning_radius=5.45,
-            max_drive_torque=3000.0,
+            max_drive_torque=2400.0,
             max_power=110e3,
             max_brake_decel=9.0,
             drag_area=0.27 * 2.30,
@@ -231,7 +233,7 @@ VEHICLE_CATALOGUE: dict[str, VehicleModel] = {
             front_axle_load_fraction=0.61,
             cg_height=0.54,
             min_turning_radius=5.6,
-            max_drive_torque=3400.0,
+            max_drive_torque=2800.0,
             max_power=160e3,
             max_brake_decel=9.0,
             drag_area=0.28 * 2.35,
@@ -251,7 +253,7 @@ VEHICLE_CATALOGUE: dict[str, VehicleModel] = {
             front_axle_load_fraction=0.61,
             cg_height=0.54,
             min_turning_radius=5.6,
-            max_drive_torque=3400.0,
+            max_drive_torque=2800.0,
             max_power=150e3,
             max_brake_decel=9.0,
             drag_area=0.28 * 2.35,
@@ -271,7 +273,7 @@ VEHICLE_CATALOGUE: dict[str, VehicleModel] = {
             front_axle_load_fraction=0.60,
             cg_height=0.52,
             min_turning_radius=5.5,
-            max_drive_torque=2800.0,
+            max_drive_torque=2400.0,
             max_power=105e3,
             max_brake_decel=9.0,
             drag_area=0.27 * 2.28,
@@ -291,7 +293,7 @@ VEHICLE_CATALOGUE: dict[str, VehicleModel] = {
             front_axle_load_fraction=0.33,
             cg_height=1.30,
             min_turning_radius=11.0,
-            max_drive_torque=30000.0,
+            max_drive_torque=10000.0,
             max_power=260e3,
             max_brake_decel=6.5,
             drag_area=0.65 * 7.5,
@@ -301,6 +303,7 @@ VEHICLE_CATALOGUE: dict[str, VehicleModel] = {
             cornering_coeff_front=6.0,
             cornering_coeff_rear=7.0,
             max_steer_rate=0.4,
+            yaw_dynamic_index=1.5,
         ),
     )
 }
