@@ -20,7 +20,7 @@ HEADING_WEIGHT_M_PER_RAD = 2.0
 # within this distance.
 WRONG_WAY_PENALTY_M = 50.0
 # Grid cell edge; a point on a road finds its lane in the 3 x 3 cells around it.
-GRID_CELL_M = 10.0
+GRID_CELL_M = 4.0
 
 
 @dataclass(frozen=True)
@@ -131,10 +131,12 @@ class SegmentTable:
                 error > math.pi / 2, WRONG_WAY_PENALTY_M, 0.0
             )
         # The first pair reaching each point's minimum wins; pairs are grouped by point.
-        points, group_start = np.unique(point, return_index=True)
+        group_start = _group_starts(point)
+        points = point[group_start]
         group_min = np.minimum.reduceat(cost, group_start)
-        is_min = np.flatnonzero(cost == group_min[np.searchsorted(points, point)])
-        first = is_min[np.unique(point[is_min], return_index=True)[1]]
+        sizes = np.diff(group_start, append=len(point))
+        is_min = np.flatnonzero(cost == np.repeat(group_min, sizes))
+        first = is_min[_group_starts(point[is_min])]
         found[points] = True
         seg_best[points] = seg[first]
         t_best[points] = t[first]
@@ -158,6 +160,11 @@ class SegmentTable:
             distance_right=width / 2.0 + lateral,
             width=width,
         )
+
+
+def _group_starts(sorted_keys: IntArray) -> IntArray:
+    """Index of the first element of each run of equal keys."""
+    return np.flatnonzero(np.concatenate(([True], sorted_keys[1:] != sorted_keys[:-1])))
 
 
 def _all_pairs(n_points: int, n_segments: int) -> tuple[IntArray, IntArray]:

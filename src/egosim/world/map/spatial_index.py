@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 import numpy.typing as npt
@@ -60,8 +61,7 @@ class SegmentGrid:
 
         Pairs are grouped by point in ascending order; a segment may repeat.
         """
-        steps = np.arange(-ring, ring + 1)
-        dx, dy = (a.ravel() for a in np.meshgrid(steps, steps, indexing="ij"))
+        dx, dy = _ring_offsets(ring)
         cells = self._cell_of(xy)
         ix = cells[:, :1] + dx
         iy = cells[:, 1:] + dy
@@ -73,3 +73,11 @@ class SegmentGrid:
         point = np.repeat(np.repeat(np.arange(len(xy)), dx.size), counts)
         local = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
         return point, self.segments[np.repeat(first.ravel(), counts) + local]
+
+
+@lru_cache(maxsize=32)
+def _ring_offsets(ring: int) -> tuple[IntArray, IntArray]:
+    """Cell offsets (dx, dy) of the (2 ring + 1)^2 square around a cell."""
+    steps = np.arange(-ring, ring + 1)
+    dx, dy = np.meshgrid(steps, steps, indexing="ij")
+    return dx.ravel(), dy.ravel()
