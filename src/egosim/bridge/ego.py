@@ -1,0 +1,69 @@
+"""The ego network: EgoVehicleStatus out, CtrlCmd in.
+
+Frames and units of every EgoVehicleStatus field are listed in docs/protocol.md.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..msgs import Profile
+from ..world.map.projection import LaneProjection
+from ..world.vehicle import ControlCommand, VehicleStatus
+from .messages import vector3
+from .units import deg, heading_deg, mps
+
+WHEEL_SUFFIXES = (
+    ("fl", "front_left"),
+    ("fr", "front_right"),
+    ("rl", "rear_left"),
+    ("rr", "rear_right"),
+)
+
+
+def ego_vehicle_status(
+    profile: Profile,
+    header: Any,
+    unique_id: int,
+    status: VehicleStatus,
+    lane: LaneProjection | None,
+) -> Any:
+    """morai_msgs/EgoVehicleStatus of one ego; lane fields are 0 off the road network."""
+    pose = status.pose
+    wheels: dict[str, float] = {}
+    for suffix, attribute in WHEEL_SUFFIXES:
+        wheel = getattr(status.wheels, attribute)
+        wheels[f"tire_lateral_force_{suffix}"] = wheel.lateral_force
+        wheels[f"side_slip_angle_{suffix}"] = deg(wheel.slip_angle)
+        wheels[f"tire_cornering_stiffness_{suffix}"] = wheel.cornering_stiffness
+    lateral = lane.lateral if lane is not None else 0.0
+    return profile.message("morai_msgs/EgoVehicleStatus").new(
+        header=header,
+        unique_id=unique_id,
+        acceleration=vector3(profile, status.acceleration),
+        position=vector3(profile, (pose.x, pose.y, pose.z)),
+        velocity=vector3(profile, status.velocity),
+        heading=heading_deg(pose.yaw),
+        accel=status.accel_pedal,
+        brake=status.brake_pedal,
+        front_steer_angle=deg(status.front_steer),
+        rear_steer_angle=deg(status.rear_steer),
+        lateral_offset=lateral,
+        distance_left_lane_boundary=lane.distance_left if lane is not None else 0.0,
+        distance_right_lane_boundary=lane.distance_right if lane is not None else 0.0,
+        cross_track_error=-lateral,
+        **wheels,
+    )
+
+
+def control_command(ctrl_cmd: Any) -> ControlCommand:
+    """A morai_msgs/CtrlCmd in SI: velocity km/h -> m/s; angles are already rad."""
+    return ControlCommand(
+        mode=int(ctrl_cmd.longlCmdType),
+        accel=float(ctrl_cmd.accel),
+        brake=float(ctrl_cmd.brake),
+        front_steer=float(ctrl_cmd.front_steer),
+        rear_steer=float(ctrl_cmd.rear_steer),
+        velocity=mps(float(ctrl_cmd.velocity)),
+        acceleration=float(ctrl_cmd.acceleration),
+    )

@@ -1,0 +1,79 @@
+"""Protocol units at the edge: degrees and km/h where the document asks for them."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from egosim.bridge.ego import control_command, ego_vehicle_status
+from egosim.bridge.messages import header
+from egosim.bridge.specs import map_spec, vehicle_spec
+from egosim.bridge.units import heading_deg
+from egosim.msgs import get_profile
+from egosim.world.map import build_builtin_map
+from egosim.world.vehicle import LongitudinalMode, Pose, Vehicle, vehicle_model
+
+PROFILE = get_profile("26.r1")
+
+
+def test_ego_status_reports_angles_in_degrees_and_lane_quantities() -> None:
+    vehicle = Vehicle.from_catalogue("2016_Kia_Niro(HEV)", Pose(x=10.0, y=-3.0, yaw=math.pi / 2))
+    vehicle.teleport(Pose(x=10.0, y=-3.0, yaw=math.pi / 2), speed=10.0, front_steer=0.05)
+    lane_map = build_builtin_map("straight")
+    status = vehicle.status()
+    lane = lane_map.project(status.pose.x, status.pose.y)
+    message = ego_vehicle_status(PROFILE, header(PROFILE, 1.0, "map"), -1, status, lane)
+    assert message.heading == pytest.approx(90.0)
+    assert message.front_steer_angle == pytest.approx(math.degrees(0.05))
+    assert message.velocity.x == pytest.approx(10.0)
+    assert message.position.x == pytest.approx(10.0)
+    assert message.lateral_offset == pytest.approx(lane.lateral)
+    assert message.cross_track_error == pytest.approx(-lane.lateral)
+    assert message.distance_left_lane_boundary == pytest.approx(lane.distance_left)
+    data = PROFILE.message("morai_msgs/EgoVehicleStatus").serialize(message)
+    assert len(data) > 0
+
+
+@pytest.mark.parametrize(("yaw", "heading"), [(0.0, 0.0), (math.pi, 180.0), (-math.pi / 2, -90.0)])
+def test_heading_is_enu_degrees_wrapped(yaw: float, heading: float) -> None:
+    assert heading_deg(yaw) == pytest.approx(heading)
+    assert heading_deg(yaw + 4 * math.pi) == pytest.approx(heading)
+
+
+def test_ctrl_cmd_velocity_is_km_per_hour() -> None:
+    ctrl = PROFILE.message("morai_msgs/CtrlCmd").new(
+        longlCmdType=2, velocity=36.0, front_steer=0.1, rear_steer=-0.02
+    )
+    command = control_command(ctrl)
+    assert command.mode == LongitudinalMode.VELOCITY
+    assert command.velocity == pytest.approx(10.0)
+    assert (command.front_steer, command.rear_steer) == (pytest.approx(0.1), -0.02)
+
+
+def test_vehicle_spec_of_the_default_ego() -> None:
+    model = vehicle_model("2016_Kia_Niro(HEV)")
+    spec = vehicle_spec(PROFILE, model)
+    assert (spec.size.x, spec.size.y, spec.size.z) == pytest.approx((4.355, 1.805, 1.535))
+    assert spec.wheel_base == pytest.approx(2.7)
+    assert spec.max_steering == pytest.approx(math.degrees(model.max_steer_front))
+    assert spec.overhang == pytest.approx(0.87)
+    assert spec.rear_overhang == pytest.approx(0.785)
+
+
+def test_vehicle_spec_of_nothing_is_all_zero() -> None:
+    spec = vehicle_spec(PROFILE, None)
+    assert (spec.size.x, spec.wheel_base, spec.max_steering) == (0.0, 0.0, 0.0)
+
+
+def test_map_spec_of_the_town_is_utm_52n() -> None:
+    georef = build_builtin_map("town").georef
+    spec = map_spec(PROFILE, georef)
+    assert spec.plane_coordinate_system == 0
+    assert spec.utm_num == 52
+    assert spec.central_meridian == pytest.approx(129.0)
+    assert spec.scale_factor == pytest.approx(0.9996)
+    assert spec.false_easting == pytest.approx(500000.0)
+    assert spec.false_northing == 0.0
+    assert (spec.utm_offset.x, spec.utm_offset.y) == (georef.origin_east, georef.origin_north)
+    assert spec.ellipse == "WGS84"
