@@ -142,7 +142,10 @@ class LaneMap:
         georef: GeoReference,
     ) -> None:
         self.name = name
+        lanes = list(lanes)
         self.lanes: dict[str, Lane] = {lane.id: lane for lane in lanes}
+        if len(self.lanes) != len(lanes):
+            raise MapGeometryError(f"map {name} repeats lane ids")
         if not self.lanes:
             raise MapGeometryError(f"map {name} has no lanes")
         self.traffic_lights: dict[str, TrafficLightSite] = {t.id: t for t in traffic_lights}
@@ -259,7 +262,7 @@ class LaneMap:
         return path[np.concatenate(([True], step > 1e-9))]
 
     def bounds(self) -> tuple[float, float, float, float]:
-        """(xmin, ymin, xmax, ymax) of every lane's area."""
+        """(xmin, ymin, xmax, ymax) holding every lane: centreline points padded by half width."""
         half = np.concatenate([lane.widths for lane in self.lanes.values()])[:, None] / 2.0
         lo = (self._points[:, :2] - half).min(axis=0)
         hi = (self._points[:, :2] + half).max(axis=0)
