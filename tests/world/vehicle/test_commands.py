@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from egosim.world.vehicle import ControlCommand, LongitudinalMode, Pose, Vehicle
+from egosim.world.vehicle import CommandGate, ControlCommand, LongitudinalMode, Pose, Vehicle
 
 
 def test_out_of_range_values_are_clamped_and_reported(drive, niro) -> None:
@@ -70,3 +70,22 @@ def test_silence_longer_than_the_timeout_brakes_to_a_stop_holding_the_steering()
     assert vehicle.command(ControlCommand(accel=0.3)).accepted
     vehicle.step(0.01)
     assert vehicle.status().brake_pedal == 0.0
+
+
+def test_gate_times_out_only_after_the_configured_silence(niro) -> None:
+    gate = CommandGate(niro.model, timeout=0.5)
+    assert gate.timed_out(0.0)
+    command = ControlCommand(accel=0.2, front_steer=0.1, rear_steer=0.0)
+    gate.submit(command, sim_time=10.0)
+    assert gate.active_command(10.5) == command
+    assert gate.timed_out(10.51)
+    assert gate.active_command(10.51) == ControlCommand(brake=1.0, front_steer=0.1)
+
+
+def test_velocity_mode_with_zero_target_stops_and_holds(drive, niro) -> None:
+    niro.teleport(Pose(), speed=10.0)
+    command = ControlCommand(mode=LongitudinalMode.VELOCITY, velocity=0.0)
+    statuses = list(drive(niro, command, seconds=30.0))
+    assert all(status.velocity[0] >= 0.0 for status in statuses)
+    assert statuses[-1].speed == 0.0
+    assert all(0.0 <= status.brake_pedal <= 1.0 for status in statuses)

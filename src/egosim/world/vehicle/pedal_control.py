@@ -30,6 +30,8 @@ SPEED_GAIN = 1.0
 """Acceleration demanded per m/s of speed error, 1/s."""
 MOVING_SPEED = 0.1
 """Speed (m/s) above which the car counts as moving for the integral."""
+STOPPING_DECELERATION = 0.5
+"""Least deceleration (m/s²) the speed loop asks for when the target is standstill."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -99,6 +101,10 @@ class SpeedController:
             target = min(target, model.max_reverse_speed)
         speed = travel_direction(gear) * state.vx
         acceleration = SPEED_GAIN * (target - speed)
+        if target == 0.0:
+            # An exponential approach never reaches rest: a stop ends at a firm,
+            # constant deceleration, and the brakes then hold the car.
+            acceleration = min(acceleration, -STOPPING_DECELERATION)
         acceleration = min(
             max(acceleration, -model.max_brake_decel), model.max_drive_force / model.mass
         )
