@@ -2,38 +2,28 @@
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import threading
-from dataclasses import dataclass
 from functools import cache
-from typing import Any
 
-from rosbags.typesys import Stores, get_typestore
+from egosim.msgs import DEFAULT_PROFILE, MessageType, get_profile
 
 from .publication import Publisher
 
 ROSOUT_TOPIC = "/rosout"
-_LOG_TYPE = "rosgraph_msgs/msg/Log"
 _LEVELS = ((logging.CRITICAL, 16), (logging.ERROR, 8), (logging.WARNING, 4), (logging.INFO, 2))
 _DEBUG = 1
 
 
-@dataclass(frozen=True)
-class LogType:
-    name: str
-    md5sum: str
-    definition: str
+@cache
+def log_type() -> MessageType:
+    return get_profile(DEFAULT_PROFILE).message("rosgraph_msgs/Log")
 
 
 @cache
-def _typestore() -> Any:
-    return get_typestore(Stores.ROS1_NOETIC)
-
-
-@cache
-def log_type() -> LogType:
-    definition, md5sum = _typestore().generate_msgdef(_LOG_TYPE)
-    return LogType("rosgraph_msgs/Log", md5sum, definition)
+def _header_type() -> MessageType:
+    return get_profile(DEFAULT_PROFILE).message("std_msgs/Header")
 
 
 def _ros_level(levelno: int) -> int:
@@ -51,7 +41,7 @@ class RosoutHandler(logging.Handler):
         self._seq = 0
 
     def emit(self, record: logging.LogRecord) -> None:
-        if getattr(self._busy, "active", False) or self._publisher.num_subscribers == 0:
+        if getattr(self._busy, "active", False):
             return
         self._busy.active = True
         try:
@@ -62,21 +52,21 @@ class RosoutHandler(logging.Handler):
             self._busy.active = False
 
     def serialize(self, record: logging.LogRecord) -> bytes:
-        store = _typestore()
-        types = store.types
         self._seq += 1
         seconds = int(record.created)
-        stamp = types["builtin_interfaces/msg/Time"](
-            sec=seconds, nanosec=int((record.created - seconds) * 1e9)
+        header = _header_type().new(seq=self._seq, frame_id="")
+        header.stamp = dataclasses.replace(
+            header.stamp, sec=seconds, nanosec=int((record.created - seconds) * 1e9)
         )
-        message = types[_LOG_TYPE](
-            header=types["std_msgs/msg/Header"](seq=self._seq, stamp=stamp, frame_id=""),
-            level=_ros_level(record.levelno),
-            name=self._node_name,
-            msg=record.getMessage(),
-            file=record.pathname,
-            function=record.funcName or "",
-            line=record.lineno,
-            topics=[],
+        log = log_type()
+        return log.serialize(
+            log.new(
+                header=header,
+                level=_ros_level(record.levelno),
+                name=self._node_name,
+                msg=record.getMessage(),
+                file=record.pathname,
+                function=record.funcName or "",
+                line=record.lineno,
+            )
         )
-        return bytes(store.serialize_ros1(message, _LOG_TYPE))

@@ -1,0 +1,178 @@
+"""Shared fixtures for tests that run Debian's real ROS 1 next to egosim.
+
+- ``ros_env``: environment for ROS subprocesses (ROS_HOME/ROS_LOG_DIR in a tmp dir).
+- ``spawn_ros``: start a subprocess in its own process group; killed at teardown.
+- ``rosmaster``: Debian's rosmaster on a free loopback port; yields its URI.
+- ``embedded_master``: egosim's master on a free loopback port; yields it (``.uri``).
+Tests marked ``ros`` are skipped, with the reason, when Debian's ROS 1 is not installed.
+"""
+
+from __future__ import annotations
+
+import os
+import queue
+import re
+import signal
+import socket
+import subprocess
+import threading
+import time
+import xmlrpc.client
+from collections.abc import Callable, Iterator
+from pathlib import Path
+
+import pytest
+
+from egosim.ros1 import Master
+from tests.debian_ros import ROS_PYTHON, missing_ros_reason
+
+#: Generous bound on waiting for a peer's event (never a timed assertion).
+EVENT_TIMEOUT_S = 30.0
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    reason = missing_ros_reason()
+    if reason is None:
+        return
+    for item in items:
+        if item.get_closest_marker("ros") or item.get_closest_marker("roscpp"):
+            item.add_marker(pytest.mark.skip(reason=reason))
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
+
+
+class RosProcess:
+    """A subprocess whose stdout lines can be awaited; stderr goes to a log file."""
+
+    def __init__(self, args: list[str], env: dict[str, str], log_path: Path) -> None:
+        self.args = args
+        self.log_path = log_path
+        self._stderr = log_path.open("wb")
+        self.popen = subprocess.Popen(
+            args,
+            env=env,
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.PIPE,
+            stderr=self._stderr,
+            start_new_session=True,
+            text=True,
+        )
+        self.lines: queue.Queue[str] = queue.Queue()
+        self.output: list[str] = []
+        self._reader = threading.Thread(target=self._read, daemon=True)
+        self._reader.start()
+
+    def _read(self) -> None:
+        assert self.popen.stdout is not None
+        for line in self.popen.stdout:
+            self.lines.put(line.rstrip("\n"))
+
+    def expect(self, pattern: str, timeout: float = EVENT_TIMEOUT_S) -> re.Match[str]:
+        """The first new stdout line matching ``pattern``; fails with the output so far."""
+        deadline = time.monotonic() + timeout
+        while True:
+            remaining = deadline - time.monotonic()
+            try:
+                line = self.lines.get(timeout=max(remaining, 0.01))
+            except queue.Empty:
+                pytest.fail(
+                    f"{self.args[:3]} printed no line matching {pattern!r}; stdout: "
+                    f"{self.output[-20:]}; stderr: {self.stderr_text()[-3000:]}"
+                )
+            self.output.append(line)
+            if match := re.search(pattern, line):
+                return match
+
+    def wait(self, timeout: float = EVENT_TIMEOUT_S) -> int:
+        return self.popen.wait(timeout)
+
+    def stderr_text(self) -> str:
+        self._stderr.flush()
+        return self.log_path.read_text(errors="replace")
+
+    def kill(self) -> None:
+        if self.popen.poll() is None:
+            for sig in (signal.SIGINT, signal.SIGKILL):
+                try:
+                    os.killpg(self.popen.pid, sig)
+                except ProcessLookupError:
+                    break
+                try:
+                    self.popen.wait(5)
+                    break
+                except subprocess.TimeoutExpired:
+                    continue
+        self._stderr.close()
+        if self.popen.stdout is not None:
+            self.popen.stdout.close()
+
+
+@pytest.fixture
+def ros_env(tmp_path: Path) -> dict[str, str]:
+    env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
+    home = tmp_path / "ros_home"
+    home.mkdir(exist_ok=True)
+    env.update(ROS_HOME=str(home), ROS_LOG_DIR=str(home / "log"), PYTHONUNBUFFERED="1")
+    env.pop("PYTHONPATH", None)
+    return env
+
+
+@pytest.fixture
+def spawn_ros(tmp_path: Path, ros_env: dict[str, str]) -> Iterator[Callable[..., RosProcess]]:
+    """``spawn_ros(args, master_uri=None, **env)`` starts a process; ``args[0] == "python"``
+    means Debian's ROS interpreter."""
+    started: list[RosProcess] = []
+
+    def spawn(args: list[str], master_uri: str | None = None, **extra_env: str) -> RosProcess:
+        env = dict(ros_env, **extra_env)
+        if master_uri is not None:
+            env["ROS_MASTER_URI"] = master_uri
+        if args[0] == "python":
+            args = [ROS_PYTHON, *args[1:]]
+        process = RosProcess(args, env, tmp_path / f"proc{len(started)}.stderr")
+        started.append(process)
+        return process
+
+    try:
+        yield spawn
+    finally:
+        for process in reversed(started):
+            process.kill()
+
+
+def wait_for_master(uri: str, timeout: float = EVENT_TIMEOUT_S) -> None:
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            xmlrpc.client.ServerProxy(uri).getUri("/test")
+            return
+        except OSError:
+            if time.monotonic() > deadline:
+                pytest.fail(f"no master answered at {uri}")
+            time.sleep(0.05)
+
+
+@pytest.fixture
+def rosmaster(spawn_ros: Callable[..., RosProcess]) -> str:
+    """Debian's rosmaster on a free loopback port; its URI."""
+    if reason := missing_ros_reason():
+        pytest.skip(reason)
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    spawn_ros(["/usr/bin/rosmaster", "--core", "-p", str(port)], ROS_IP="127.0.0.1")
+    wait_for_master(uri)
+    return uri
+
+
+@pytest.fixture
+def embedded_master() -> Iterator[Master]:
+    """egosim's embedded master on a free loopback port."""
+    master = Master(f"http://127.0.0.1:{free_port()}/").start()
+    try:
+        yield master
+    finally:
+        master.shutdown()

@@ -1,0 +1,59 @@
+"""Small helpers for the ros1 tests."""
+
+from __future__ import annotations
+
+import json
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+from egosim.msgs import MessageType, ServiceType, get_profile
+from tests.conftest import EVENT_TIMEOUT_S, RosProcess
+
+PEERS = Path(__file__).parent / "peers"
+PROFILE = get_profile("26.r1")
+STRING = PROFILE.message("std_msgs/String")
+
+
+def peer(script: str) -> str:
+    return str(PEERS / script)
+
+
+def wait_until(condition: Callable[[], object], timeout: float = EVENT_TIMEOUT_S) -> None:
+    """Poll ``condition`` until true; fail the test if it never becomes true."""
+    deadline = time.monotonic() + timeout
+    while not condition():
+        if time.monotonic() > deadline:
+            raise AssertionError(f"condition never became true: {condition}")
+        time.sleep(0.01)
+
+
+def string_bytes(text: str) -> bytes:
+    return STRING.serialize(STRING.new(data=text))
+
+
+def string_text(data: bytes) -> str:
+    return STRING.deserialize(data).data
+
+
+def next_json(process: RosProcess, key: str) -> dict:
+    """The next JSON line printed by a peer that has ``key``."""
+    return json.loads(process.expect(rf'^\{{"{key}"').string)
+
+
+def write_definition(tmp_path: Path, msg_type: MessageType) -> str:
+    path = tmp_path / (msg_type.name.replace("/", "_") + ".msg")
+    path.write_text(msg_type.definition)
+    return str(path)
+
+
+def write_service_spec(tmp_path: Path, srv_type: ServiceType) -> str:
+    spec = {
+        "name": srv_type.name,
+        "md5sum": srv_type.md5sum,
+        "request": {"name": srv_type.request.name, "definition": srv_type.request.definition},
+        "response": {"name": srv_type.response.name, "definition": srv_type.response.definition},
+    }
+    path = tmp_path / (srv_type.name.replace("/", "_") + ".json")
+    path.write_text(json.dumps(spec))
+    return str(path)
