@@ -1,0 +1,64 @@
+"""Traffic lights and the fixed-time controllers of signalised intersections.
+
+Public API:
+    TrafficSignals, IntersectionProgram, LightState   the map's lights, programs, overrides
+    IntersectionController, IntersectionStatus        one intersection's program runner
+    Phase, PhaseTiming, build_program                 phase programs
+    governing_light_id, nearest_light_id              the light a vehicle looks at
+    RED, YELLOW, GREEN, GREEN_LEFT, OFF, TYPE_*, can_show   aspects and head types
+    SignalError and subclasses
+"""
+
+from egosim.world.signals.aspects import (
+    GREEN,
+    GREEN_LEFT,
+    OFF,
+    RED,
+    TYPE_FLASHING_YELLOW,
+    TYPE_RYG,
+    TYPE_RYG_LEFT,
+    TYPE_RYG_LEFT_GREEN,
+    YELLOW,
+    can_show,
+    has_left_arrow,
+)
+from egosim.world.signals.controller import IntersectionController, IntersectionStatus
+from egosim.world.signals.errors import (
+    SignalError,
+    UnknownIntersectionError,
+    UnknownLightError,
+    UnknownPhaseError,
+    UnsupportedAspectError,
+)
+from egosim.world.signals.governing import governing_light_id, nearest_light_id
+from egosim.world.signals.phases import Phase, PhaseTiming, build_program
+from egosim.world.signals.system import IntersectionProgram, LightState, TrafficSignals
+
+__all__ = [
+    "GREEN",
+    "GREEN_LEFT",
+    "OFF",
+    "RED",
+    "TYPE_FLASHING_YELLOW",
+    "TYPE_RYG",
+    "TYPE_RYG_LEFT",
+    "TYPE_RYG_LEFT_GREEN",
+    "YELLOW",
+    "IntersectionController",
+    "IntersectionProgram",
+    "IntersectionStatus",
+    "LightState",
+    "Phase",
+    "PhaseTiming",
+    "SignalError",
+    "TrafficSignals",
+    "UnknownIntersectionError",
+    "UnknownLightError",
+    "UnknownPhaseError",
+    "UnsupportedAspectError",
+    "build_program",
+    "can_show",
+    "governing_light_id",
+    "has_left_arrow",
+    "nearest_light_id",
+]

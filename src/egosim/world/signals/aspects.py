@@ -1,0 +1,47 @@
+"""Light aspects and head types, in the protocol's own codes (GetTrafficLightStatus).
+
+An aspect is an int of lamp bits combined with bitwise OR (RED | GREEN_LEFT is a red
+light with a lit left arrow); OFF (-1) means no lamp is lit. A head's type (the map's
+light_type) fixes which lamps it has, and so which aspects it can show.
+"""
+
+from __future__ import annotations
+
+RED = 1
+YELLOW = 4
+GREEN = 16
+GREEN_LEFT = 32
+OFF = -1
+
+TYPE_RYG = 0
+"""Red / yellow / green."""
+TYPE_RYG_LEFT = 1
+"""Red / yellow / green with left arrow: the arrow is lit together with the green."""
+TYPE_RYG_LEFT_GREEN = 2
+"""Red / yellow / left arrow / green: the arrow has its own phase, shown with the red."""
+TYPE_FLASHING_YELLOW = 100
+"""Yellow / yellow / yellow: flashes yellow, stops nobody."""
+
+LAMPS_BY_TYPE: dict[int, int] = {
+    TYPE_RYG: RED | YELLOW | GREEN,
+    TYPE_RYG_LEFT: RED | YELLOW | GREEN | GREEN_LEFT,
+    TYPE_RYG_LEFT_GREEN: RED | YELLOW | GREEN | GREEN_LEFT,
+    TYPE_FLASHING_YELLOW: YELLOW,
+}
+
+
+def has_left_arrow(light_type: int) -> bool:
+    return bool(LAMPS_BY_TYPE.get(light_type, 0) & GREEN_LEFT)
+
+
+def can_show(light_type: int, aspect: int) -> bool:
+    """True if a head of `light_type` has every lamp `aspect` lights (OFF always works)."""
+    if aspect == OFF:
+        return True
+    lamps = LAMPS_BY_TYPE.get(light_type)
+    return lamps is not None and aspect > 0 and aspect & ~lamps == 0
+
+
+def is_red_only(aspect: int) -> bool:
+    """A plain red: nothing may enter on it, so crossing pedestrians may walk."""
+    return aspect == RED

@@ -1,0 +1,21 @@
+"""Exceptions raised by the signals package."""
+
+
+class SignalError(Exception):
+    """Base class for traffic light and intersection errors."""
+
+
+class UnknownLightError(SignalError, KeyError):
+    """A trafficLightIndex that names no light of the map."""
+
+
+class UnknownIntersectionError(SignalError, KeyError):
+    """An intersection index that names no signalised intersection of the map."""
+
+
+class UnsupportedAspectError(SignalError, ValueError):
+    """An aspect the light's head type has no lamps for."""
+
+
+class UnknownPhaseError(SignalError, IndexError):
+    """A phase index outside an intersection's program."""
