@@ -20,10 +20,10 @@ IntArray = npt.NDArray[np.int64]
 _LANE_KEY_GAP_M = 1.0
 
 
-def _frozen_array(values: object, shape_hint: str) -> FloatArray:
+def _frozen_array(values: object, what: str) -> FloatArray:
     array = np.array(values, dtype=np.float64)
     if not np.all(np.isfinite(array)):
-        raise MapGeometryError(f"{shape_hint} holds non-finite values")
+        raise MapGeometryError(f"{what} holds non-finite values")
     array.flags.writeable = False
     return array
 

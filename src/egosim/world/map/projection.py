@@ -19,6 +19,8 @@ HEADING_WEIGHT_M_PER_RAD = 2.0
 # Lanes pointing more than 90 deg away from the hint lose to any lane pointing the right way
 # within this distance.
 WRONG_WAY_PENALTY_M = 50.0
+# Bounds the memory of the exhaustive search for points far from every lane.
+EXHAUSTIVE_PAIRS_PER_CHUNK = 1_000_000
 # Grid cell edge; a point on a road finds its lane in the 3 x 3 cells around it.
 GRID_CELL_M = 4.0
 
@@ -93,20 +95,24 @@ class SegmentTable:
         best_t = np.zeros(n)
         pending = np.arange(n)
         ring = 1
-        while pending.size:
-            if ring > self.grid.max_ring:
-                point, seg = _all_pairs(pending.size, len(self.start))
-                accept_all = True
-            else:
-                point, seg = self.grid.candidates(xy[pending], ring)
-                accept_all = False
+        while pending.size and ring <= self.grid.max_ring:
             hint = None if headings is None else headings[pending]
+            point, seg = self.grid.candidates(xy[pending], ring)
             found, seg_best, t_best, cost = self._best_pairs(xy[pending], hint, point, seg)
-            done = found & (accept_all | (cost <= ring * self.grid.cell_size))
+            # Nothing outside the searched square is nearer than ring cells.
+            done = found & (cost <= ring * self.grid.cell_size)
             best_seg[pending[done]] = seg_best[done]
             best_t[pending[done]] = t_best[done]
             pending = pending[~done]
             ring *= 2
+        # Points far from every lane: compare against all segments, a few points at a time.
+        chunk = max(1, EXHAUSTIVE_PAIRS_PER_CHUNK // len(self.start))
+        for first in range(0, pending.size, chunk):
+            some = pending[first : first + chunk]
+            hint = None if headings is None else headings[some]
+            point = np.repeat(np.arange(some.size), len(self.start))
+            seg = np.tile(np.arange(len(self.start)), some.size)
+            _, best_seg[some], best_t[some], _ = self._best_pairs(xy[some], hint, point, seg)
         return self._describe(xy, best_seg, best_t)
 
     def _best_pairs(
@@ -165,10 +171,3 @@ class SegmentTable:
 def _group_starts(sorted_keys: IntArray) -> IntArray:
     """Index of the first element of each run of equal keys."""
     return np.flatnonzero(np.concatenate(([True], sorted_keys[1:] != sorted_keys[:-1])))
-
-
-def _all_pairs(n_points: int, n_segments: int) -> tuple[IntArray, IntArray]:
-    return (
-        np.repeat(np.arange(n_points), n_segments),
-        np.tile(np.arange(n_segments), n_points),
-    )

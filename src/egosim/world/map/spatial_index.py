@@ -29,7 +29,7 @@ class SegmentGrid:
         extent = hi.max(axis=0) + cell_size - self.origin
         area_cell = math.sqrt(float(extent[0] * extent[1]) / MAX_CELLS)
         self.cell_size = max(cell_size, area_cell)
-        self.shape = (np.ceil(extent / self.cell_size).astype(np.int64) + 1).astype(np.int64)
+        self.shape = np.ceil(extent / self.cell_size).astype(np.int64) + 1
 
         cell_lo = self._cell_of(lo)
         cell_hi = self._cell_of(hi)
