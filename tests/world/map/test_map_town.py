@@ -53,6 +53,16 @@ def test_links_are_symmetric_and_continuous(town: LaneMap) -> None:
             assert np.hypot(*gap[:2]) < 1e-9
 
 
+def test_heading_is_smooth_across_links(town: LaneMap) -> None:
+    # Connectors leave and join lanes tangentially; a sampled curve's end chord lags its
+    # tangent by a small share of the turn.
+    for lane in town.lanes.values():
+        end_heading = town.pose_at(lane.id, lane.length)[3]
+        for nxt in lane.successors:
+            start_heading = town.pose_at(nxt, 0.0)[3]
+            assert abs(math.remainder(start_heading - end_heading, math.tau)) < 0.06
+
+
 def test_town_size_is_sensible(town: LaneMap) -> None:
     roads = [lane for lane in town.lanes.values() if not lane.is_junction]
     # 24 grid roads + 16 spurs to the ring + 16 ring sections, four lanes each.
