@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import json
+import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
 
 from egosim.msgs import MessageType, ServiceType, get_profile
+from egosim.ros1 import Publisher
 from tests.conftest import EVENT_TIMEOUT_S, RosProcess
 
 PEERS = Path(__file__).parent / "peers"
@@ -57,3 +59,28 @@ def write_service_spec(tmp_path: Path, srv_type: ServiceType) -> str:
     path = tmp_path / (srv_type.name.replace("/", "_") + ".json")
     path.write_text(json.dumps(spec))
     return str(path)
+
+
+class Publishing:
+    """Publishes ``make()`` on ``publisher`` at about ``rate_hz`` on a thread, inside a with."""
+
+    def __init__(self, publisher: Publisher, make: Callable[[int], bytes], rate_hz: float) -> None:
+        self._publisher = publisher
+        self._make = make
+        self._period = 1.0 / rate_hz
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self.count = 0
+
+    def _run(self) -> None:
+        while not self._stop.wait(self._period):
+            self._publisher.publish(self._make(self.count))
+            self.count += 1
+
+    def __enter__(self) -> Publishing:
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._stop.set()
+        self._thread.join()
