@@ -69,8 +69,7 @@ def test_wrong_side_without_hint_goes_to_the_nearest_lane(straight: LaneMap) -> 
 
 
 def test_heading_hint_picks_connector_inside_junction(town: LaneMap) -> None:
-    # At junction 6 every movement of the grid has a connector; sample along each one.
-    connectors = [i for i in town.lane_ids if i.startswith("J6_")]
+    connectors = [i for i in town.lane_ids if town.lanes[i].is_junction]
     for lane_id in connectors:
         lane = town.lanes[lane_id]
         for fraction in (0.25, 0.5, 0.75):
@@ -152,3 +151,16 @@ def test_projection_distance_is_the_true_minimum(loop: LaneMap) -> None:
             for i, s in dense.items()
         )
         assert abs(p.lateral) == pytest.approx(best, abs=0.05)
+
+
+def test_grid_search_finds_the_nearest_centreline_anywhere(town: LaneMap) -> None:
+    starts = np.concatenate([lane.centerline[:-1, :2] for lane in town.lanes.values()])
+    ends = np.concatenate([lane.centerline[1:, :2] for lane in town.lanes.values()])
+    rng = np.random.default_rng(19)
+    xmin, ymin, xmax, ymax = town.bounds()
+    xy = rng.uniform((xmin - 100, ymin - 100), (xmax + 100, ymax + 100), size=(300, 2))
+    d = ends - starts
+    rel = xy[:, None, :] - starts[None]
+    t = np.clip(np.sum(rel * d, axis=2) / np.sum(d * d, axis=1), 0.0, 1.0)
+    nearest = np.min(np.hypot(*np.moveaxis(rel - t[..., None] * d, 2, 0)), axis=1)
+    assert np.abs(town.project_many(xy).lateral) == pytest.approx(nearest, abs=1e-9)
