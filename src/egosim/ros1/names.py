@@ -11,12 +11,13 @@ from .errors import InvalidNameError
 
 SEP = "/"
 PRIVATE = "~"
-_VALID = re.compile(r"^[~/]?([A-Za-z][\w]*)?(/[A-Za-z][\w]*)*/?$")
+# The rule rosgraph applies: a letter, '/' or '~' first, then word characters and '/'.
+_VALID = re.compile(r"^[~/A-Za-z][\w/]*$")
 
 
 def validate_name(name: str) -> str:
     """Return ``name`` if it is a legal graph resource name, else raise InvalidNameError."""
-    if not name or not _VALID.match(name) or name in (PRIVATE + SEP,) or "//" in name:
+    if not _VALID.match(name) or "//" in name:
         raise InvalidNameError(f"invalid ROS name: {name!r}")
     return name
 

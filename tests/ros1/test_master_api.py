@@ -1,0 +1,146 @@
+"""The embedded master's Master API and Parameter Server API, through MasterClient and through
+the slave API callbacks it makes (publisherUpdate, paramUpdate, shutdown)."""
+
+from __future__ import annotations
+
+import threading
+
+import pytest
+
+from egosim.ros1 import Master, MasterClient, MasterError, MasterUnreachableError
+from tests.conftest import free_port
+from tests.ros1.helpers import STRING, string_bytes, string_text, wait_until
+
+
+def test_registration_and_system_state(embedded_master):
+    a = MasterClient(embedded_master.uri, "/a")
+    b = MasterClient(embedded_master.uri, "/b")
+    assert a.register_publisher("/t", "std_msgs/String", "http://a:1/") == []
+    assert b.register_subscriber("/t", "std_msgs/String", "http://b:2/") == ["http://a:1/"]
+    assert a.register_subscriber("/u", "*", "http://a:1/") == []
+    b.register_service("/s", "rosrpc://b:3", "http://b:2/")
+    assert a.lookup_node("/b") == "http://b:2/"
+    assert a.lookup_service("/s") == "rosrpc://b:3"
+    assert a.get_published_topics() == [("/t", "std_msgs/String")]
+    assert dict(a.get_topic_types()) == {"/t": "std_msgs/String", "/u": "*"}
+    publishers, subscribers, services = a.get_system_state()
+    assert publishers == [["/t", ["/a"]]]
+    assert sorted(map(tuple, [(t, tuple(n)) for t, n in subscribers])) == [
+        ("/t", ("/b",)),
+        ("/u", ("/a",)),
+    ]
+    assert services == [["/s", ["/b"]]]
+    assert a.get_uri() == embedded_master.uri
+    assert a.unregister_publisher("/t", "http://a:1/") == 1
+    assert a.unregister_publisher("/t", "http://a:1/") == 0
+    assert b.unregister_service("/s", "rosrpc://b:3") == 1
+    with pytest.raises(MasterError):
+        a.lookup_service("/s")
+
+
+def test_relative_names_resolve_in_the_callers_namespace(embedded_master):
+    client = MasterClient(embedded_master.uri, "/ns/node")
+    client.register_publisher("rel", "std_msgs/String", "http://x:1/")
+    client.set_param("~private", 1)
+    client.set_param("relative", 2)
+    assert client.get_published_topics() == [("/ns/rel", "std_msgs/String")]
+    assert client.get_param("/ns/node/private") == 1
+    assert client.get_param("/ns/relative") == 2
+
+
+def test_parameter_tree(embedded_master):
+    client = MasterClient(embedded_master.uri, "/n")
+    client.set_param("/sim", {"map": {"name": "town", "size": 2}, "rate": 30})
+    assert client.get_param("/sim/map") == {"name": "town", "size": 2}
+    assert client.get_param("/sim/map/name") == "town"
+    client.set_param("/sim/map", {"name": "city"})
+    assert client.get_param("/sim") == {"map": {"name": "city"}, "rate": 30}
+    assert client.has_param("/sim/map/name")
+    assert not client.has_param("/sim/map/size")
+    assert {"/sim/map/name", "/sim/rate"} <= set(client.get_param_names())
+    client.delete_param("/sim/rate")
+    with pytest.raises(KeyError):
+        client.get_param("/sim/rate")
+    with pytest.raises(MasterError):
+        client.delete_param("/sim/rate")
+    assert isinstance(client.get_param("/")["run_id"], str)
+
+
+def test_search_param_goes_up_the_namespaces(embedded_master):
+    client = MasterClient(embedded_master.uri, "/a/b/node")
+    client.set_param("/a/rate", 10)
+    client.set_param("/rate", 1)
+    client.set_param("/a/b/map", {"name": "x"})
+    assert client.search_param("rate") == "/a/rate"
+    assert client.search_param("map/name") == "/a/b/map/name"
+    assert client.search_param("missing") is None
+    assert MasterClient(embedded_master.uri, "/other").search_param("rate") == "/rate"
+
+
+def test_publisher_update_connects_and_disconnects_subscribers(embedded_master, make_node):
+    listener = make_node("listener", master_uri=embedded_master.uri)
+    received: list[str] = []
+    sub = listener.subscribe("/chatter", STRING, lambda d, h: received.append(string_text(d)))
+    talker = make_node("talker", master_uri=embedded_master.uri)
+    pub = talker.advertise("/chatter", STRING)
+    wait_until(lambda: sub.num_publishers == 1)
+    pub.publish(string_bytes("one"))
+    wait_until(lambda: received == ["one"])
+    talker.shutdown()
+    wait_until(lambda: sub.connections == [])
+    # A publisher that comes back under the same name is connected to again.
+    talker2 = make_node("talker", master_uri=embedded_master.uri)
+    pub2 = talker2.advertise("/chatter", STRING)
+    wait_until(lambda: pub2.num_subscribers == 1)
+    pub2.publish(string_bytes("two"))
+    wait_until(lambda: received == ["one", "two"])
+
+
+def test_param_updates_reach_subscribers(embedded_master, make_node):
+    node = make_node("watcher", master_uri=embedded_master.uri)
+    other = MasterClient(embedded_master.uri, "/setter")
+    updates: list[tuple[str, object]] = []
+    got = threading.Condition()
+
+    def on_update(key, value):
+        with got:
+            updates.append((key, value))
+            got.notify_all()
+
+    assert node.subscribe_param("/sim", on_update) == {}
+    other.set_param("/sim/rate", 30)
+    other.set_param("/sim", {"map": "town"})
+    other.delete_param("/sim")
+    expected = [("/sim/rate", 30), ("/sim", {"map": "town"}), ("/sim", {})]
+    with got:
+        assert got.wait_for(lambda: len(updates) >= 3, timeout=30)
+    assert updates == expected
+
+
+def test_second_node_with_same_name_shuts_down_the_first(embedded_master, make_node):
+    first = make_node("sim", master_uri=embedded_master.uri)
+    first.advertise("/a", STRING)
+    reasons: list[str] = []
+    first.on_shutdown(reasons.append)
+    second = make_node("sim", master_uri=embedded_master.uri)
+    second.advertise("/b", STRING)
+    assert first.wait_for_shutdown(30)
+    assert "new node registered with same name" in reasons[0]
+    assert second.master.lookup_node("/sim") == second.uri
+
+
+def test_node_starts_an_embedded_master_only_when_none_answers(make_node):
+    uri = f"http://127.0.0.1:{free_port()}/"
+    with pytest.raises(MasterUnreachableError):
+        make_node("lonely", master_uri=uri, embedded_master="never")
+    first = make_node("first", master_uri=uri)
+    assert first.embedded_master is not None
+    first.advertise("/x", STRING)
+    second = make_node("second", master_uri=uri)
+    assert second.embedded_master is None
+    assert second.master.lookup_node("/first") == first.uri
+
+
+def test_master_refuses_a_taken_port(embedded_master):
+    with pytest.raises(OSError):
+        Master(embedded_master.uri).start()
