@@ -170,6 +170,7 @@ class LaneMap:
         self._last_segment = self._first_point + counts - 2
         self._points = np.concatenate([lane.centerline for lane in ordered])
         self._point_station = np.concatenate([lane.stations for lane in ordered])
+        # Heading of the segment starting at each point; a lane's last point starts none.
         self._point_heading = np.concatenate(
             [np.append(segment_headings(lane.centerline), np.nan) for lane in ordered]
         )
