@@ -3,13 +3,16 @@
 from __future__ import annotations
 
 import json
+import socket
 import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
 
 from egosim.msgs import MessageType, ServiceType, get_profile
-from egosim.ros1 import Publisher
+from egosim.ros1 import Node, Publisher, rpc
+from egosim.ros1.connection_header import read_header, write_header
+from egosim.ros1.tcpros import recv_length_prefixed
 from tests.conftest import EVENT_TIMEOUT_S, RosProcess
 
 PEERS = Path(__file__).parent / "peers"
@@ -84,3 +87,26 @@ class Publishing:
     def __exit__(self, *exc: object) -> None:
         self._stop.set()
         self._thread.join()
+
+
+def raw_connect(node: Node, fields: dict[str, str]) -> tuple[socket.socket, dict[str, str]]:
+    """Connect a bare socket to ``node``'s TCPROS server, send ``fields``, read the reply."""
+    sock = socket.create_connection(node.tcpros_address, timeout=EVENT_TIMEOUT_S)
+    write_header(sock, fields)
+    return sock, read_header(sock, 1 << 20)
+
+
+def raw_subscribe(
+    node: Node, topic: str, md5sum: str, type_name: str = "*", callerid: str = "/raw"
+) -> tuple[socket.socket, dict[str, str]]:
+    return raw_connect(
+        node, {"callerid": callerid, "topic": topic, "md5sum": md5sum, "type": type_name}
+    )
+
+
+def read_frame(sock: socket.socket) -> bytes:
+    return bytes(recv_length_prefixed(sock, 1 << 26))
+
+
+def slave_call(node: Node, method: str, *args: object) -> list:
+    return rpc.call(node.uri, method, "/test", *args)
