@@ -1,0 +1,79 @@
+"""The simulation loop: steps the world at a fixed dt, paced against the wall clock.
+
+Everything that touches the world runs here, on one thread: steps, and the
+received messages and service calls handed over through the inbox between
+steps.
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+import time
+from collections.abc import Callable
+
+from .inbox import Inbox
+
+log = logging.getLogger(__name__)
+
+#: Falling this far behind the wall clock (s) resets the pace instead of racing to catch up.
+MAX_LAG_S = 0.25
+#: How often an idle loop (sync mode, paused) wakes to check for a stop request (s).
+IDLE_POLL_S = 0.05
+
+
+class SimulationLoop:
+    """Calls `step` every `dt` of simulated time at `rtf` times real time (0: flat out)."""
+
+    def __init__(
+        self,
+        step: Callable[[], None],
+        inbox: Inbox,
+        dt: float,
+        rtf: float,
+        stop: threading.Event,
+        max_steps: int | None = None,
+        monotonic: Callable[[], float] = time.monotonic,
+    ) -> None:
+        self._step = step
+        self._inbox = inbox
+        self._dt = dt
+        self._rtf = rtf
+        self._stop = stop
+        self._max_steps = max_steps
+        self._monotonic = monotonic
+        self.steps = 0
+        self.lag_resets = 0
+
+    def run(self) -> None:
+        """Step until stopped or `max_steps` is reached."""
+        next_wall = self._monotonic()
+        while not self._stop.is_set():
+            if self._max_steps is not None and self.steps >= self._max_steps:
+                return
+            self._inbox.drain()
+            self._step()
+            self.steps += 1
+            if self._rtf > 0:
+                next_wall = self._pace(next_wall + self._dt / self._rtf)
+
+    def serve(self) -> None:
+        """Run handed-over work only (sync mode: the client's calls step the world)."""
+        while not self._stop.is_set():
+            self._inbox.wait(IDLE_POLL_S)
+
+    def _pace(self, target: float) -> float:
+        """Serve the inbox until the wall clock reaches `target`; the next target base."""
+        while (remaining := target - self._monotonic()) > 0:
+            if self._stop.is_set():
+                return target
+            self._inbox.wait(remaining)
+        if -remaining > MAX_LAG_S:
+            self.lag_resets += 1
+            if self.lag_resets == 1:
+                log.warning(
+                    "simulation fell %.2f s behind real time; skipping ahead (logged once)",
+                    -remaining,
+                )
+            return self._monotonic()
+        return target

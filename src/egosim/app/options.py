@@ -1,0 +1,33 @@
+"""What `egosim run` was asked to do."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+from pathlib import Path
+
+
+class ClockMode(Enum):
+    REAL = "real"  # headers carry wall time; the world advances in real time
+    SIM = "sim"  # /clock published, /use_sim_time set, run at --rtf (0: as fast as possible)
+    SYNC = "sync"  # the client steps the world through the SyncMode services
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    map: str = "town"
+    scenario: Path | None = None
+    network: Path | None = None
+    clock: ClockMode = ClockMode.REAL
+    rtf: float = 1.0
+    duration: float | None = None  # seconds of simulation time, None: until stopped
+    record: Path | None = None
+    protocol: str = "26.r1"
+    log_level: str = "INFO"
+    physics_rate_hz: float = 100.0
+    data_roots: tuple[Path, ...] = field(default_factory=tuple)
+    ros_argv: tuple[str, ...] = ()  # __name:=, __ns:=, from:=to ...
+
+    @property
+    def physics_dt(self) -> float:
+        return 1.0 / self.physics_rate_hz
