@@ -53,6 +53,7 @@ class RecorderStats:
     """Counters of one recording."""
 
     written: int  # messages handed to the bag file
+    flushed: int  # of those, messages in chunks already on disk (survive a crash)
     dropped: int  # messages refused because the queue was full
     chunks: int  # chunks flushed to disk
 
@@ -78,9 +79,9 @@ class BagRecorder:
     ) -> None:
         self.path = Path(path)
         self.flush_interval = flush_interval
-        self._writer = Writer(self.path)
-        self._writer.chunk_threshold = chunk_size
         try:
+            self._writer = Writer(self.path)
+            self._writer.chunk_threshold = chunk_size
             self._writer.open()
         except (OSError, WriterError) as exc:
             raise RecorderError(f"cannot create bag {self.path}: {exc}") from exc
@@ -90,6 +91,7 @@ class BagRecorder:
         self._connections: dict[int, Connection] = {}
         self._queue: DroppingQueue[tuple[int, int, bytes]] = DroppingQueue(queue_limit, queue_bytes)
         self._written = 0
+        self._flushed = 0
         self._chunks = 0
         self._reported_drops = 0
         self._failure: BaseException | None = None
@@ -130,7 +132,7 @@ class BagRecorder:
 
     @property
     def stats(self) -> RecorderStats:
-        return RecorderStats(self._written, self._queue.dropped, self._chunks)
+        return RecorderStats(self._written, self._flushed, self._queue.dropped, self._chunks)
 
     def close(self) -> RecorderStats:
         """Write what is queued, the index and the header; raises if the writer failed."""
@@ -172,6 +174,7 @@ class BagRecorder:
                     break
             self._writer.close()
             self._chunks = sum(chunk.pos != -1 for chunk in self._writer.chunks)
+            self._flushed = self._written
         except BaseException as exc:  # the thread must record why the bag stopped
             log.exception("bag writer for %s failed; recording stopped", self.path)
             self._failure = exc
@@ -195,15 +198,19 @@ class BagRecorder:
         self._writer.write(connection, stamp_ns, data)
         self._written += 1
         if self._closed_chunks() != chunks_before:
-            self._sync()
-            self._chunks = self._closed_chunks()
+            self._synced_chunk()
 
     def _flush_open_chunk(self) -> None:
         chunk = self._writer.chunks[-1]
         if chunk.data.tell() > 0:
             self._writer.write_chunk(chunk)
-            self._sync()
-            self._chunks = self._closed_chunks()
+            self._synced_chunk()
+
+    def _synced_chunk(self) -> None:
+        """A chunk holding every message written so far has just been written out."""
+        self._sync()
+        self._chunks = self._closed_chunks()
+        self._flushed = self._written
 
     def _closed_chunks(self) -> int:
         # rosbags' Writer opens a new in-memory chunk each time one is written out.

@@ -1,0 +1,132 @@
+"""A recorder killed mid-recording leaves a bag that opens with every complete chunk."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+import pytest
+from rosbags.rosbag1 import Reader
+
+from egosim.replay import BagError, BagRecorder, BagTimeline, needs_repair, repair_bag
+from tests.replay.drive import EGO, ego_position, stamp
+
+REPO = Path(__file__).resolve().parents[2]
+PEER = Path(__file__).parent / "peers" / "killed_recorder.py"
+
+
+def record_and_kill(path: Path, count: int, chunk_size: int, flush_interval: float) -> Any:
+    """Run the recorder in a child, SIGKILL it once it reports; its last stats."""
+    child = subprocess.Popen(
+        [sys.executable, str(PEER), str(path), str(count), str(chunk_size), str(flush_interval)],
+        stdout=subprocess.PIPE,
+        text=True,
+        cwd=REPO,
+        env={**os.environ, "PYTHONPATH": str(REPO)},
+    )
+    try:
+        assert child.stdout is not None
+        stats = json.loads(child.stdout.readline())
+    finally:
+        child.send_signal(signal.SIGKILL)
+        child.wait()
+    assert child.returncode == -signal.SIGKILL
+    return stats
+
+
+def ego_positions(path: Path) -> list[tuple[int, float]]:
+    with Reader(path) as reader:
+        return [(t, EGO.deserialize(data).position.x) for _, t, data in reader.messages()]
+
+
+@pytest.fixture(scope="module")
+def killed_bag(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Any]:
+    """A bag of 2000 ego messages in 16 KiB chunks whose recorder was killed before closing."""
+    path = tmp_path_factory.mktemp("killed") / "killed.bag"
+    stats = record_and_kill(path, 2000, 16 * 1024, flush_interval=3600.0)
+    return path, stats
+
+
+def test_killed_bag_keeps_every_complete_chunk(
+    killed_bag: tuple[Path, Any], tmp_path: Path
+) -> None:
+    original, stats = killed_bag
+    bag = shutil.copy(original, tmp_path / "killed.bag")
+    assert needs_repair(bag)
+    report = repair_bag(bag)
+    assert report.repaired
+    assert report.chunks == stats["chunks"]
+    assert report.messages == stats["flushed"]
+    assert report.connections == 1
+    assert not needs_repair(bag)
+    # The survivors are the first messages, in order and intact.
+    positions = ego_positions(bag)
+    assert [t for t, _ in positions] == [stamp(k / 50) for k in range(stats["flushed"])]
+    for k, (_, x) in enumerate(positions):
+        assert x == pytest.approx(ego_position(k / 50)[0], abs=1e-9)
+
+
+def test_timeline_repairs_on_open(killed_bag: tuple[Path, Any], tmp_path: Path) -> None:
+    original, stats = killed_bag
+    bag = shutil.copy(original, tmp_path / "killed.bag")
+    timeline = BagTimeline.open(bag)
+    assert not needs_repair(bag)
+    assert timeline.ego is not None
+    assert len(timeline.ego) == stats["flushed"]
+    assert timeline.duration == pytest.approx((stats["flushed"] - 1) / 50)
+
+
+def test_truncated_trailing_chunk_is_dropped(killed_bag: tuple[Path, Any], tmp_path: Path) -> None:
+    original, stats = killed_bag
+    reference = shutil.copy(original, tmp_path / "reference.bag")
+    repair_bag(reference)
+    with Reader(reference) as reader:
+        last_chunk = reader.chunk_infos[-1]
+    in_last_chunk = sum(last_chunk.connection_counts.values())
+    cut = shutil.copy(original, tmp_path / "cut.bag")
+    os.truncate(cut, last_chunk.pos + 100)  # the process died writing that chunk
+    report = repair_bag(cut)
+    assert report.chunks == stats["chunks"] - 1
+    assert report.messages == stats["flushed"] - in_last_chunk
+    assert report.truncated_bytes == 100
+    assert len(ego_positions(cut)) == report.messages
+
+
+def test_quiet_bag_reaches_disk_by_periodic_flush(tmp_path: Path) -> None:
+    """Five messages never fill a chunk; the periodic flush still puts them on disk."""
+    bag = tmp_path / "quiet.bag"
+    stats = record_and_kill(bag, 5, 768 * 1024, flush_interval=0.05)
+    assert stats["flushed"] == 5
+    report = repair_bag(bag)
+    assert report.messages == 5
+    assert len(ego_positions(bag)) == 5
+
+
+def test_indexed_bag_is_left_alone(recorded_drive: Path, tmp_path: Path) -> None:
+    bag = shutil.copy(recorded_drive, tmp_path / "drive.bag")
+    before = Path(bag).read_bytes()
+    assert not repair_bag(bag).repaired
+    assert Path(bag).read_bytes() == before
+
+
+def test_not_a_bag_is_refused(tmp_path: Path) -> None:
+    junk = tmp_path / "junk.bag"
+    junk.write_bytes(b"#ROSBAG V1.2\n" + bytes(100))
+    with pytest.raises(BagError):
+        repair_bag(junk)
+
+
+def test_bag_being_recorded_is_not_touched(tmp_path: Path) -> None:
+    with BagRecorder(tmp_path / "live.bag") as recorder:
+        handle = recorder.add_connection("/Ego_topic", EGO.name, EGO.md5sum, EGO.definition)
+        recorder.write(handle, stamp(0.0), EGO.serialize(EGO.new()))
+        with pytest.raises(BagError):
+            repair_bag(tmp_path / "live.bag")
+        with pytest.raises(BagError):
+            BagTimeline.open(tmp_path / "live.bag")
