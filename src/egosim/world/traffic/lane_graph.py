@@ -1,0 +1,71 @@
+"""The map's lanes as flat arrays indexed like LaneMap.lane_ids, for vectorised agents."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from egosim.world.map import Lane, LaneMap
+from egosim.world.map.polyline import segment_headings
+
+# A junction lane turning more than this is a left (positive) or right (negative) turn.
+TURN_LIMIT_RAD = math.radians(30.0)
+TURN_LEFT, TURN_STRAIGHT, TURN_RIGHT = 1, 0, -1
+COMFORT_LATERAL_ACCEL_MPS2 = 3.0
+"""Lateral acceleration an NPC accepts in a curve; caps its speed at sqrt(a / curvature)."""
+
+
+class LaneGraph:
+    """Lengths, speed limits, stop lines, lights, turn directions and successors per lane."""
+
+    def __init__(self, lane_map: LaneMap, light_ids: tuple[str, ...]) -> None:
+        self.lane_map = lane_map
+        ids = lane_map.lane_ids
+        lanes = [lane_map.lanes[i] for i in ids]
+        light_index = {light_id: k for k, light_id in enumerate(light_ids)}
+        self.length = np.array([lane.length for lane in lanes])
+        self.speed_limit = np.array([lane.speed_limit for lane in lanes])
+        self.stop_s = np.array(
+            [np.nan if lane.stop_line_s is None else lane.stop_line_s for lane in lanes]
+        )
+        self.light = np.array(
+            [
+                light_index.get(lane.traffic_light_id, -1) if lane.traffic_light_id else -1
+                for lane in lanes
+            ],
+            dtype=np.int64,
+        )
+        self.curve_speed = np.minimum(
+            self.speed_limit, [_comfortable_curve_speed(lane) for lane in lanes]
+        )
+        """Speed (m/s) an NPC drives at most on each lane: limit and curvature."""
+        self.turn = np.array([_turn_direction(lane) for lane in lanes], dtype=np.int64)
+        self.successors: list[tuple[int, ...]] = [
+            tuple(lane_map.lane_index(s) for s in lane.successors) for lane in lanes
+        ]
+
+    def __len__(self) -> int:
+        return len(self.length)
+
+
+def _turn_direction(lane: Lane) -> int:
+    if not lane.is_junction:
+        return TURN_STRAIGHT
+    headings = segment_headings(lane.centerline)
+    turn = math.remainder(float(headings[-1] - headings[0]), math.tau)
+    if turn > TURN_LIMIT_RAD:
+        return TURN_LEFT
+    if turn < -TURN_LIMIT_RAD:
+        return TURN_RIGHT
+    return TURN_STRAIGHT
+
+
+def _comfortable_curve_speed(lane: Lane) -> float:
+    headings = segment_headings(lane.centerline)
+    if len(headings) < 2:
+        return math.inf
+    turn = np.abs(np.remainder(np.diff(headings) + math.pi, math.tau) - math.pi)
+    step = np.diff(lane.stations)
+    curvature = float(np.max(turn / (0.5 * (step[:-1] + step[1:]))))
+    return math.sqrt(COMFORT_LATERAL_ACCEL_MPS2 / curvature) if curvature > 0 else math.inf

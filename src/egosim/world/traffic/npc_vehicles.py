@@ -1,0 +1,277 @@
+"""NPC vehicles: vectorised kinematic lane followers driven by the IDM.
+
+Each NPC is a row of parallel arrays (struct of arrays). Longitudinally it follows the
+IDM towards its desired speed behind the nearest of: a road user ahead on its planned
+path (two lanes of look-ahead), a stop line whose light tells it to stop, or the end of
+a dead-end lane. Laterally it sits on its lane's centreline plus a fixed offset; at the
+lane end it moves on to the successor it planned (its route, else a seeded random pick).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+import numpy.typing as npt
+
+from egosim.world.traffic.idm import IntelligentDriverModel
+from egosim.world.traffic.lane_graph import LaneGraph
+from egosim.world.traffic.leaders import LaneOccupants, leaders_ahead
+from egosim.world.traffic.objects import ObjectTable, ObjectType
+from egosim.world.traffic.signal_rules import LightsView, signal_permissions
+from egosim.world.vehicle import VehicleModel
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.int64]
+
+LOOKAHEAD_LANES = 2
+"""Lanes beyond the current one searched for a leader and a stop line."""
+
+# Latched reaction to a yellow, reset on every new lane and on every go aspect.
+_YELLOW_UNDECIDED, _YELLOW_STOP, _YELLOW_PASS = 0, 1, 2
+
+
+@dataclass(frozen=True)
+class NpcSpawn:
+    """One NPC to place: on lane index `lane` at station s (m), `lateral` m left of the
+    centreline, moving at `speed` m/s. It drives at `target_speed` m/s when given, else at
+    `speed_factor` times each lane's limit; it waits `start_delay_s` s before moving and
+    follows `route` (lane indices) where the route names a successor."""
+
+    unique_id: int
+    model: VehicleModel
+    lane: int
+    s: float
+    lateral: float = 0.0
+    speed: float = 0.0
+    target_speed: float | None = None
+    speed_factor: float = 1.0
+    route: tuple[int, ...] = field(default=())
+    start_delay_s: float = 0.0
+
+
+class NpcFleet:
+    """All NPC vehicles of a world."""
+
+    def __init__(
+        self,
+        graph: LaneGraph,
+        rng: np.random.Generator,
+        idm: IntelligentDriverModel | None = None,
+    ) -> None:
+        self.graph = graph
+        self.rng = rng
+        self.idm = idm or IntelligentDriverModel()
+        self.clear()
+
+    def clear(self) -> None:
+        self.unique_ids = np.empty(0, np.int64)
+        self.names: list[str] = []
+        self.dims = np.empty((0, 3))
+        """length, width, height, m."""
+        self.lane = np.empty(0, np.int64)
+        self.next_lanes = np.empty((0, LOOKAHEAD_LANES), np.int64)
+        self.s = np.empty(0)
+        self.speed = np.empty(0)
+        self.accel = np.empty(0)
+        self.lateral = np.empty(0)
+        self.target_speed = np.empty(0)
+        """m/s; NaN: speed_factor times the lane's limit."""
+        self.speed_factor = np.empty(0)
+        self.delay = np.empty(0)
+        self.crashed = np.empty(0, bool)
+        self.yellow = np.empty(0, np.int8)
+        self.routes: list[tuple[int, ...]] = []
+        self.route_pos: list[int] = []
+        self.pose = np.empty((0, 4))
+        """x, y, z, heading of each NPC's centre."""
+        self.yaw_rate = np.empty(0)
+
+    def __len__(self) -> int:
+        return len(self.unique_ids)
+
+    def spawn(self, spawns: Sequence[NpcSpawn]) -> None:
+        if not spawns:
+            return
+        first = len(self)
+        self.unique_ids = np.append(self.unique_ids, [n.unique_id for n in spawns])
+        self.names += [n.model.name for n in spawns]
+        self.dims = np.vstack(
+            (self.dims, [(n.model.length, n.model.width, n.model.height) for n in spawns])
+        )
+        self.lane = np.append(self.lane, [n.lane for n in spawns]).astype(np.int64)
+        self.s = np.append(self.s, [n.s for n in spawns])
+        self.speed = np.append(self.speed, [n.speed for n in spawns])
+        self.accel = np.append(self.accel, np.zeros(len(spawns)))
+        self.lateral = np.append(self.lateral, [n.lateral for n in spawns])
+        self.target_speed = np.append(
+            self.target_speed,
+            [math.nan if n.target_speed is None else n.target_speed for n in spawns],
+        )
+        self.speed_factor = np.append(self.speed_factor, [n.speed_factor for n in spawns])
+        self.delay = np.append(self.delay, [n.start_delay_s for n in spawns])
+        self.crashed = np.append(self.crashed, np.zeros(len(spawns), bool))
+        self.yellow = np.append(self.yellow, np.zeros(len(spawns), np.int8))
+        self.yaw_rate = np.append(self.yaw_rate, np.zeros(len(spawns)))
+        self.next_lanes = np.vstack(
+            (self.next_lanes, np.full((len(spawns), LOOKAHEAD_LANES), -1, np.int64))
+        )
+        for i, n in enumerate(spawns, start=first):
+            starts_route = bool(n.route) and n.route[0] == n.lane
+            self.routes.append(n.route)
+            self.route_pos.append(1 if starts_route else 0)
+            previous = int(self.lane[i])
+            for k in range(LOOKAHEAD_LANES):
+                previous = self._choose_successor(i, previous)
+                self.next_lanes[i, k] = previous
+        self.pose = self._poses()
+
+    def _choose_successor(self, i: int, lane: int) -> int:
+        """The lane NPC i takes after `lane`: its route's next match, else a random pick."""
+        if lane < 0:
+            return -1
+        successors = self.graph.successors[lane]
+        if not successors:
+            return -1
+        route = self.routes[i]
+        for k in range(self.route_pos[i], len(route)):
+            if route[k] in successors:
+                self.route_pos[i] = k + 1
+                return route[k]
+        return successors[int(self.rng.integers(len(successors)))]
+
+    def occupants(self) -> LaneOccupants:
+        return LaneOccupants(self.lane, self.s, self.dims[:, 0] / 2.0, self.speed)
+
+    def stop(self, indices: npt.ArrayLike) -> None:
+        """Crash stop: these NPCs halt at once and stay halted."""
+        self.crashed[indices] = True
+        self.speed[indices] = 0.0
+        self.accel[indices] = 0.0
+
+    def step(self, dt: float, lights: LightsView, others: LaneOccupants) -> None:
+        """Advance dt s among `others` (ego, pedestrians, obstacles placed on lanes)."""
+        n = len(self)
+        if n == 0:
+            return
+        graph = self.graph
+        waiting = self.delay > 0.0
+        self.delay = np.maximum(self.delay - dt, 0.0)
+        frozen = waiting | self.crashed
+
+        occupants = LaneOccupants.concatenate([self.occupants(), others])
+        slots = np.arange(n)
+        distance, leader = leaders_ahead(graph, occupants, slots, self.next_lanes)
+        half = self.dims[:, 0] / 2.0
+        has_leader = leader >= 0
+        safe_leader = np.where(has_leader, leader, 0)
+        gap = np.where(has_leader, distance - half - occupants.half_length[safe_leader], np.inf)
+        closing = np.where(has_leader, self.speed - occupants.speed[safe_leader], 0.0)
+
+        v0 = self._desired_speed()
+        accel = self.idm.acceleration(self.speed, v0, gap, closing)
+        stop_gap = np.minimum(self._stop_line_gap(lights, half), self._dead_end_gap(half))
+        accel = np.minimum(accel, self.idm.acceleration(self.speed, v0, stop_gap, self.speed))
+        accel[frozen] = 0.0
+
+        new_speed = np.maximum(self.speed + accel * dt, 0.0)
+        new_speed[frozen] = 0.0
+        self.s = self.s + 0.5 * (self.speed + new_speed) * dt
+        self.accel = (new_speed - self.speed) / dt
+        self.speed = new_speed
+        self._advance_lanes()
+        old_heading = self.pose[:, 3]
+        self.pose = self._poses()
+        self.yaw_rate = np.remainder(self.pose[:, 3] - old_heading + math.pi, math.tau) - math.pi
+        self.yaw_rate /= dt
+
+    def _desired_speed(self) -> FloatArray:
+        """IDM v0: scripted or lane-limit speed, capped by this lane's and (braking at the
+        comfortable rate) the next lane's curve speed."""
+        graph = self.graph
+        base = np.where(
+            np.isnan(self.target_speed),
+            graph.speed_limit[self.lane] * self.speed_factor,
+            self.target_speed,
+        )
+        nxt = self.next_lanes[:, 0]
+        to_next = graph.length[self.lane] - self.s
+        next_curve = np.where(nxt >= 0, graph.curve_speed[np.maximum(nxt, 0)], np.inf)
+        approach = np.sqrt(
+            next_curve**2 + 2.0 * self.idm.comfortable_decel_mps2 * np.maximum(to_next, 0.0)
+        )
+        return np.maximum(np.minimum.reduce([base, graph.curve_speed[self.lane], approach]), 0.1)
+
+    def _stop_line_gap(self, lights: LightsView, half: FloatArray) -> FloatArray:
+        """Bumper-to-stop-line distance (m) where a light says stop, else inf."""
+        graph = self.graph
+        if len(lights.aspects) == 0:
+            return np.full(len(self), np.inf)
+        lane, nxt = self.lane, self.next_lanes[:, 0]
+        front = self.s + half
+        here = ~np.isnan(graph.stop_s[lane]) & (front <= graph.stop_s[lane])
+        safe_next = np.maximum(nxt, 0)
+        ahead = ~here & (nxt >= 0) & ~np.isnan(graph.stop_s[safe_next])
+        line_lane = np.where(here, lane, safe_next)
+        distance = np.where(
+            here, graph.stop_s[lane] - front, graph.length[lane] - front + graph.stop_s[safe_next]
+        )
+        relevant = (here | ahead) & (graph.light[line_lane] >= 0)
+        movement = np.where(here, nxt, self.next_lanes[:, 1])
+        turn = np.where(movement >= 0, graph.turn[np.maximum(movement, 0)], 0)
+        light = np.where(relevant, graph.light[line_lane], 0)
+        proceed, yellow = signal_permissions(lights, light, turn)
+
+        self.yellow[proceed] = _YELLOW_UNDECIDED
+        undecided = relevant & yellow & (self.yellow == _YELLOW_UNDECIDED)
+        stoppable = self.idm.can_stop_within(self.speed, distance)
+        self.yellow[undecided] = np.where(stoppable[undecided], _YELLOW_STOP, _YELLOW_PASS)
+        must_stop = relevant & ~proceed & (self.yellow != _YELLOW_PASS)
+        return np.where(must_stop, distance, np.inf)
+
+    def _dead_end_gap(self, half: FloatArray) -> FloatArray:
+        dead_end = self.next_lanes[:, 0] < 0
+        return np.where(dead_end, self.graph.length[self.lane] - self.s - half, np.inf)
+
+    def _advance_lanes(self) -> None:
+        length = self.graph.length
+        for i in np.flatnonzero(self.s > length[self.lane]):
+            while self.s[i] > length[self.lane[i]]:
+                nxt = int(self.next_lanes[i, 0])
+                if nxt < 0:
+                    self.s[i] = length[self.lane[i]]
+                    self.speed[i] = 0.0
+                    break
+                self.s[i] -= length[self.lane[i]]
+                self.lane[i] = nxt
+                self.next_lanes[i, :-1] = self.next_lanes[i, 1:]
+                self.next_lanes[i, -1] = self._choose_successor(i, int(self.next_lanes[i, -2]))
+                self.yellow[i] = _YELLOW_UNDECIDED
+
+    def _poses(self) -> FloatArray:
+        pose = self.graph.lane_map.poses_at(self.lane, self.s)
+        heading = pose[:, 3]
+        pose[:, 0] -= self.lateral * np.sin(heading)
+        pose[:, 1] += self.lateral * np.cos(heading)
+        return pose
+
+    def table(self) -> ObjectTable:
+        heading = self.pose[:, 3]
+        direction = np.column_stack((np.cos(heading), np.sin(heading), np.zeros(len(self))))
+        normal = np.column_stack((-np.sin(heading), np.cos(heading), np.zeros(len(self))))
+        velocity = self.speed[:, None] * direction
+        acceleration = (
+            self.accel[:, None] * direction + (self.speed * self.yaw_rate)[:, None] * normal
+        )
+        return ObjectTable(
+            unique_ids=self.unique_ids,
+            object_types=np.full(len(self), int(ObjectType.NPC_VEHICLE), np.int64),
+            names=tuple(self.names),
+            positions=self.pose[:, :3].copy(),
+            headings=heading.copy(),
+            velocities=velocity,
+            accelerations=acceleration,
+            sizes=self.dims.copy(),
+        )

@@ -1,0 +1,100 @@
+"""What every placed object reports: ObjectStatus semantics in SI units."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from enum import IntEnum
+
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.int64]
+Vector3 = tuple[float, float, float]
+
+
+class ObjectType(IntEnum):
+    """ObjectStatus.type codes."""
+
+    EGO = -1
+    PEDESTRIAN = 0
+    NPC_VEHICLE = 1
+    OBSTACLE = 2
+
+
+@dataclass(frozen=True)
+class ObjectState:
+    """One object. position is the footprint centre on the ground (ENU, m); heading rad
+    counter-clockwise from east; velocity (m/s) and acceleration (m/s²) in the map frame;
+    size is (length along the heading, width, height), m."""
+
+    unique_id: int
+    object_type: ObjectType
+    name: str
+    position: Vector3
+    heading: float
+    velocity: Vector3
+    acceleration: Vector3
+    size: Vector3
+
+
+@dataclass(frozen=True, eq=False)
+class ObjectTable:
+    """Many objects as parallel arrays (same meaning as ObjectState's fields)."""
+
+    unique_ids: IntArray
+    object_types: IntArray
+    names: tuple[str, ...]
+    positions: FloatArray
+    headings: FloatArray
+    velocities: FloatArray
+    accelerations: FloatArray
+    sizes: FloatArray
+
+    def __len__(self) -> int:
+        return len(self.unique_ids)
+
+    def record(self, i: int) -> ObjectState:
+        return ObjectState(
+            unique_id=int(self.unique_ids[i]),
+            object_type=ObjectType(int(self.object_types[i])),
+            name=self.names[i],
+            position=_vector(self.positions[i]),
+            heading=float(self.headings[i]),
+            velocity=_vector(self.velocities[i]),
+            acceleration=_vector(self.accelerations[i]),
+            size=_vector(self.sizes[i]),
+        )
+
+    @classmethod
+    def empty(cls) -> ObjectTable:
+        return cls(
+            np.empty(0, np.int64),
+            np.empty(0, np.int64),
+            (),
+            np.empty((0, 3)),
+            np.empty(0),
+            np.empty((0, 3)),
+            np.empty((0, 3)),
+            np.empty((0, 3)),
+        )
+
+    @classmethod
+    def concatenate(cls, tables: Sequence[ObjectTable]) -> ObjectTable:
+        if not tables:
+            return cls.empty()
+        return cls(
+            np.concatenate([t.unique_ids for t in tables]),
+            np.concatenate([t.object_types for t in tables]),
+            tuple(name for t in tables for name in t.names),
+            np.concatenate([t.positions for t in tables]),
+            np.concatenate([t.headings for t in tables]),
+            np.concatenate([t.velocities for t in tables]),
+            np.concatenate([t.accelerations for t in tables]),
+            np.concatenate([t.sizes for t in tables]),
+        )
+
+
+def _vector(row: FloatArray) -> Vector3:
+    return float(row[0]), float(row[1]), float(row[2])

@@ -1,0 +1,49 @@
+"""What a light's aspect lets a vehicle do at its stop line, vectorised."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from egosim.world.signals import GREEN, GREEN_LEFT, TYPE_FLASHING_YELLOW, YELLOW, has_left_arrow
+from egosim.world.traffic.lane_graph import TURN_LEFT
+
+BoolArray = npt.NDArray[np.bool_]
+IntArray = npt.NDArray[np.int64]
+
+
+@dataclass(frozen=True, eq=False)
+class LightsView:
+    """Per light: the aspect now and two facts about its head (flashing, has a left arrow)."""
+
+    aspects: IntArray
+    flashing: BoolArray
+    arrow_head: BoolArray
+
+    @classmethod
+    def of(cls, aspects: IntArray, light_types: IntArray) -> LightsView:
+        return cls(
+            aspects,
+            light_types == TYPE_FLASHING_YELLOW,
+            np.array([has_left_arrow(int(t)) for t in light_types], dtype=bool),
+        )
+
+
+def signal_permissions(
+    lights: LightsView, light: IntArray, turn: IntArray
+) -> tuple[BoolArray, BoolArray]:
+    """(may proceed, shows a yellow to stop for) for vehicles facing lights `light`.
+
+    A dark light (OFF) or a flashing-yellow head stops nobody. A left turn at a head with
+    a left arrow goes on the arrow only; every other movement goes on green. A yellow
+    without a go lamp asks the vehicle to stop if it comfortably can.
+    """
+    aspect = lights.aspects[light]
+    dark = (aspect < 0) | lights.flashing[light]
+    go_lamp = np.where((turn == TURN_LEFT) & lights.arrow_head[light], GREEN_LEFT, GREEN)
+    lit = np.where(dark, 0, aspect)
+    proceed = dark | ((lit & go_lamp) != 0)
+    yellow = ~proceed & ((lit & YELLOW) != 0)
+    return proceed, yellow
