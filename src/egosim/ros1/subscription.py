@@ -17,7 +17,12 @@ from dataclasses import dataclass
 
 from . import rpc
 from .connection_header import read_header, write_header
-from .errors import ConnectionRefusedByPeerError, ProtocolError, Ros1Error
+from .errors import (
+    ConnectionClosedError,
+    ConnectionRefusedByPeerError,
+    ProtocolError,
+    Ros1Error,
+)
 from .tcpros import Limits, close_quietly, recv_length_prefixed, set_nodelay
 from .types import MessageTypeInfo
 
@@ -75,13 +80,23 @@ class _Inbound:
                     exc.reason,
                 )
                 return
-            except (Ros1Error, OSError, xmlrpc.client.Error) as exc:
+            except ConnectionClosedError as exc:
                 if not self._stop.is_set():
                     log.info(
-                        "connection to %s for %s lost: %s",
+                        "publisher %s of %s left: %s",
                         self.stats.publisher_uri,
                         self._sub.topic,
                         exc,
+                    )
+            except ProtocolError as exc:
+                if not self._stop.is_set():
+                    log.warning(
+                        "publisher %s of %s: %s", self.stats.publisher_uri, self._sub.topic, exc
+                    )
+            except (Ros1Error, OSError, xmlrpc.client.Error) as exc:
+                if not self._stop.is_set():
+                    log.info(
+                        "publisher %s of %s: %s", self.stats.publisher_uri, self._sub.topic, exc
                     )
             finally:
                 self.stats.connected = False

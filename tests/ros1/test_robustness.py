@@ -1,0 +1,244 @@
+"""Bad input from peers: malformed, truncated or oversized headers and frames, peers that
+vanish, XML-RPC garbage. The node logs each once with the peer's address and keeps serving."""
+
+from __future__ import annotations
+
+import http.client
+import logging
+import os
+import socket
+import struct
+import threading
+import xmlrpc.client
+from collections.abc import Callable
+from xmlrpc.server import SimpleXMLRPCServer
+
+import pytest
+
+from egosim.ros1 import Limits
+from egosim.ros1.connection_header import encode_header, read_header
+from tests.conftest import EVENT_TIMEOUT_S
+from tests.ros1.helpers import (
+    PROFILE,
+    STRING,
+    raw_subscribe,
+    read_frame,
+    slave_call,
+    string_bytes,
+    string_text,
+    wait_until,
+)
+
+
+def _open_fds() -> int:
+    return len(os.listdir("/proc/self/fd"))
+
+
+def _drain(sock: socket.socket) -> bytes:
+    """Half-close, then read what the server answers until it hangs up (a reset counts:
+    a server closing on unread input resets the connection)."""
+    chunks = []
+    try:
+        sock.shutdown(socket.SHUT_WR)
+        while chunk := sock.recv(65536):
+            chunks.append(chunk)
+    except (ConnectionResetError, BrokenPipeError, OSError):
+        pass
+    return b"".join(chunks)
+
+
+def _send_raw(address: tuple[str, int], data: bytes) -> bytes:
+    with socket.create_connection(address, timeout=EVENT_TIMEOUT_S) as sock:
+        try:
+            sock.sendall(data)
+        except (ConnectionResetError, BrokenPipeError):
+            return b""
+        return _drain(sock)
+
+
+def _warnings_naming(caplog: pytest.LogCaptureFixture, peer: str) -> list[str]:
+    return [
+        r.getMessage()
+        for r in caplog.records
+        if r.levelno >= logging.WARNING and peer in r.getMessage()
+    ]
+
+
+@pytest.mark.parametrize(
+    ("name", "data"),
+    [
+        ("absurd header length", struct.pack("<I", 0xFFFFFFF0) + b"x" * 16),
+        ("header length just over the limit", struct.pack("<I", 64 * 1024 + 1)),
+        ("truncated header", struct.pack("<I", 100) + b"\x05\x00\x00\x00ab"),
+        ("field overruns header", struct.pack("<I", 8) + struct.pack("<I", 99) + b"a=bc"),
+        ("field without '='", encode_header({"x": "y"})[:4] + struct.pack("<I", 3) + b"xyz"),
+        ("not even a length", b"\x01\x02"),
+    ],
+)
+def test_bad_headers_are_logged_once_and_the_node_keeps_serving(
+    embedded_master, make_node, caplog, name, data
+):
+    caplog.set_level(logging.WARNING, logger="egosim.ros1")
+    node = make_node("pub", master_uri=embedded_master.uri)
+    pub = node.advertise("/chatter", STRING, latch=True)
+    pub.publish(string_bytes("still here"))
+    with socket.create_connection(node.tcpros_address, timeout=EVENT_TIMEOUT_S) as sock:
+        peer = "{}:{}".format(*sock.getsockname())
+        sock.sendall(data)
+        _drain(sock)
+    wait_until(lambda: _warnings_naming(caplog, peer))
+    assert len(_warnings_naming(caplog, peer)) == 1, name
+    sock, _header = raw_subscribe(node, "/chatter", STRING.md5sum)
+    with sock:
+        assert string_text(read_frame(sock)) == "still here"
+
+
+def test_header_naming_neither_topic_nor_service_is_refused(embedded_master, make_node):
+    node = make_node("pub", master_uri=embedded_master.uri)
+    reply = _send_raw(node.tcpros_address, encode_header({"callerid": "/x"}))
+    assert b"error=connection header names neither a topic nor a service" in reply
+
+
+def test_silent_peer_is_dropped_after_the_header_timeout(embedded_master, make_node):
+    node = make_node("pub", master_uri=embedded_master.uri, limits=Limits(header_timeout=0.2))
+    with socket.create_connection(node.tcpros_address, timeout=EVENT_TIMEOUT_S) as sock:
+        assert sock.recv(1) == b""
+
+
+def test_oversized_service_request_is_refused_and_service_keeps_serving(
+    embedded_master, make_node, caplog
+):
+    caplog.set_level(logging.WARNING, logger="egosim.ros1")
+    node = make_node("srv", master_uri=embedded_master.uri, limits=Limits(max_frame_bytes=1024))
+    srv = PROFILE.service("morai_msgs/MoraiEventCmdSrv")
+    node.advertise_service("/echo", srv, lambda request, header: request)
+    fields = {"callerid": "/x", "service": "/echo", "md5sum": "*", "persistent": "1"}
+    with socket.create_connection(node.tcpros_address, timeout=EVENT_TIMEOUT_S) as sock:
+        peer = "{}:{}".format(*sock.getsockname())
+        sock.sendall(encode_header(fields))
+        read_header(sock, 1 << 16)
+        sock.sendall(struct.pack("<I", 2048) + b"x" * 2048)
+        assert _drain(sock) == b""
+    wait_until(lambda: _warnings_naming(caplog, peer))
+    assert "exceeds the limit of 1024" in _warnings_naming(caplog, peer)[0]
+    assert node.service_proxy("/echo", srv).call(b"small") == b"small"
+
+
+class FakePublisher:
+    """A slave API whose requestTopic points at a bare socket acting out ``behaviour``."""
+
+    def __init__(self, behaviour: Callable[[socket.socket], None]) -> None:
+        self._listener = socket.create_server(("127.0.0.1", 0))
+        port = self._listener.getsockname()[1]
+        self._rpc = SimpleXMLRPCServer(("127.0.0.1", 0), logRequests=False)
+        self._rpc.register_function(
+            lambda caller, topic, protocols: [1, "", ["TCPROS", "127.0.0.1", port]], "requestTopic"
+        )
+        self.uri = f"http://127.0.0.1:{self._rpc.server_address[1]}/"
+        self.accepted = 0
+        self._behaviour = behaviour
+        threading.Thread(target=self._rpc.serve_forever, daemon=True).start()
+        threading.Thread(target=self._accept, daemon=True).start()
+
+    def _accept(self) -> None:
+        while True:
+            try:
+                sock, _ = self._listener.accept()
+            except OSError:
+                return
+            with sock:
+                read_header(sock, 1 << 16)
+                self.accepted += 1
+                self._behaviour(sock)
+
+    def close(self) -> None:
+        self._rpc.shutdown()
+        self._rpc.server_close()
+        self._listener.close()
+
+
+def _valid_header(sock: socket.socket) -> None:
+    sock.sendall(encode_header({"callerid": "/fake", "md5sum": STRING.md5sum, "type": STRING.name}))
+
+
+@pytest.mark.parametrize(
+    ("name", "behaviour", "logged"),
+    [
+        (
+            "absurd frame length",
+            lambda s: (_valid_header(s), s.sendall(struct.pack("<I", 0xFFFFFFFF))),
+            "exceeds the limit",
+        ),
+        (
+            "vanishes mid-frame",
+            lambda s: (_valid_header(s), s.sendall(struct.pack("<I", 100) + b"cut")),
+            "after 3 of 100 bytes",
+        ),
+        (
+            "garbage header",
+            lambda s: s.sendall(struct.pack("<I", 5) + b"\x09\x00\x00\x00z"),
+            "overruns",
+        ),
+        ("vanishes before its header", lambda s: None, "after 0 of 4 bytes"),
+    ],
+)
+def test_subscriber_survives_broken_publishers(
+    embedded_master, make_node, caplog, name, behaviour, logged
+):
+    caplog.set_level(logging.INFO, logger="egosim.ros1")
+    node = make_node("sub", master_uri=embedded_master.uri)
+    received: list[str] = []
+    sub = node.subscribe("/chatter", STRING, lambda d, h: received.append(string_text(d)))
+    fake = FakePublisher(behaviour)
+    try:
+        sub.update_publishers([fake.uri])
+        wait_until(lambda: fake.accepted >= 2)  # it keeps trying, it did not die
+        assert any(logged in r.getMessage() and fake.uri in r.getMessage() for r in caplog.records)
+        talker = make_node("talker", master_uri=embedded_master.uri)
+        pub = talker.advertise("/chatter", STRING)
+        wait_until(lambda: pub.num_subscribers == 1)
+        pub.publish(string_bytes("real"))
+        wait_until(lambda: "real" in received)
+    finally:
+        fake.close()
+
+
+def test_xmlrpc_garbage_gets_faults_and_servers_keep_answering(embedded_master, make_node):
+    node = make_node("sim", master_uri=embedded_master.uri)
+    for uri in (node.uri, embedded_master.uri):
+        host, port = uri.removeprefix("http://").rstrip("/").split(":")
+        address = (host, int(port))
+        connection = http.client.HTTPConnection(*address, timeout=EVENT_TIMEOUT_S)
+        connection.request(
+            "POST", "/", body=b"<methodCall><oops", headers={"Content-Type": "text/xml"}
+        )
+        body = connection.getresponse().read()
+        connection.close()
+        assert b"<fault>" in body
+        proxy = xmlrpc.client.ServerProxy(uri)
+        with pytest.raises(xmlrpc.client.Fault):
+            proxy.noSuchMethod("/x")
+        with pytest.raises(xmlrpc.client.Fault):
+            proxy.getPid()  # missing caller_id
+        assert b"400" in _send_raw(address, b"\x00\x01\x02 garbage\r\n\r\n")
+        assert proxy.getPid("/x")[0] == 1
+
+
+def test_no_threads_or_sockets_leak_after_bad_peers(embedded_master, make_node):
+    node = make_node("sim", master_uri=embedded_master.uri)
+    pub = node.advertise("/chatter", STRING)
+    baseline_threads, baseline_fds = threading.active_count(), _open_fds()
+    for _ in range(20):
+        _send_raw(node.tcpros_address, struct.pack("<I", 0xFFFFFFFF))
+        _send_raw(node.tcpros_address, encode_header({"topic": "/chatter"}))
+        _send_raw(
+            node.tcpros_address,
+            encode_header({"callerid": "/x", "topic": "/chatter", "md5sum": "bad"}),
+        )
+        sock, _ = raw_subscribe(node, "/chatter", "*")
+        sock.close()  # a subscriber that vanishes
+        assert slave_call(node, "getPid")[0] == 1
+    pub.publish(string_bytes("flush"))
+    wait_until(lambda: pub.num_subscribers == 0)
+    wait_until(lambda: threading.active_count() <= baseline_threads)
+    wait_until(lambda: _open_fds() <= baseline_fds)
