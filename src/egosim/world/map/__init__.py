@@ -1,7 +1,13 @@
 """Lane-graph maps: geometry, queries, georeference and the built-in maps."""
 
 from egosim.world.map.builtin import BUILTIN_MAP_NAMES, DEFAULT_MAP_NAME, build_builtin_map
-from egosim.world.map.errors import MapError, MapGeometryError, UnknownLaneError, UnknownMapError
+from egosim.world.map.errors import (
+    MapError,
+    MapGeometryError,
+    MapRecordError,
+    UnknownLaneError,
+    UnknownMapError,
+)
 from egosim.world.map.georef import GeoReference
 from egosim.world.map.lanes import (
     Crosswalk,
@@ -25,6 +31,7 @@ __all__ = [
     "LaneProjections",
     "MapError",
     "MapGeometryError",
+    "MapRecordError",
     "Sidewalk",
     "TrafficLightSite",
     "UnknownLaneError",

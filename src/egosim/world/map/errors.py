@@ -15,3 +15,13 @@ class UnknownLaneError(MapError, KeyError):
 
 class MapGeometryError(MapError, ValueError):
     """Map data that violates a geometric invariant (too few points, bad widths...)."""
+
+
+class MapRecordError(MapError, ValueError):
+    """A record of a map file that cannot be read; names the file and the record."""
+
+    def __init__(self, source: str, record: str, reason: str) -> None:
+        super().__init__(f"{source}: {record}: {reason}")
+        self.source = source
+        self.record = record
+        self.reason = reason
