@@ -1,7 +1,8 @@
-"""Georeference of a map's local ENU frame: local = UTM(zone) - origin."""
+"""Georeference of a map's local ENU frame: local = UTM(zone) - origin (or another projection)."""
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import TypeVar
@@ -23,6 +24,10 @@ class GeoReference:
 
     A local point (x, y, z) has UTM coordinates
     (origin_east + x, origin_north + y) and ellipsoidal height origin_up + z.
+
+    `projection` (a PROJ definition such as "+proj=tmerc ...") replaces UTM for maps drawn in
+    another grid; origin_east / origin_north are then coordinates in that grid, `utm_zone`
+    stays the UTM zone of the origin, and the MapSpec parameters come from the projection.
     """
 
     utm_zone: int
@@ -31,6 +36,7 @@ class GeoReference:
     origin_north: float
     origin_up: float
     ellipsoid: str = "WGS84"
+    projection: str | None = None
 
     def __post_init__(self) -> None:
         if not 1 <= self.utm_zone <= 60:
@@ -38,26 +44,38 @@ class GeoReference:
 
     @property
     def central_meridian_deg(self) -> float:
+        if self.projection is not None:
+            return _projection_parameter(self.projection, "lon_0", 0.0)
         return -183.0 + 6.0 * self.utm_zone
 
     @property
     def central_latitude_deg(self) -> float:
+        if self.projection is not None:
+            return _projection_parameter(self.projection, "lat_0", 0.0)
         return 0.0
 
     @property
     def scale_factor(self) -> float:
+        if self.projection is not None:
+            return _projection_parameter(self.projection, "k_0", 1.0)
         return UTM_SCALE_FACTOR
 
     @property
     def false_easting(self) -> float:
+        if self.projection is not None:
+            return _projection_parameter(self.projection, "x_0", 0.0)
         return UTM_FALSE_EASTING
 
     @property
     def false_northing(self) -> float:
+        if self.projection is not None:
+            return _projection_parameter(self.projection, "y_0", 0.0)
         return 0.0 if self.northern else UTM_FALSE_NORTHING_SOUTH
 
     @property
     def _to_geodetic(self) -> Transformer:
+        if self.projection is not None:
+            return _projection_to_geodetic(self.projection)
         return _utm_to_geodetic(self.utm_zone, self.northern, self.ellipsoid)
 
     def local_to_geodetic(
@@ -97,3 +115,20 @@ def _utm_to_geodetic(zone: int, northern: bool, ellipsoid: str) -> Transformer:
         {"proj": "utm", "zone": zone, "south": not northern, "ellps": ellipsoid, "units": "m"}
     )
     return Transformer.from_crs(utm, utm.geodetic_crs, always_xy=True)
+
+
+@lru_cache(maxsize=16)
+def _projection_to_geodetic(projection: str) -> Transformer:
+    crs = CRS.from_user_input(projection)
+    return Transformer.from_crs(crs, crs.geodetic_crs, always_xy=True)
+
+
+@lru_cache(maxsize=64)
+def _projection_parameter(projection: str, name: str, default: float) -> float:
+    with warnings.catch_warnings():
+        # to_dict goes through a PROJ string; its lossy-conversion warning is about datums.
+        warnings.simplefilter("ignore", UserWarning)
+        parameters = CRS.from_user_input(projection).to_dict()
+    # PROJ spells the scale factor k_0 or k.
+    value = parameters.get(name, parameters.get("k") if name == "k_0" else None)
+    return default if value is None else float(value)
