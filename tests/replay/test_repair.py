@@ -2,12 +2,8 @@
 
 from __future__ import annotations
 
-import json
 import os
 import shutil
-import signal
-import subprocess
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -15,29 +11,8 @@ import pytest
 from rosbags.rosbag1 import Reader
 
 from egosim.replay import BagError, BagRecorder, BagTimeline, needs_repair, repair_bag
+from tests.replay.crash import record_and_kill
 from tests.replay.drive import EGO, ego_position, stamp
-
-REPO = Path(__file__).resolve().parents[2]
-PEER = Path(__file__).parent / "peers" / "killed_recorder.py"
-
-
-def record_and_kill(path: Path, count: int, chunk_size: int, flush_interval: float) -> Any:
-    """Run the recorder in a child, SIGKILL it once it reports; its last stats."""
-    child = subprocess.Popen(
-        [sys.executable, str(PEER), str(path), str(count), str(chunk_size), str(flush_interval)],
-        stdout=subprocess.PIPE,
-        text=True,
-        cwd=REPO,
-        env={**os.environ, "PYTHONPATH": str(REPO)},
-    )
-    try:
-        assert child.stdout is not None
-        stats = json.loads(child.stdout.readline())
-    finally:
-        child.send_signal(signal.SIGKILL)
-        child.wait()
-    assert child.returncode == -signal.SIGKILL
-    return stats
 
 
 def ego_positions(path: Path) -> list[tuple[int, float]]:
