@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import warnings
 from dataclasses import dataclass
 from functools import lru_cache
@@ -9,13 +10,15 @@ from typing import TypeVar
 
 import numpy as np
 import numpy.typing as npt
-from pyproj import CRS, Transformer
+from pyproj import CRS, Transformer, get_ellps_map
+from pyproj.exceptions import CRSError
 
 Coordinate = TypeVar("Coordinate", float, npt.NDArray[np.float64])
 
 UTM_SCALE_FACTOR = 0.9996
 UTM_FALSE_EASTING = 500_000.0
 UTM_FALSE_NORTHING_SOUTH = 10_000_000.0
+_UTM_ZONE_NAME = re.compile(r"UTM\s*(\d{1,2})\s*([NS])", re.IGNORECASE)
 
 
 @dataclass(frozen=True)
@@ -41,6 +44,30 @@ class GeoReference:
     def __post_init__(self) -> None:
         if not 1 <= self.utm_zone <= 60:
             raise ValueError(f"UTM zone must be in 1..60, got {self.utm_zone}")
+
+    @classmethod
+    def from_projection(cls, definition: str, origin: tuple[float, float, float]) -> GeoReference:
+        """The georeference of a local frame whose origin sits at `origin` in a projection.
+
+        `definition` is a UTM zone name ("UTM52N", "UTM 33S") or anything pyproj reads (a
+        PROJ string, "EPSG:5186", WKT). UTM definitions give a plain UTM georeference;
+        others keep the definition. Raises ValueError for a definition pyproj cannot read.
+        """
+        east, north, up = (float(v) for v in origin)
+        zone_name = _UTM_ZONE_NAME.fullmatch(definition.strip())
+        if zone_name:
+            zone, hemisphere = zone_name.groups()
+            return cls(int(zone), hemisphere.upper() == "N", east, north, up)
+        try:
+            crs = CRS.from_user_input(definition)
+        except CRSError as error:
+            raise ValueError(f"unknown projection {definition!r}") from error
+        if crs.utm_zone is not None:
+            zone, hemisphere = int(crs.utm_zone[:-1]), crs.utm_zone[-1]
+            return cls(zone, hemisphere == "N", east, north, up, _ellipsoid_name(definition))
+        lon, lat = _projection_to_geodetic(definition).transform(east, north)
+        zone = int((lon + 180.0) // 6.0) % 60 + 1
+        return cls(zone, lat >= 0.0, east, north, up, _ellipsoid_name(definition), definition)
 
     @property
     def central_meridian_deg(self) -> float:
@@ -123,12 +150,25 @@ def _projection_to_geodetic(projection: str) -> Transformer:
     return Transformer.from_crs(crs, crs.geodetic_crs, always_xy=True)
 
 
-@lru_cache(maxsize=64)
-def _projection_parameter(projection: str, name: str, default: float) -> float:
+@lru_cache(maxsize=16)
+def _projection_dict(projection: str) -> dict:
     with warnings.catch_warnings():
         # to_dict goes through a PROJ string; its lossy-conversion warning is about datums.
         warnings.simplefilter("ignore", UserWarning)
-        parameters = CRS.from_user_input(projection).to_dict()
+        return CRS.from_user_input(projection).to_dict()
+
+
+def _ellipsoid_name(projection: str) -> str:
+    """The PROJ name of the projection's ellipsoid (as MapSpec and `+ellps` spell it)."""
+    parameters = _projection_dict(projection)
+    for name in (parameters.get("ellps"), parameters.get("datum")):
+        if name in get_ellps_map():
+            return str(name)
+    return "WGS84"
+
+
+def _projection_parameter(projection: str, name: str, default: float) -> float:
+    parameters = _projection_dict(projection)
     # PROJ spells the scale factor k_0 or k.
     value = parameters.get(name, parameters.get("k") if name == "k_0" else None)
     return default if value is None else float(value)
