@@ -9,6 +9,7 @@ Tests marked ``ros`` are skipped, with the reason, when Debian's ROS 1 is not in
 
 from __future__ import annotations
 
+import contextlib
 import os
 import queue
 import re
@@ -94,19 +95,30 @@ class RosProcess:
         self._stderr.flush()
         return self.log_path.read_text(errors="replace")
 
+    def _group_alive(self) -> bool:
+        try:
+            os.killpg(self.popen.pid, 0)
+        except ProcessLookupError:
+            return False
+        return True
+
     def kill(self) -> None:
-        if self.popen.poll() is None:
-            for sig in (signal.SIGINT, signal.SIGKILL):
-                try:
-                    os.killpg(self.popen.pid, sig)
-                except ProcessLookupError:
-                    break
-                try:
-                    self.popen.wait(5)
-                    break
-                except subprocess.TimeoutExpired:
-                    continue
+        """SIGINT to the whole process group (so e.g. rosbag's recorder closes its bag), then
+        SIGKILL to whatever is left of it after a grace period."""
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(self.popen.pid, signal.SIGINT)
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline:
+            with contextlib.suppress(subprocess.TimeoutExpired):
+                self.popen.wait(0.05)
+            if self.popen.poll() is not None and not self._group_alive():
+                break
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(self.popen.pid, signal.SIGKILL)
+        self.popen.wait()
         self._stderr.close()
+        # The reader sees end-of-file once the whole process group is gone.
+        self._reader.join(EVENT_TIMEOUT_S)
         if self.popen.stdout is not None:
             self.popen.stdout.close()
 
