@@ -1,0 +1,10 @@
+"""The pure, deterministic simulation core: map, vehicles, traffic, signals, collisions.
+
+Public API:
+    World, Ego, EgoLaneState                 the assembly the bridge drives
+    egosim.world.map, .vehicle, .traffic, .signals, .scenario, .collision   the parts
+"""
+
+from egosim.world.world import DEFAULT_PHYSICS_STEP_S, Ego, EgoLaneState, World
+
+__all__ = ["DEFAULT_PHYSICS_STEP_S", "Ego", "EgoLaneState", "World"]

@@ -42,10 +42,7 @@ class IntersectionController:
     def jump(self, phase_index: int, elapsed_s: float = 0.0) -> None:
         """Put the program in phase `phase_index`, `elapsed_s` into it (longer rolls on)."""
         if not 0 <= phase_index < len(self.program):
-            raise UnknownPhaseError(
-                f"intersection {self.intersection_id} has phases 0..{len(self.program) - 1}, "
-                f"not {phase_index}"
-            )
+            raise UnknownPhaseError(self.intersection_id, phase_index, len(self.program))
         if not elapsed_s >= 0.0:
             raise ValueError(f"elapsed time must be >= 0 s, got {elapsed_s}")
         self.phase_index = phase_index

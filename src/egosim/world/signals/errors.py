@@ -19,3 +19,9 @@ class UnsupportedAspectError(SignalError, ValueError):
 
 class UnknownPhaseError(SignalError, IndexError):
     """A phase index outside an intersection's program."""
+
+    def __init__(self, intersection_id: int, phase_index: int, phase_count: int) -> None:
+        self.intersection_id = intersection_id
+        super().__init__(
+            f"intersection {intersection_id} has phases 0..{phase_count - 1}, not {phase_index}"
+        )

@@ -38,7 +38,8 @@ class NpcSpawn:
     """One NPC to place: on lane index `lane` at station s (m), `lateral` m left of the
     centreline, moving at `speed` m/s. It drives at `target_speed` m/s when given, else at
     `speed_factor` times each lane's limit; it waits `start_delay_s` s before moving and
-    follows `route` (lane indices) where the route names a successor."""
+    follows `route` (lane indices) where the route names a successor, or the lane after a
+    successor (routes may leave junction connectors out)."""
 
     unique_id: int
     model: VehicleModel
@@ -140,6 +141,11 @@ class NpcFleet:
             if route[k] in successors:
                 self.route_pos[i] = k + 1
                 return route[k]
+            # Routes may skip junction connectors: take the one leading to the route's lane.
+            for successor in successors:
+                if route[k] in self.graph.successors[successor]:
+                    self.route_pos[i] = k
+                    return successor
         return successors[int(self.rng.integers(len(successors)))]
 
     def occupants(self) -> LaneOccupants:

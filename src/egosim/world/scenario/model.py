@@ -1,0 +1,104 @@
+"""A parsed scenario: what to place on the map and how the lights run, SI units."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from egosim.world.scenario.errors import ScenarioError
+from egosim.world.scenario.source import FieldPath, ScenarioSource
+from egosim.world.signals import IntersectionProgram, PhaseTiming
+
+
+@dataclass(frozen=True)
+class PoseStart:
+    """A position (m) and heading (rad, counter-clockwise from east)."""
+
+    x: float
+    y: float
+    z: float = 0.0
+    heading: float = 0.0
+
+
+@dataclass(frozen=True)
+class LaneStart:
+    """Station s (m) along a lane, `lateral` m left of its centreline."""
+
+    lane: str
+    s: float = 0.0
+    lateral: float = 0.0
+
+
+Start = PoseStart | LaneStart
+
+
+@dataclass(frozen=True)
+class EgoSpec:
+    path: FieldPath
+    model: str
+    start: Start
+    speed: float = 0.0
+    """m/s."""
+
+
+@dataclass(frozen=True)
+class NpcSpec:
+    path: FieldPath
+    model: str
+    start: Start
+    speed: float = 0.0
+    """Initial speed, m/s."""
+    target_speed: float | None = None
+    """m/s; None: speed_factor times each lane's limit."""
+    speed_factor: float = 1.0
+    route: tuple[str, ...] = ()
+    start_delay_s: float = 0.0
+
+
+@dataclass(frozen=True)
+class PedestrianSpec:
+    """Walks a sidewalk, a crosswalk (back and forth) or scripted waypoints."""
+
+    path: FieldPath
+    model: str
+    speed: float
+    start_s: float = 0.0
+    sidewalk: str | None = None
+    crosswalk: str | None = None
+    waypoints: tuple[tuple[float, float], ...] | None = None
+    loop: bool = True
+
+
+@dataclass(frozen=True)
+class ObstacleSpec:
+    path: FieldPath
+    model: str
+    pose: PoseStart
+    size: tuple[float, float, float] | None = None
+    """length, width, height, m; None: the model's size."""
+
+
+@dataclass(frozen=True)
+class SignalsSpec:
+    default: PhaseTiming = field(default_factory=PhaseTiming)
+    intersections: dict[int, IntersectionProgram] = field(default_factory=dict)
+    paths: dict[int, FieldPath] = field(default_factory=dict)
+    """Where each intersection's entry sits in the file."""
+
+
+@dataclass(frozen=True)
+class Scenario:
+    map_name: str
+    seed: int = 0
+    ego: EgoSpec | None = None
+    npcs: tuple[NpcSpec, ...] = ()
+    pedestrians: tuple[PedestrianSpec, ...] = ()
+    obstacles: tuple[ObstacleSpec, ...] = ()
+    signals: SignalsSpec = field(default_factory=SignalsSpec)
+    network: dict[str, Any] | None = None
+    """The file's network settings, handed to the simulator as they are."""
+    source: ScenarioSource = field(default_factory=lambda: ScenarioSource("<scenario>", None))
+
+    def error(self, path: FieldPath, message: str) -> ScenarioError:
+        """An error naming this scenario's file, the line of `path` and the field."""
+        return self.source.error(path, message)

@@ -1,0 +1,66 @@
+"""The living world around the ego: NPC vehicles, pedestrians, static obstacles.
+
+Public API:
+    NpcFleet, NpcSpawn, IntelligentDriverModel     vectorised IDM lane followers
+    PedestrianCrowd, PedestrianSpawn, WalkPath     walkers on sidewalks / crosswalks / waypoints
+    StaticObstacles, ObstacleSpawn                 boxes standing still
+    ObjectType, ObjectState, ObjectTable           ObjectStatus semantics (SI units)
+    ObjectList, closest_objects                    ObjectStatusList semantics
+    LaneGraph, LaneOccupants, LightsView           the arrays the agents run on
+    BoxModel, PEDESTRIAN_MODELS, OBSTACLE_MODELS   sizes of non-vehicle models
+"""
+
+from egosim.world.traffic.catalogue import (
+    DEFAULT_OBSTACLE_MODEL,
+    DEFAULT_PEDESTRIAN_MODEL,
+    OBSTACLE_MODELS,
+    PEDESTRIAN_MODELS,
+    BoxModel,
+)
+from egosim.world.traffic.idm import IntelligentDriverModel
+from egosim.world.traffic.lane_graph import LaneGraph
+from egosim.world.traffic.leaders import LaneOccupants, leaders_ahead
+from egosim.world.traffic.npc_vehicles import NpcFleet, NpcSpawn
+from egosim.world.traffic.object_list import ObjectList, closest_objects
+from egosim.world.traffic.objects import ObjectState, ObjectTable, ObjectType
+from egosim.world.traffic.obstacles import ObstacleSpawn, StaticObstacles
+from egosim.world.traffic.pedestrians import (
+    PedestrianCrowd,
+    PedestrianSpawn,
+    WalkPath,
+    crossed_lights,
+    crosswalk_path,
+    sidewalk_path,
+    walk_signals,
+)
+from egosim.world.traffic.signal_rules import LightsView, signal_permissions
+
+__all__ = [
+    "DEFAULT_OBSTACLE_MODEL",
+    "DEFAULT_PEDESTRIAN_MODEL",
+    "OBSTACLE_MODELS",
+    "PEDESTRIAN_MODELS",
+    "BoxModel",
+    "IntelligentDriverModel",
+    "LaneGraph",
+    "LaneOccupants",
+    "LightsView",
+    "NpcFleet",
+    "NpcSpawn",
+    "ObjectList",
+    "ObjectState",
+    "ObjectTable",
+    "ObjectType",
+    "ObstacleSpawn",
+    "PedestrianCrowd",
+    "PedestrianSpawn",
+    "StaticObstacles",
+    "WalkPath",
+    "closest_objects",
+    "crossed_lights",
+    "crosswalk_path",
+    "leaders_ahead",
+    "sidewalk_path",
+    "signal_permissions",
+    "walk_signals",
+]

@@ -1,0 +1,45 @@
+"""ObjectStatusList semantics: the objects nearest the ego, split by kind."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from egosim.world.traffic.objects import ObjectState, ObjectTable, ObjectType
+
+
+@dataclass(frozen=True)
+class ObjectList:
+    """num_of_*: every object spawned of that kind; the lists: the kinds' share of the
+    N objects nearest the ego (N closest overall), each list closest first."""
+
+    num_npcs: int
+    num_pedestrians: int
+    num_obstacles: int
+    npcs: tuple[ObjectState, ...]
+    pedestrians: tuple[ObjectState, ...]
+    obstacles: tuple[ObjectState, ...]
+
+
+def closest_objects(
+    table: ObjectTable, centre: tuple[float, float], size: int, counts: tuple[int, int, int]
+) -> ObjectList:
+    """The `size` objects of `table` nearest `centre` (plane distance between centres,
+    ties in table order), split into NPCs, pedestrians and obstacles."""
+    offset = table.positions[:, :2] - np.asarray(centre)
+    distance = np.hypot(offset[:, 0], offset[:, 1])
+    nearest = np.argsort(distance, kind="stable")[: max(size, 0)]
+    records = [table.record(int(i)) for i in nearest]
+
+    def of(kind: ObjectType) -> tuple[ObjectState, ...]:
+        return tuple(r for r in records if r.object_type == kind)
+
+    return ObjectList(
+        num_npcs=counts[0],
+        num_pedestrians=counts[1],
+        num_obstacles=counts[2],
+        npcs=of(ObjectType.NPC_VEHICLE),
+        pedestrians=of(ObjectType.PEDESTRIAN),
+        obstacles=of(ObjectType.OBSTACLE),
+    )

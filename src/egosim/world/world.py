@@ -1,0 +1,420 @@
+"""The World: map, ego vehicles, traffic, signals and collisions advanced by step(dt).
+
+A thin assembly of the modules that hold the logic. It is pure and deterministic: the
+same scenario, seed and command sequence give bit-identical states.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+
+from egosim.world.collision import (
+    ContactTracker,
+    EgoCollision,
+    Footprints,
+    VehicleCollision,
+    touching_pairs,
+)
+from egosim.world.map import LaneMap
+from egosim.world.scenario import Scenario, ScenarioLoadOptions, ScenarioLoadReport
+from egosim.world.scenario.placement import (
+    check_map,
+    ego_placement,
+    npc_spawns,
+    obstacle_spawns,
+    pedestrian_spawns,
+)
+from egosim.world.signals import (
+    OFF,
+    RED,
+    IntersectionProgram,
+    LightState,
+    TrafficSignals,
+    UnknownPhaseError,
+    governing_light_id,
+)
+from egosim.world.traffic import (
+    LaneGraph,
+    LaneOccupants,
+    LightsView,
+    NpcFleet,
+    ObjectState,
+    ObjectTable,
+    ObjectType,
+    PedestrianCrowd,
+    StaticObstacles,
+    closest_objects,
+    crossed_lights,
+    walk_signals,
+)
+from egosim.world.traffic.object_list import ObjectList
+from egosim.world.vehicle import DEFAULT_EGO_MODEL, Pose, Vehicle, VehicleStatus, vehicle_model
+
+DEFAULT_PHYSICS_STEP_S = 0.01
+DEFAULT_OBJECT_LIST_SIZE = 20
+# A pedestrian this close to a lane's edge (m) already counts as in the lane for drivers.
+PEDESTRIAN_LANE_MARGIN_M = 1.0
+PEDESTRIAN_HALF_DEPTH_M = 0.5
+
+
+class Ego:
+    """One ego vehicle: its object id and the vehicle model that moves it."""
+
+    def __init__(self, unique_id: int, vehicle: Vehicle) -> None:
+        self.unique_id = unique_id
+        self.vehicle = vehicle
+
+    def box_centre(self, status: VehicleStatus) -> tuple[float, float]:
+        """Footprint centre, m: the reference point moved to the middle of the body."""
+        offset = self.vehicle.model.bounding_box_center_offset
+        yaw = status.pose.yaw
+        return status.pose.x + offset * math.cos(yaw), status.pose.y + offset * math.sin(yaw)
+
+
+@dataclass(frozen=True)
+class EgoLaneState:
+    """Where an ego sits on its lane (EgoVehicleStatus's lane fields), m."""
+
+    lane_id: str
+    s: float
+    lateral_offset: float
+    """From the lane centreline, left positive."""
+    distance_left: float
+    """From the vehicle's reference point to the lane's left boundary."""
+    distance_right: float
+    cross_track_error: float
+    """From the lane centreline, right positive (= -lateral_offset)."""
+
+
+class World:
+    """Everything that moves, on one map; step(dt) advances it."""
+
+    def __init__(
+        self,
+        lane_map: LaneMap,
+        scenario: Scenario | None = None,
+        *,
+        physics_step_s: float = DEFAULT_PHYSICS_STEP_S,
+        object_list_size: int = DEFAULT_OBJECT_LIST_SIZE,
+    ) -> None:
+        self.map = lane_map
+        self.physics_step_s = physics_step_s
+        self.object_list_size = object_list_size
+        self.sim_time = 0.0
+        self.paused = False
+        self.signals = TrafficSignals(lane_map)
+        self._graph = LaneGraph(lane_map, self.signals.light_ids)
+        self._crossed_lights = crossed_lights(lane_map, self._light_positions())
+        self.npcs = NpcFleet(self._graph, np.random.default_rng(0))
+        self.pedestrians = PedestrianCrowd()
+        self.obstacles = StaticObstacles()
+        self._obstacle_occupants = LaneOccupants.empty()
+        self._next_id = 1
+        self.egos: list[Ego] = []
+        self.add_ego(DEFAULT_EGO_MODEL, self._first_lane_pose())
+        self._contacts = ContactTracker()
+        self.ego_collisions: dict[int, EgoCollision] = {}
+        """Most recent collision of each ego, by the ego's unique id."""
+        self.vehicle_collisions: list[VehicleCollision] = []
+        """Every NPC-NPC collision since the objects were last deleted, oldest first."""
+        self.network_settings_request: dict | None = None
+        """The network settings of the last ScenarioLoad that asked for them."""
+        self._footprints = self._current_footprints()
+        if scenario is not None:
+            self.load_scenario(scenario)
+
+    def _light_positions(self) -> dict[str, int]:
+        return {light_id: k for k, light_id in enumerate(self.signals.light_ids)}
+
+    def _first_lane_pose(self) -> Pose:
+        x, y, z, heading = self.map.pose_at(self.map.lane_ids[0], 0.0)
+        return Pose(x=x, y=y, z=z, yaw=heading)
+
+    def _allocate_ids(self) -> Iterator[int]:
+        return itertools.count(self._next_id)
+
+    # -- egos ------------------------------------------------------------------------
+
+    def add_ego(self, model_name: str, pose: Pose) -> Ego:
+        """A further ego vehicle (the first one is the main ego)."""
+        ego = Ego(self._next_id, Vehicle(vehicle_model(model_name), pose))
+        self._next_id += 1
+        self.egos.append(ego)
+        return ego
+
+    def ego_status(self, index: int = 0) -> VehicleStatus:
+        return self.egos[index].vehicle.status()
+
+    def ego_lane_state(self, index: int = 0) -> EgoLaneState:
+        pose = self.ego_status(index).pose
+        projection = self.map.project(pose.x, pose.y, pose.yaw)
+        return EgoLaneState(
+            lane_id=projection.lane_id,
+            s=projection.s,
+            lateral_offset=projection.lateral,
+            distance_left=projection.distance_left,
+            distance_right=projection.distance_right,
+            cross_track_error=-projection.lateral,
+        )
+
+    def ego_traffic_light(self, index: int = 0) -> LightState | None:
+        """GetTrafficLightStatus: the light governing the lane ahead of the ego, else the
+        nearest light; None on a map without lights."""
+        pose = self.ego_status(index).pose
+        lane = self.ego_lane_state(index)
+        light_id = governing_light_id(self.map, lane.lane_id, lane.s, pose.x, pose.y)
+        return None if light_id is None else self.signals.light(light_id)
+
+    def ego_collision(self, index: int = 0) -> EgoCollision | None:
+        """CollisionData: the most recent collision of this ego, None if it never had one."""
+        return self.ego_collisions.get(self.egos[index].unique_id)
+
+    # -- objects -----------------------------------------------------------------------
+
+    def _ego_table(self) -> ObjectTable:
+        rows = []
+        for ego in self.egos:
+            status = ego.vehicle.status()
+            yaw = status.pose.yaw
+            c, s = math.cos(yaw), math.sin(yaw)
+            vx, vy, _ = status.velocity
+            ax, ay, _ = status.acceleration
+            x, y = ego.box_centre(status)
+            model = ego.vehicle.model
+            rows.append(
+                (
+                    ego.unique_id,
+                    model.name,
+                    (x, y, status.pose.z),
+                    yaw,
+                    (c * vx - s * vy, s * vx + c * vy, 0.0),
+                    (c * ax - s * ay, s * ax + c * ay, 0.0),
+                    (model.length, model.width, model.height),
+                )
+            )
+        n = len(rows)
+        return ObjectTable(
+            unique_ids=np.array([r[0] for r in rows], dtype=np.int64),
+            object_types=np.full(n, int(ObjectType.EGO), np.int64),
+            names=tuple(r[1] for r in rows),
+            positions=np.array([r[2] for r in rows], dtype=np.float64).reshape(-1, 3),
+            headings=np.array([r[3] for r in rows], dtype=np.float64),
+            velocities=np.array([r[4] for r in rows], dtype=np.float64).reshape(-1, 3),
+            accelerations=np.array([r[5] for r in rows], dtype=np.float64).reshape(-1, 3),
+            sizes=np.array([r[6] for r in rows], dtype=np.float64).reshape(-1, 3),
+        )
+
+    def objects(self) -> ObjectTable:
+        """Every object: egos, then NPCs, pedestrians and obstacles."""
+        return ObjectTable.concatenate(
+            [self._ego_table(), self.npcs.table(), self.pedestrians.table(), self.obstacles.table()]
+        )
+
+    def object_list(self, ego_index: int = 0, size: int | None = None) -> ObjectList:
+        """ObjectStatusList: counts of all spawned objects; the `size` (default
+        object_list_size) objects closest to the ego, split by kind, closest first."""
+        others = ObjectTable.concatenate(
+            [self.npcs.table(), self.pedestrians.table(), self.obstacles.table()]
+        )
+        status = self.ego_status(ego_index)
+        centre = self.egos[ego_index].box_centre(status)
+        return closest_objects(
+            others,
+            centre,
+            self.object_list_size if size is None else size,
+            counts=(len(self.npcs), len(self.pedestrians), len(self.obstacles)),
+        )
+
+    # -- stepping ----------------------------------------------------------------------
+
+    def step(self, dt: float | None = None) -> None:
+        """Advance dt s (default physics_step_s); a paused world does not move."""
+        dt = self.physics_step_s if dt is None else dt
+        if not dt > 0.0:
+            raise ValueError(f"step needs a positive dt, got {dt}")
+        if self.paused:
+            return
+        self.signals.step(dt)
+        for ego in self.egos:
+            ego.vehicle.step(dt)
+        lights = LightsView.of(self.signals.aspects(), self.signals.light_types)
+        others = LaneOccupants.concatenate(
+            [self._ego_occupants(), self._pedestrian_occupants(), self._obstacle_occupants]
+        )
+        self.npcs.step(dt, lights, others)
+        stops_traffic = (lights.aspects == RED) | (lights.aspects == OFF) | lights.flashing
+        self.pedestrians.step(dt, walk_signals(self._crossed_lights, stops_traffic))
+        self.sim_time += dt
+        self._collide()
+
+    def _ego_occupants(self) -> LaneOccupants:
+        statuses = [ego.vehicle.status() for ego in self.egos]
+        centres = np.array([ego.box_centre(s) for ego, s in zip(self.egos, statuses, strict=True)])
+        yaws = np.array([s.pose.yaw for s in statuses])
+        projection = self.map.project_many(centres, yaws)
+        widths = np.array([ego.vehicle.model.width for ego in self.egos])
+        on_lane = np.abs(projection.lateral) <= (projection.width + widths) / 2.0
+        lengths = np.array([ego.vehicle.model.length for ego in self.egos])
+        along = np.cos(yaws - projection.heading) * np.array([s.velocity[0] for s in statuses])
+        return LaneOccupants(
+            projection.lane_index[on_lane],
+            projection.s[on_lane],
+            lengths[on_lane] / 2.0,
+            along[on_lane],
+        )
+
+    def _pedestrian_occupants(self) -> LaneOccupants:
+        if len(self.pedestrians) == 0:
+            return LaneOccupants.empty()
+        projection = self.map.project_many(self.pedestrians.position)
+        near = np.abs(projection.lateral) <= projection.width / 2.0 + PEDESTRIAN_LANE_MARGIN_M
+        count = int(np.count_nonzero(near))
+        return LaneOccupants(
+            projection.lane_index[near],
+            projection.s[near],
+            np.full(count, PEDESTRIAN_HALF_DEPTH_M),
+            np.zeros(count),
+        )
+
+    def _place_obstacles_on_lanes(self) -> None:
+        table = self.obstacles.table()
+        if len(table) == 0:
+            self._obstacle_occupants = LaneOccupants.empty()
+            return
+        projection = self.map.project_many(table.positions[:, :2])
+        reach = np.hypot(table.sizes[:, 0], table.sizes[:, 1]) / 2.0
+        on_lane = np.abs(projection.lateral) <= projection.width / 2.0 + reach
+        self._obstacle_occupants = LaneOccupants(
+            projection.lane_index[on_lane],
+            projection.s[on_lane],
+            reach[on_lane],
+            np.zeros(int(np.count_nonzero(on_lane))),
+        )
+
+    def _current_footprints(self, table: ObjectTable | None = None) -> Footprints:
+        table = self.objects() if table is None else table
+        return Footprints(
+            table.positions[:, :2].copy(),
+            table.headings.copy(),
+            table.sizes[:, 0].copy(),
+            table.sizes[:, 1].copy(),
+        )
+
+    def _collide(self) -> None:
+        """Record contacts that began this step and stop the vehicles involved.
+
+        Ego against anything: a CollisionData record, the ego's speed set to zero, a
+        struck NPC or pedestrian halted for good. NPC against NPC: a VehicleCollision
+        record and both halted. Other contacts are not physical events here.
+        """
+        table = self.objects()
+        now = self._current_footprints(table)
+        before = self._footprints if len(self._footprints.headings) == len(table) else now
+        self._footprints = now
+        pairs = touching_pairs(before, now)
+        types = table.object_types
+        kinds = types[pairs] if len(pairs) else np.empty((0, 2), np.int64)
+        ego_pair = np.any(kinds == ObjectType.EGO, axis=1)
+        npc_pair = np.all(kinds == ObjectType.NPC_VEHICLE, axis=1)
+        relevant = pairs[ego_pair | npc_pair]
+        ids = table.unique_ids
+        fresh = self._contacts.begin([(int(ids[i]), int(ids[j])) for i, j in relevant])
+        if not fresh:
+            return
+        slot = {int(uid): k for k, uid in enumerate(ids)}
+        npc_slot = {int(uid): k for k, uid in enumerate(self.npcs.unique_ids)}
+        walker_slot = {int(uid): k for k, uid in enumerate(self.pedestrians.unique_ids)}
+        egos = {ego.unique_id: ego for ego in self.egos}
+        for a, b in fresh:
+            records = (table.record(slot[a]), table.record(slot[b]))
+            if not any(r.object_type == ObjectType.EGO for r in records):
+                self.vehicle_collisions.append(VehicleCollision(self.sim_time, records))
+            for me, other in (records, records[::-1]):
+                if me.object_type == ObjectType.EGO:
+                    self.ego_collisions[me.unique_id] = EgoCollision(
+                        self.sim_time, me.unique_id, other
+                    )
+                    self._halt_ego(egos[me.unique_id])
+                elif me.object_type == ObjectType.NPC_VEHICLE:
+                    self.npcs.stop([npc_slot[me.unique_id]])
+                elif me.object_type == ObjectType.PEDESTRIAN:
+                    self.pedestrians.stop([walker_slot[me.unique_id]])
+
+    @staticmethod
+    def _halt_ego(ego: Ego) -> None:
+        status = ego.vehicle.status()
+        ego.vehicle.teleport(status.pose, 0.0, status.front_steer, status.rear_steer)
+
+    # -- scenarios ---------------------------------------------------------------------
+
+    def load_scenario(
+        self, scenario: Scenario, options: ScenarioLoadOptions | None = None
+    ) -> ScenarioLoadReport:
+        """ScenarioLoad (topic and service): apply `scenario` as its flags say.
+
+        Everything is checked before anything changes: a ScenarioError (naming file, line
+        and field) leaves the world as it was. Signals always take the scenario's
+        programs (dropping overrides); the NPCs' random generator is reseeded.
+        """
+        options = options or ScenarioLoadOptions()
+        check_map(scenario, self.map)
+        ids = self._allocate_ids()
+        signals = self._signals_for(scenario)
+        ego = ego_placement(scenario, self.map) if options.load_ego_vehicle_data else None
+        npcs = npc_spawns(scenario, self.map, ids) if options.load_surrounding_vehicle_data else []
+        walkers = pedestrian_spawns(scenario, self.map, ids) if options.load_pedestrian_data else []
+        things = obstacle_spawns(scenario, ids) if options.load_object_data else []
+
+        self._next_id = next(ids)
+        self.signals = signals
+        if options.delete_all:
+            self.npcs.clear()
+            self.pedestrians.clear()
+            self.obstacles.clear()
+            self.vehicle_collisions.clear()
+        self.npcs.rng = np.random.default_rng(scenario.seed)
+        if ego is not None:
+            model, pose, speed = ego
+            main = self.egos[0]
+            if main.vehicle.model != model:
+                main.vehicle = Vehicle(model, pose)
+            main.vehicle.teleport(pose, speed)
+        self.npcs.spawn(npcs)
+        self.pedestrians.spawn(walkers)
+        self.obstacles.spawn(things)
+        self._place_obstacles_on_lanes()
+        self._contacts.clear()
+        self._footprints = self._current_footprints()
+        self.paused = options.set_pause
+        network = scenario.network if options.load_network_connection_data else None
+        if options.load_network_connection_data:
+            self.network_settings_request = network
+        return ScenarioLoadReport(
+            ego_placed=ego is not None,
+            npcs_spawned=len(npcs),
+            pedestrians_spawned=len(walkers),
+            obstacles_spawned=len(things),
+            network_settings=network,
+            paused=self.paused,
+        )
+
+    def _signals_for(self, scenario: Scenario) -> TrafficSignals:
+        spec = scenario.signals
+        for intersection_id, path in spec.paths.items():
+            if intersection_id not in self.map.intersections:
+                raise scenario.error((*path, "id"), f"no intersection {intersection_id} in the map")
+        try:
+            return TrafficSignals(
+                self.map, spec.intersections, IntersectionProgram(timing=spec.default)
+            )
+        except UnknownPhaseError as error:
+            path = spec.paths[error.intersection_id]
+            raise scenario.error((*path, "initial_phase"), str(error)) from None
+
+
+__all__ = ["DEFAULT_PHYSICS_STEP_S", "Ego", "EgoLaneState", "ObjectState", "World"]
