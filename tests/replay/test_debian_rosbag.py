@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import json
 import math
+import os
+import socket
 import subprocess
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -88,6 +91,69 @@ def test_rosbag_reads_a_repaired_bag(tmp_path: Path) -> None:
     assert info["indexed"] is True
     assert info["messages"] == stats["flushed"]
     assert [(t["topic"], t["type"]) for t in info["topics"]] == [("/Ego_topic", EGO.name)]
+
+
+@pytest.fixture
+def ros_master(tmp_path: Path) -> Iterator[dict[str, str]]:
+    """A private rosmaster; the environment that points ROS tools at it."""
+    require_ros()
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    env = {
+        **os.environ,
+        "ROS_MASTER_URI": f"http://127.0.0.1:{port}/",
+        "ROS_HOSTNAME": "127.0.0.1",
+        "ROS_HOME": str(tmp_path / "ros_home"),
+    }
+    master = subprocess.Popen(
+        ["/usr/bin/rosmaster", "--core", "-p", str(port)],
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    try:
+        yield env
+    finally:
+        master.terminate()
+        master.wait(timeout=30)
+
+
+def test_rosbag_play_publishes_every_message(
+    recorded_drive: Path, ros_master: dict[str, str]
+) -> None:
+    """`rosbag play` republishes the bag; a rospy node receives every message with its type."""
+    counts = expected_counts()
+    counter = subprocess.Popen(
+        [ROS_PYTHON, str(PEERS / "topic_counter.py"), *(f"{t}={n}" for t, n in counts.items())],
+        env=ros_master,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        assert counter.stdout is not None
+        lines = iter(counter.stdout)  # rospy also prints while it waits for the master
+        assert "subscribed" in (line.strip() for line in lines)
+        subprocess.run(
+            [
+                ROSBAG,
+                "play",
+                "--wait-for-subscribers",
+                "--rate=10",
+                "--queue=10000",
+                str(recorded_drive),
+            ],
+            env=ros_master,
+            capture_output=True,
+            check=True,
+            timeout=120,
+        )
+        received = json.loads(next(line for line in lines if line.startswith("{")))
+    finally:
+        counter.kill()
+        counter.wait()
+    for topic, kind in (("/Ego_topic", EGO), ("/Object_topic", OBJECTS), ("/ctrl_cmd", CONTROL)):
+        assert received[topic] == {"count": counts[topic], "type": kind.name, "md5sum": kind.md5sum}
 
 
 def vector(x: float, y: float, z: float = 0.0) -> dict[str, float]:
