@@ -225,6 +225,7 @@ def test_loaded_but_failed(session: ReplaySession) -> None:
         Handle(0, START, start_time=1_000),
         Handle(7),  # no such process status
         Handle(0, 0x0020),  # no such option bit
+        Handle(0, -0x8000),  # int16 with its top bit set
     ],
 )
 def test_invalid_command_without_bag_fails(session: ReplaySession, command: Handle) -> None:
@@ -248,6 +249,11 @@ def test_invalid_settings_change_nothing(playing: ReplaySession, command: Handle
     before = (playing.playback_time, playing.targets, playing.speed)
     assert playing.handle(command, received_ns=2) is CommandResult.COMMAND_FAILED
     assert (playing.playback_time, playing.targets, playing.speed) == before
+
+
+def test_time_only_moves_forward(playing: ReplaySession) -> None:
+    with pytest.raises(ValueError):
+        playing.advance(-0.1)
 
 
 def test_accepts_a_deserialised_message(session: ReplaySession) -> None:
