@@ -172,7 +172,7 @@ class ObjectTrack:
         if not len(self.times) or t < self.times[0]:
             return ((), (), ())
         i, j, alpha = _bracket(self.times, t)
-        start, stop = self.offsets[i], self.offsets[i + 1]
+        start, stop = int(self.offsets[i]), int(self.offsets[i + 1])
         rows = self.columns[start:stop].copy()
         if alpha > 0 and self.unique_keys[i] and self.unique_keys[j]:
             following = slice(self.offsets[j], self.offsets[j + 1])
