@@ -120,6 +120,8 @@ class World:
         self._contacts = ContactTracker()
         self.ego_collisions: dict[int, EgoCollision] = {}
         """Most recent collision of each ego, by the ego's unique id."""
+        self.ego_collision_log: list[EgoCollision] = []
+        """Every ego collision since the objects were last deleted, oldest first."""
         self.vehicle_collisions: list[VehicleCollision] = []
         """Every NPC-NPC collision since the objects were last deleted, oldest first."""
         self.network_settings_request: dict | None = None
@@ -336,9 +338,9 @@ class World:
                 self.vehicle_collisions.append(VehicleCollision(self.sim_time, records))
             for me, other in (records, records[::-1]):
                 if me.object_type == ObjectType.EGO:
-                    self.ego_collisions[me.unique_id] = EgoCollision(
-                        self.sim_time, me.unique_id, other
-                    )
+                    record = EgoCollision(self.sim_time, me.unique_id, other)
+                    self.ego_collisions[me.unique_id] = record
+                    self.ego_collision_log.append(record)
                     self._halt_ego(egos[me.unique_id])
                 elif me.object_type == ObjectType.NPC_VEHICLE:
                     self.npcs.stop([npc_slot[me.unique_id]])
@@ -377,6 +379,7 @@ class World:
             self.pedestrians.clear()
             self.obstacles.clear()
             self.vehicle_collisions.clear()
+            self.ego_collision_log.clear()
         self.npcs.rng = np.random.default_rng(scenario.seed)
         if ego is not None:
             model, pose, speed = ego

@@ -75,8 +75,12 @@ def leaders_ahead(
         found = first < m
         found[found] = sorted_lane[first[found]] == target[pending][found]
         rows = np.flatnonzero(pending)[found]
-        distance[rows] = offset[rows] + sorted_s[first[found]]
-        leader[rows] = order[first[found]]
+        candidate = order[first[found]]
+        # On a ring shorter than the look-ahead a follower would meet itself.
+        other = candidate != follower_slots[rows]
+        rows, candidate = rows[other], candidate[other]
+        distance[rows] = offset[rows] + occupants.s[candidate]
+        leader[rows] = candidate
         safe_target = np.where(target >= 0, target, 0)
         offset = offset + np.where(target >= 0, graph.length[safe_target], np.inf)
     return distance, leader
