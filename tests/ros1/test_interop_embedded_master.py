@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import logging
 import struct
 import subprocess
 import threading
@@ -189,3 +190,19 @@ def test_rosbag_record_of_egosim_topic(embedded_master, spawn_ros, make_node, tm
         assert connection.digest == EGO.md5sum
         ids = [EGO.deserialize(raw).unique_id for _c, _t, raw in reader.messages()]
     assert ids == list(range(sent))
+
+
+def test_python_logging_reaches_rosout(embedded_master, spawn_ros, make_node):
+    node = make_node("egosim", master_uri=embedded_master.uri, rosout_logger="egosim.rosout_test")
+    rosout = node.publisher("/rosout")
+    assert rosout is not None
+    listener = spawn_ros(
+        ["python", peer("listener.py"), "/rosout", "rosgraph_msgs/Log"], embedded_master.uri
+    )
+    wait_until(lambda: rosout.num_subscribers == 1)
+    logging.getLogger("egosim.rosout_test").warning("tyre pressure low")
+    line = next_json(listener, "n")
+    assert line["type"] == "rosgraph_msgs/Log"
+    log = line["msg"]
+    assert (log["name"], log["msg"], log["level"]) == ("/egosim", "tyre pressure low", 4)
+    assert log["function"] == "test_python_logging_reaches_rosout"

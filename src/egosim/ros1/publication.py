@@ -143,7 +143,7 @@ class Publisher:
         self._negotiate = negotiate
         self._on_close = on_close
         self._lock = threading.Lock()
-        # Replaced, never mutated, so publish() iterates it without taking the lock.
+        # Replaced, never mutated, so publish() enqueues to a snapshot outside the lock.
         self._outboxes: tuple[_Outbox, ...] = ()
         self._latched: bytes | Variants | None = None
         self._closed = False
@@ -159,28 +159,29 @@ class Publisher:
 
     def publish(self, data: bytes) -> None:
         """Queue one serialized message for every subscriber (same bytes for all)."""
-        if self._closed:
-            raise NodeShutdownError(f"publisher of {self.topic} is closed")
-        if self.latch:
-            self._latched = data
-        self.messages_published += 1
-        for outbox in self._outboxes:
+        for outbox in self._begin_publish(data):
             outbox.put(data)
 
     def publish_variants(self, variants: Variants) -> None:
         """Queue one message serialized per md5sum; each subscriber gets the variant of the type
         negotiated for its connection. A callable is invoked at most once per md5sum."""
-        if self._closed:
-            raise NodeShutdownError(f"publisher of {self.topic} is closed")
-        if self.latch:
-            self._latched = variants
-        self.messages_published += 1
         produced: dict[str, bytes] = {}
-        for outbox in self._outboxes:
+        for outbox in self._begin_publish(variants):
             data = produced.get(outbox.md5sum)
             if data is None:
                 data = produced[outbox.md5sum] = _variant(variants, outbox.md5sum)
             outbox.put(data)
+
+    def _begin_publish(self, message: bytes | Variants) -> tuple[_Outbox, ...]:
+        """Count and latch ``message``; the connections it goes to. A connection accepted
+        after this point gets it as its latched message instead, so none misses it."""
+        with self._lock:
+            if self._closed:
+                raise NodeShutdownError(f"publisher of {self.topic} is closed")
+            if self.latch:
+                self._latched = message
+            self.messages_published += 1
+            return self._outboxes
 
     def accept(
         self, sock: socket.socket, header: Mapping[str, str], peer: str, connection_id: int
@@ -218,10 +219,9 @@ class Publisher:
             if self._closed:
                 outbox.close()
                 return
+            if self._latched is not None:
+                outbox.put(_variant(self._latched, served.md5sum))
             self._outboxes = (*self._outboxes, outbox)
-            latched = self._latched
-        if latched is not None:
-            outbox.put(_variant(latched, served.md5sum))
 
     def _choose_type(self, header: Mapping[str, str]) -> MessageTypeInfo:
         if "md5sum" not in header or "callerid" not in header:
