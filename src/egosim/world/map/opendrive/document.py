@@ -1,0 +1,392 @@
+"""The parts of an OpenDRIVE document the loader uses, read from its XML element tree."""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+
+from egosim.world.map.errors import MapRecordError
+from egosim.world.map.opendrive.geometry import (
+    Arc,
+    Geometry,
+    Line,
+    ParamPoly3,
+    Pose2,
+    Spiral,
+)
+from egosim.world.map.opendrive.polynomials import Cubic
+
+SOURCE = "OpenDRIVE"
+"""Source named by errors; the file loader replaces it with the file's path."""
+
+_SPEED_UNITS = {"m/s": 1.0, "km/h": 1.0 / 3.6, "mph": 0.44704}
+
+
+@dataclass(frozen=True)
+class LinkTarget:
+    element_type: str
+    """"road" or "junction"."""
+    element_id: str
+    contact_point: str | None
+    """"start" or "end" of the target road."""
+
+
+@dataclass(frozen=True)
+class LaneRecord:
+    id: int
+    type: str
+    widths: tuple[Cubic, ...]
+    predecessor: int | None
+    successor: int | None
+    speed: float | None
+    """m/s, from the lane's first <speed>."""
+    has_border: bool
+
+
+@dataclass(frozen=True)
+class LaneSection:
+    s: float
+    lanes: tuple[LaneRecord, ...]
+    """Left and right lanes (not the centre lane), in file order."""
+
+
+@dataclass(frozen=True)
+class SignalRecord:
+    id: str
+    s: float
+    t: float
+    z_offset: float
+    orientation: str
+    """"+" (valid for traffic along +s), "-" or "none"."""
+    dynamic: bool
+    type: str
+    subtype: str
+    valid_lanes: tuple[tuple[int, int], ...]
+    """(fromLane, toLane) ranges of <validity>; empty: every lane of its direction."""
+    is_reference: bool
+    """A <signalReference> to a signal placed on another road."""
+
+
+@dataclass(frozen=True)
+class Road:
+    id: str
+    length: float
+    junction: str
+    rule: str
+    """"RHT" or "LHT"."""
+    predecessor: LinkTarget | None
+    successor: LinkTarget | None
+    geometries: tuple[tuple[float, Pose2, Geometry], ...]
+    """(s, start pose, geometry) in plan-view order."""
+    lane_offsets: tuple[Cubic, ...]
+    elevation: tuple[Cubic, ...]
+    sections: tuple[LaneSection, ...]
+    signals: tuple[SignalRecord, ...]
+    type_speeds: tuple[tuple[float, float], ...]
+    """(s, m/s) of <type><speed>."""
+
+    @property
+    def in_junction(self) -> bool:
+        return self.junction not in ("", "-1")
+
+
+@dataclass(frozen=True)
+class Connection:
+    id: str
+    incoming_road: str
+    connecting_road: str
+    contact_point: str
+    lane_links: tuple[tuple[int, int], ...]
+
+
+@dataclass(frozen=True)
+class Junction:
+    id: str
+    connections: tuple[Connection, ...]
+    controllers: tuple[str, ...]
+    """Controller ids in the order of their `sequence` attribute."""
+
+
+@dataclass(frozen=True)
+class Controller:
+    id: str
+    signal_ids: tuple[str, ...]
+
+
+@dataclass
+class Document:
+    geo_reference: str | None
+    offset: tuple[float, float, float, float]
+    """x, y, z, hdg of the header's <offset>."""
+    roads: dict[str, Road] = field(default_factory=dict)
+    junctions: dict[str, Junction] = field(default_factory=dict)
+    controllers: dict[str, Controller] = field(default_factory=dict)
+    unread: dict[str, int] = field(default_factory=dict)
+    """Element tags the loader does not read -> how many."""
+
+
+class _Element:
+    """An XML element with attribute readers that fail naming the record."""
+
+    def __init__(self, element: ET.Element, label: str) -> None:
+        self.element = element
+        self.label = label
+
+    def fail(self, reason: str) -> MapRecordError:
+        return MapRecordError(SOURCE, self.label, reason)
+
+    def text(self, name: str, default: str | None = None) -> str:
+        value = self.element.get(name, default)
+        if value is None:
+            raise self.fail(f"has no attribute {name!r}")
+        return value.strip()
+
+    def number(self, name: str, default: float | None = None) -> float:
+        raw = self.element.get(name)
+        if raw is None:
+            if default is None:
+                raise self.fail(f"has no attribute {name!r}")
+            return default
+        try:
+            value = float(raw)
+        except ValueError:
+            raise self.fail(f"attribute {name}={raw!r} is not a number") from None
+        if not math.isfinite(value):
+            raise self.fail(f"attribute {name}={raw!r} is not finite")
+        return value
+
+    def integer(self, name: str) -> int:
+        raw = self.text(name)
+        try:
+            value = float(raw)
+            if not value.is_integer():
+                raise ValueError(raw)
+            return int(value)
+        except ValueError:
+            raise self.fail(f"attribute {name}={raw!r} is not an integer") from None
+
+    def child(self, tag: str, label: str) -> _Element | None:
+        found = self.element.find(tag)
+        return None if found is None else _Element(found, f"{self.label} {label}")
+
+    def children(self, path: str, label: str) -> list[_Element]:
+        return [
+            _Element(e, f"{self.label} {label} #{k}")
+            for k, e in enumerate(self.element.findall(path))
+        ]
+
+    def cubic(self, start_name: str = "s", start: float = 0.0) -> Cubic:
+        return Cubic(
+            start + self.number(start_name),
+            self.number("a"),
+            self.number("b"),
+            self.number("c"),
+            self.number("d"),
+        )
+
+
+def read_document(xml_text: str) -> Document:
+    try:
+        root = ET.fromstring(xml_text)
+    except ET.ParseError as error:
+        raise MapRecordError(SOURCE, "XML", str(error)) from None
+    if root.tag != "OpenDRIVE":
+        raise MapRecordError(SOURCE, "XML", f"root element is <{root.tag}>, not <OpenDRIVE>")
+    top = _Element(root, "OpenDRIVE")
+    header = top.child("header", "header")
+    document = Document(geo_reference=None, offset=(0.0, 0.0, 0.0, 0.0))
+    if header is not None:
+        geo = header.element.find("geoReference")
+        if geo is not None and (geo.text or "").strip():
+            document.geo_reference = (geo.text or "").strip()
+        offset = header.child("offset", "offset")
+        if offset is not None:
+            document.offset = tuple(offset.number(n, 0.0) for n in ("x", "y", "z", "hdg"))  # type: ignore[assignment]
+    for road in top.children("road", "road"):
+        parsed = _road(road)
+        if parsed.id in document.roads:
+            raise road.fail(f"repeats road id {parsed.id}")
+        document.roads[parsed.id] = parsed
+    for junction in top.children("junction", "junction"):
+        parsed_junction = _junction(junction)
+        document.junctions[parsed_junction.id] = parsed_junction
+    for controller in top.children("controller", "controller"):
+        controller.label = f"controller id={controller.text('id')!r}"
+        signal_ids = tuple(c.text("signalId") for c in controller.children("control", "control"))
+        document.controllers[controller.text("id")] = Controller(controller.text("id"), signal_ids)
+    for element in root:
+        if element.tag not in ("header", "road", "junction", "controller"):
+            document.unread[element.tag] = document.unread.get(element.tag, 0) + 1
+    return document
+
+
+def _road(road: _Element) -> Road:
+    road.label = f"road id={road.text('id')!r}"
+    link = road.child("link", "link")
+    predecessor = successor = None
+    if link is not None:
+        predecessor = _link_target(link.child("predecessor", "predecessor"))
+        successor = _link_target(link.child("successor", "successor"))
+    geometries = tuple(_geometry(g) for g in road.children("planView/geometry", "geometry"))
+    if not geometries:
+        raise road.fail("has no planView geometry")
+    lanes = road.child("lanes", "lanes")
+    if lanes is None:
+        raise road.fail("has no lanes")
+    sections = tuple(_section(s) for s in lanes.children("laneSection", "laneSection"))
+    if not sections:
+        raise road.fail("has no laneSection")
+    signals = tuple(_signal(s, False) for s in road.children("signals/signal", "signal"))
+    references = tuple(
+        _signal(s, True) for s in road.children("signals/signalReference", "signalReference")
+    )
+    return Road(
+        id=road.text("id"),
+        length=road.number("length"),
+        junction=road.text("junction", "-1"),
+        rule=road.text("rule", "RHT").upper(),
+        predecessor=predecessor,
+        successor=successor,
+        geometries=geometries,
+        lane_offsets=tuple(
+            sorted((o.cubic() for o in lanes.children("laneOffset", "laneOffset")), key=_start)
+        ),
+        elevation=tuple(
+            sorted(
+                (e.cubic() for e in road.children("elevationProfile/elevation", "elevation")),
+                key=_start,
+            )
+        ),
+        sections=tuple(sorted(sections, key=lambda section: section.s)),
+        signals=signals + references,
+        type_speeds=tuple(
+            (t.number("s"), _speed(speed))
+            for t in road.children("type", "type")
+            if (speed := t.child("speed", "speed")) is not None
+        ),
+    )
+
+
+def _start(cubic: Cubic) -> float:
+    return cubic.start
+
+
+def _link_target(element: _Element | None) -> LinkTarget | None:
+    if element is None:
+        return None
+    contact = element.element.get("contactPoint")
+    return LinkTarget(element.text("elementType", "road"), element.text("elementId"), contact)
+
+
+def _geometry(element: _Element) -> tuple[float, Pose2, Geometry]:
+    s, length = element.number("s"), element.number("length")
+    if length <= 0.0:
+        raise element.fail(f"length must be positive, got {length}")
+    start = Pose2(element.number("x"), element.number("y"), element.number("hdg"))
+    shape = next(iter(element.element), None)
+    if shape is None:
+        raise element.fail("has no line, arc, spiral, poly3 or paramPoly3")
+    shape_element = _Element(shape, f"{element.label} {shape.tag}")
+    geometry: Geometry
+    if shape.tag == "line":
+        geometry = Line(length)
+    elif shape.tag == "arc":
+        geometry = Arc(length, shape_element.number("curvature"))
+    elif shape.tag == "spiral":
+        geometry = Spiral(
+            length, shape_element.number("curvStart"), shape_element.number("curvEnd")
+        )
+    elif shape.tag == "poly3":
+        v = tuple(shape_element.number(n) for n in "abcd")
+        geometry = ParamPoly3(length, (0.0, 1.0, 0.0, 0.0), v, length, u_is_p=True)  # type: ignore[arg-type]
+    elif shape.tag == "paramPoly3":
+        u = tuple(shape_element.number(n) for n in ("aU", "bU", "cU", "dU"))
+        v = tuple(shape_element.number(n) for n in ("aV", "bV", "cV", "dV"))
+        normalized = shape_element.text("pRange", "normalized") == "normalized"
+        geometry = ParamPoly3(length, u, v, 1.0 if normalized else length)  # type: ignore[arg-type]
+    else:
+        raise shape_element.fail("is not a line, arc, spiral, poly3 or paramPoly3")
+    return s, start, geometry
+
+
+def _section(section: _Element) -> LaneSection:
+    s = section.number("s")
+    section.label = f"{section.label} (s={s:g})"
+    records = []
+    for side in ("left", "right"):
+        for lane in section.children(f"{side}/lane", f"{side} lane"):
+            lane.label = f"{section.label} lane id={lane.text('id')!r}"
+            records.append(_lane(lane))
+    return LaneSection(s, tuple(records))
+
+
+def _lane(lane: _Element) -> LaneRecord:
+    link = lane.child("link", "link")
+    predecessor = successor = None
+    if link is not None:
+        if (p := link.child("predecessor", "predecessor")) is not None:
+            predecessor = p.integer("id")
+        if (n := link.child("successor", "successor")) is not None:
+            successor = n.integer("id")
+    speeds = lane.children("speed", "speed")
+    return LaneRecord(
+        id=lane.integer("id"),
+        type=lane.text("type", "none"),
+        widths=tuple(
+            sorted((w.cubic("sOffset") for w in lane.children("width", "width")), key=_start)
+        ),
+        predecessor=predecessor,
+        successor=successor,
+        speed=_speed(speeds[0]) if speeds else None,
+        has_border=lane.element.find("border") is not None,
+    )
+
+
+def _speed(element: _Element) -> float:
+    unit = element.text("unit", "m/s")
+    if unit not in _SPEED_UNITS:
+        raise element.fail(f"unknown speed unit {unit!r}")
+    return element.number("max") * _SPEED_UNITS[unit]
+
+
+def _signal(signal: _Element, is_reference: bool) -> SignalRecord:
+    signal.label = f"{signal.label} id={signal.text('id')!r}"
+    valid = tuple(
+        (v.integer("fromLane"), v.integer("toLane"))
+        for v in signal.children("validity", "validity")
+    )
+    return SignalRecord(
+        id=signal.text("id"),
+        s=signal.number("s"),
+        t=signal.number("t", 0.0),
+        z_offset=signal.number("zOffset", 0.0),
+        orientation=signal.text("orientation", "none"),
+        dynamic=signal.text("dynamic", "no") == "yes",
+        type=signal.text("type", ""),
+        subtype=signal.text("subtype", ""),
+        valid_lanes=valid,
+        is_reference=is_reference,
+    )
+
+
+def _junction(junction: _Element) -> Junction:
+    junction.label = f"junction id={junction.text('id')!r}"
+    connections = []
+    for connection in junction.children("connection", "connection"):
+        connection.label = f"{junction.label} connection id={connection.text('id', '?')!r}"
+        connections.append(
+            Connection(
+                id=connection.text("id", ""),
+                incoming_road=connection.text("incomingRoad"),
+                connecting_road=connection.text("connectingRoad"),
+                contact_point=connection.text("contactPoint", "start"),
+                lane_links=tuple(
+                    (link.integer("from"), link.integer("to"))
+                    for link in connection.children("laneLink", "laneLink")
+                ),
+            )
+        )
+    controls = junction.children("controller", "controller")
+    ordered = sorted(controls, key=lambda c: c.number("sequence", 0.0))
+    return Junction(junction.text("id"), tuple(connections), tuple(c.text("id") for c in ordered))

@@ -1,0 +1,145 @@
+"""The drivable lanes of one OpenDRIVE road: centrelines, widths, travel direction, speed.
+
+Lane borders stack outward from the reference line shifted by the road's laneOffset:
+right lanes (-1, -2, ...) towards -t, left lanes (1, 2, ...) towards +t, each as wide as its
+width polynomial. With right-hand traffic (the road's `rule`, RHT by default) right lanes
+travel along +s and left lanes against it; LHT swaps them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from egosim.world.map.opendrive.document import LaneRecord, Road
+from egosim.world.map.opendrive.polynomials import evaluate as evaluate_cubics
+from egosim.world.map.opendrive.reference_line import reference_poses, sample_stations
+
+FloatArray = npt.NDArray[np.float64]
+
+DRIVABLE_LANE_TYPES = frozenset({"driving", "entry", "exit", "onRamp", "offRamp", "connectingRamp"})
+SAMPLE_STEP_M = 1.0
+DEFAULT_SPEED_LIMIT_MPS = 50.0 / 3.6
+# Lanes that open from or close to nothing keep this width where their polynomial reaches 0.
+MIN_LANE_WIDTH_M = 0.05
+_SAME_POINT_M = 1e-6
+
+
+@dataclass(frozen=True, order=True)
+class LaneKey:
+    road: str
+    section: int
+    lane: int
+
+
+@dataclass(frozen=True)
+class RoadLane:
+    key: LaneKey
+    id: str
+    forward: bool
+    """Travels along +s of its road."""
+    road_s: FloatArray
+    """Road station of each centreline point, in travel order."""
+    centerline: FloatArray
+    widths: FloatArray
+    speed_limit: float
+    in_junction: bool
+
+
+def lane_id(key: LaneKey) -> str:
+    return f"{key.road}_{key.section}_{key.lane}"
+
+
+def section_range(road: Road, section: int) -> tuple[float, float]:
+    end = road.sections[section + 1].s if section + 1 < len(road.sections) else road.length
+    return road.sections[section].s, end
+
+
+def travels_forward(road: Road, lane: int) -> bool:
+    return (lane < 0) == (road.rule != "LHT")
+
+
+def road_lanes(road: Road, notes: list[str]) -> list[RoadLane]:
+    stations = sample_stations(road, SAMPLE_STEP_M)
+    lanes = []
+    for k, section in enumerate(road.sections):
+        start, end = section_range(road, k)
+        s = stations[(stations >= start - 1e-9) & (stations <= end + 1e-9)]
+        if len(s) < 2:
+            notes.append(f"road {road.id}: laneSection s={start:g} is too short to drive")
+            continue
+        poses = reference_poses(road, s)
+        centres, widths = _lateral_layout(road, section.lanes, s - start, s, notes)
+        normal = np.column_stack((-np.sin(poses[:, 3]), np.cos(poses[:, 3])))
+        for record in section.lanes:
+            if record.type not in DRIVABLE_LANE_TYPES or record.id not in centres:
+                continue
+            key = LaneKey(road.id, k, record.id)
+            line = np.column_stack(
+                (poses[:, :2] + centres[record.id][:, None] * normal, poses[:, 2])
+            )
+            lane = _oriented(road, key, record, s, line, widths[record.id], start)
+            if lane is not None:
+                lanes.append(lane)
+    return lanes
+
+
+def _lateral_layout(
+    road: Road,
+    records: tuple[LaneRecord, ...],
+    ds: FloatArray,
+    s: FloatArray,
+    notes: list[str],
+) -> tuple[dict[int, FloatArray], dict[int, FloatArray]]:
+    """Centre offset t and width of each lane at the stations."""
+    offset = evaluate_cubics(road.lane_offsets, s)
+    centres, widths = {}, {}
+    for side in (-1, 1):
+        border = offset.copy()
+        for record in sorted((r for r in records if r.id * side > 0), key=lambda r: abs(r.id)):
+            if record.has_border and not record.widths:
+                notes.append(f"road {road.id}: lane {record.id} border records not read")
+            width = evaluate_cubics(record.widths, ds)
+            centres[record.id] = border + side * width / 2.0
+            widths[record.id] = width
+            border = border + side * width
+    return centres, widths
+
+
+def _oriented(
+    road: Road,
+    key: LaneKey,
+    record: LaneRecord,
+    s: FloatArray,
+    line: FloatArray,
+    width: FloatArray,
+    section_start: float,
+) -> RoadLane | None:
+    if np.max(width) <= 0.0:
+        return None
+    forward = travels_forward(road, record.id)
+    order = slice(None) if forward else slice(None, None, -1)
+    line, s, width = line[order], s[order], width[order]
+    step = np.hypot(*np.diff(line[:, :2], axis=0).T)
+    keep = np.concatenate(([True], step > _SAME_POINT_M))
+    if np.count_nonzero(keep) < 2:
+        return None
+    return RoadLane(
+        key=key,
+        id=lane_id(key),
+        forward=forward,
+        road_s=s[keep],
+        centerline=line[keep],
+        widths=np.maximum(width[keep], MIN_LANE_WIDTH_M),
+        speed_limit=record.speed
+        or _road_type_speed(road, section_start)
+        or DEFAULT_SPEED_LIMIT_MPS,
+        in_junction=road.in_junction,
+    )
+
+
+def _road_type_speed(road: Road, s: float) -> float | None:
+    applying = [speed for start, speed in road.type_speeds if start <= s + 1e-9]
+    return applying[-1] if applying else None

@@ -1,0 +1,124 @@
+"""Lane-to-lane links of an OpenDRIVE network: successors, predecessors and neighbours.
+
+Links are gathered as pairs of touching lane ends, from lane links between sections of a
+road, from lane links across road links (at the contact point of the other road), and from
+junction connections' laneLinks. A pair becomes a successor link when one lane leaves
+through its end and the other enters through its end, whatever the lanes' directions.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+
+from egosim.world.map.opendrive.document import Document, LinkTarget, Road
+from egosim.world.map.opendrive.road_lanes import LaneKey, RoadLane, lane_id
+
+# A lane end: (lane, True for the end at the section's larger s).
+LaneEnd = tuple[LaneKey, bool]
+
+
+def lane_links(
+    document: Document, lanes: dict[LaneKey, RoadLane]
+) -> tuple[dict[str, list[str]], dict[str, list[str]]]:
+    """Successors and predecessors by lane id."""
+    successors: dict[str, list[str]] = defaultdict(list)
+    predecessors: dict[str, list[str]] = defaultdict(list)
+    for a, b in sorted(_touching_ends(document, lanes)):
+        for (out_key, out_far), (in_key, in_far) in ((a, b), (b, a)):
+            leaves = lanes[out_key].forward == out_far
+            enters = lanes[in_key].forward != in_far
+            source, target = lane_id(out_key), lane_id(in_key)
+            if leaves and enters and target not in successors[source]:
+                successors[source].append(target)
+                predecessors[target].append(source)
+    return successors, predecessors
+
+
+def neighbours(lanes: dict[LaneKey, RoadLane]) -> dict[str, tuple[str | None, str | None]]:
+    """(left, right) lane-change neighbours: the adjacent lane of the same direction."""
+    result = {}
+    for key, lane in lanes.items():
+        higher = _adjacent(lanes, key, key.lane + 1)
+        lower = _adjacent(lanes, key, key.lane - 1)
+        # Facing +s, +t (higher lane ids) is on the left.
+        result[lane.id] = (higher, lower) if lane.forward else (lower, higher)
+    return result
+
+
+def _adjacent(lanes: dict[LaneKey, RoadLane], key: LaneKey, other: int) -> str | None:
+    if other == 0 or (other > 0) != (key.lane > 0):
+        return None
+    neighbour = lanes.get(LaneKey(key.road, key.section, other))
+    return None if neighbour is None else neighbour.id
+
+
+def _touching_ends(
+    document: Document, lanes: dict[LaneKey, RoadLane]
+) -> set[tuple[LaneEnd, LaneEnd]]:
+    pairs: set[tuple[LaneEnd, LaneEnd]] = set()
+
+    def touch(a: LaneEnd, b: LaneEnd) -> None:
+        if a[0] in lanes and b[0] in lanes:
+            pairs.add((a, b) if a <= b else (b, a))
+
+    for road in document.roads.values():
+        last = len(road.sections) - 1
+        for k, section in enumerate(road.sections):
+            for record in section.lanes:
+                here = LaneKey(road.id, k, record.id)
+                if record.successor is not None:
+                    if k < last:
+                        touch((here, True), (LaneKey(road.id, k + 1, record.successor), False))
+                    elif (end := _road_end(document, road.successor, record.successor)) is not None:
+                        touch((here, True), end)
+                if record.predecessor is not None:
+                    if k > 0:
+                        touch((here, False), (LaneKey(road.id, k - 1, record.predecessor), True))
+                    elif (
+                        end := _road_end(document, road.predecessor, record.predecessor)
+                    ) is not None:
+                        touch((here, False), end)
+    for junction in document.junctions.values():
+        for connection in junction.connections:
+            incoming = document.roads.get(connection.incoming_road)
+            connecting = document.roads.get(connection.connecting_road)
+            if incoming is None or connecting is None:
+                continue
+            incoming_far = _faces_junction(incoming, junction.id)
+            if incoming_far is None:
+                continue
+            incoming_section = len(incoming.sections) - 1 if incoming_far else 0
+            for from_lane, to_lane in connection.lane_links:
+                touch(
+                    (LaneKey(incoming.id, incoming_section, from_lane), incoming_far),
+                    _contact(connecting, connection.contact_point, to_lane),
+                )
+    return pairs
+
+
+def _road_end(document: Document, target: LinkTarget | None, lane: int) -> LaneEnd | None:
+    """The end of lane `lane` of the road a road link points at (junction links: None)."""
+    if target is None or target.element_type != "road":
+        return None
+    road = document.roads.get(target.element_id)
+    if road is None:
+        return None
+    return _contact(road, target.contact_point or "start", lane)
+
+
+def _contact(road: Road, contact_point: str, lane: int) -> LaneEnd:
+    if contact_point == "end":
+        return LaneKey(road.id, len(road.sections) - 1, lane), True
+    return LaneKey(road.id, 0, lane), False
+
+
+def _faces_junction(road: Road, junction_id: str) -> bool | None:
+    """True if the road's end touches the junction, False for its start, None if neither."""
+    for far, target in ((True, road.successor), (False, road.predecessor)):
+        if (
+            target is not None
+            and target.element_type == "junction"
+            and (target.element_id == junction_id)
+        ):
+            return far
+    return None
