@@ -9,7 +9,9 @@ import pytest
 
 from egosim.ros1 import Master, MasterClient, MasterError, MasterUnreachableError
 from tests.conftest import free_port
-from tests.ros1.helpers import STRING, string_bytes, string_text, wait_until
+from tests.ros1.helpers import PROFILE, STRING, string_bytes, string_text, wait_until
+
+EVENT_SRV = PROFILE.service("morai_msgs/MoraiEventCmdSrv")
 
 
 def test_registration_and_system_state(embedded_master):
@@ -144,3 +146,20 @@ def test_node_starts_an_embedded_master_only_when_none_answers(make_node):
 def test_master_refuses_a_taken_port(embedded_master):
     with pytest.raises(OSError):
         Master(embedded_master.uri).start()
+
+
+def test_shutdown_unregisters_everything_and_tells_the_owner(embedded_master, make_node):
+    node = make_node("sim", master_uri=embedded_master.uri)
+    node.advertise("/out", STRING)
+    node.subscribe("/in", STRING, lambda data, header: None)
+    node.advertise_service("/srv", EVENT_SRV, lambda request, header: b"")
+    node.subscribe_param("/sim", lambda key, value: None)
+    reasons: list[str] = []
+    node.on_shutdown(reasons.append)
+    observer = MasterClient(embedded_master.uri, "/observer")
+    node.shutdown("simulation stopped")
+    assert reasons == ["simulation stopped"]
+    assert node.is_shutdown
+    assert observer.get_system_state() == ([], [], [])
+    with pytest.raises(MasterError):
+        observer.lookup_node("/sim")

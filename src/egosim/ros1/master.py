@@ -22,7 +22,7 @@ from .rpc import XmlRpcServer
 log = logging.getLogger(__name__)
 
 MASTER_CALLER_ID = "/master"
-SUCCESS, FAILURE, ERROR = 1, 0, -1
+SUCCESS, ERROR = 1, -1
 ANY_TYPE = "*"
 
 Reply = list[Any]

@@ -92,20 +92,23 @@ class Node:
         self._stopped = threading.Event()
         self.shutdown_reason = ""
 
+        self._rosout_handler: RosoutHandler | None = None
+        self._rosout_logger = rosout_logger
         self._tcpros = TcprosServer(self.network.bind_host, self._dispatch, self.limits)
         self._slave = XmlRpcServer((self.network.bind_host, 0), name=f"slave api {self.name}")
         self._slave.register_api(SlaveApi(self).functions())
         self._slave.start()
         self.uri = http_uri(self.network.advertise_host, self._slave.port)
-
-        for key, value in args.private_params.items():
-            self.set_param("~" + key, value)
-        self._rosout_handler: RosoutHandler | None = None
-        self._rosout_logger = rosout_logger
-        if rosout_logger is not None:
-            rosout = self.advertise(ROSOUT_TOPIC, log_type(), latch=True)
-            self._rosout_handler = RosoutHandler(rosout, self.name)
-            logging.getLogger(rosout_logger).addHandler(self._rosout_handler)
+        try:
+            for key, value in args.private_params.items():
+                self.set_param("~" + key, value)
+            if rosout_logger is not None:
+                rosout = self.advertise(ROSOUT_TOPIC, log_type(), latch=True)
+                self._rosout_handler = RosoutHandler(rosout, self.name)
+                logging.getLogger(rosout_logger).addHandler(self._rosout_handler)
+        except BaseException:
+            self.shutdown("start-up failed")
+            raise
         log.info("node %s up at %s, master %s", self.name, self.uri, self.master_uri)
 
     # --- master -----------------------------------------------------------------------------

@@ -18,6 +18,13 @@ TCPROS = "TCPROS"
 
 Reply = list[Any]
 
+#: XML-RPC integers are 32-bit; byte counters of a long run saturate here rather than fault.
+_XMLRPC_INT_MAX = 2**31 - 1
+
+
+def _count(value: int) -> int:
+    return min(value, _XMLRPC_INT_MAX)
+
 
 class SlaveApi:
     def __init__(self, node: Node) -> None:
@@ -46,9 +53,15 @@ class SlaveApi:
         publish = [
             [
                 pub.topic,
-                pub.messages_published,
+                _count(pub.messages_published),
                 [
-                    [c.connection_id, c.bytes_sent, c.messages_sent, c.connected, c.dropped]
+                    [
+                        c.connection_id,
+                        _count(c.bytes_sent),
+                        _count(c.messages_sent),
+                        c.connected,
+                        _count(c.dropped),
+                    ]
                     for c in pub.connections
                 ],
             ]
@@ -57,15 +70,18 @@ class SlaveApi:
         subscribe = [
             [
                 sub.topic,
-                [[c.connection_id, c.bytes_received, -1, c.connected] for c in sub.connections],
+                [
+                    [c.connection_id, _count(c.bytes_received), -1, c.connected]
+                    for c in sub.connections
+                ],
             ]
             for sub in node.subscribers
         ]
         services = node.services
         service = [
-            sum(s.requests for s in services),
-            sum(s.bytes_received for s in services),
-            sum(s.bytes_sent for s in services),
+            _count(sum(s.requests for s in services)),
+            _count(sum(s.bytes_received for s in services)),
+            _count(sum(s.bytes_sent for s in services)),
         ]
         return [SUCCESS, "", [publish, subscribe, service]]
 
