@@ -1,0 +1,99 @@
+"""Maps by name or path: the built-in maps, MGeo folders and OpenDRIVE (.xodr) files.
+
+`load_map(name_or_path)` is what `egosim run --map NAME|PATH` calls. A built-in name gives
+that map; a folder is read as MGeo, a `.xodr` file as OpenDRIVE. What a loader reads but
+leaves out is logged (and returned by `read_map`); anything it cannot read raises a
+MapLoadError whose one-line message names the file and the record.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+from dataclasses import dataclass
+from pathlib import Path
+
+from egosim.world.map import BUILTIN_MAP_NAMES, LaneMap, MapRecordError, build_builtin_map
+from egosim.world.map.mgeo import MGEO_FILES, build_mgeo_map
+from egosim.world.map.opendrive import build_opendrive_map
+
+OPENDRIVE_SUFFIX = ".xodr"
+
+log = logging.getLogger(__name__)
+
+
+class MapLoadError(Exception):
+    """A map that cannot be loaded; the message is one line naming the file and record."""
+
+
+@dataclass(frozen=True)
+class LoadedMap:
+    lane_map: LaneMap
+    notes: tuple[str, ...]
+    """What the loader read but left out, one line each."""
+
+
+def load_map(name_or_path: str) -> LaneMap:
+    """The map named (a built-in name) or stored at a path (an MGeo folder, a .xodr file)."""
+    loaded = read_map(name_or_path)
+    for note in loaded.notes:
+        log.warning("map %s: %s", loaded.lane_map.name, note)
+    return loaded.lane_map
+
+
+def read_map(name_or_path: str) -> LoadedMap:
+    """`load_map` that also returns the notes instead of logging them."""
+    if name_or_path in BUILTIN_MAP_NAMES:
+        return LoadedMap(build_builtin_map(name_or_path), ())
+    path = Path(name_or_path)
+    if path.is_dir():
+        return _read_mgeo(path)
+    if path.suffix.lower() == OPENDRIVE_SUFFIX and path.is_file():
+        return _read_opendrive(path)
+    if path.exists():
+        raise MapLoadError(f"{path}: not an MGeo folder or an OpenDRIVE {OPENDRIVE_SUFFIX} file")
+    known = ", ".join(BUILTIN_MAP_NAMES)
+    raise MapLoadError(f"{name_or_path}: no such file or folder, nor a built-in map ({known})")
+
+
+def _read_mgeo(folder: Path) -> LoadedMap:
+    files: dict[str, object] = {}
+    notes: list[str] = []
+    for path in sorted(folder.iterdir()):
+        if path.name in MGEO_FILES:
+            files[path.name] = _read_json(path)
+        elif path.suffix.lower() == ".json":
+            notes.append(f"{path.name} not read")
+    try:
+        lane_map = build_mgeo_map(folder.resolve().name, files, notes)
+    except MapRecordError as error:
+        raise MapLoadError(f"{folder / error.source}: {error.record}: {error.reason}") from None
+    return LoadedMap(lane_map, tuple(notes))
+
+
+def _read_json(path: Path) -> object:
+    try:
+        return json.loads(path.read_bytes().decode("utf-8-sig"))
+    except OSError as error:
+        raise MapLoadError(f"{path}: {error.strerror}") from None
+    except UnicodeDecodeError as error:
+        raise MapLoadError(f"{path}: not UTF-8 text (byte {error.start})") from None
+    except json.JSONDecodeError as error:
+        raise MapLoadError(
+            f"{path}: line {error.lineno} column {error.colno}: {error.msg}"
+        ) from None
+
+
+def _read_opendrive(path: Path) -> LoadedMap:
+    notes: list[str] = []
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except OSError as error:
+        raise MapLoadError(f"{path}: {error.strerror}") from None
+    except UnicodeDecodeError as error:
+        raise MapLoadError(f"{path}: not UTF-8 text (byte {error.start})") from None
+    try:
+        lane_map = build_opendrive_map(path.stem, text, notes)
+    except MapRecordError as error:
+        raise MapLoadError(f"{path}: {error.record}: {error.reason}") from None
+    return LoadedMap(lane_map, tuple(notes))
