@@ -52,8 +52,16 @@ def parse_scenario(document: str | Mapping[str, Any], label: str = "<scenario>")
 def _validate(source: ScenarioSource) -> None:
     validator = jsonschema.Draft202012Validator(scenario_schema())
     error = jsonschema.exceptions.best_match(validator.iter_errors(source.data))
-    if error is not None:
-        raise source.error(tuple(error.absolute_path), error.message)
+    if error is None:
+        return
+    path = tuple(error.absolute_path)
+    if error.validator == "additionalProperties" and isinstance(error.instance, dict):
+        # Point at the first unexpected key rather than at the mapping holding it.
+        allowed = set(error.schema.get("properties", {}))
+        unexpected = [key for key in error.instance if key not in allowed]
+        if unexpected:
+            raise source.error((*path, unexpected[0]), f"unknown field {unexpected[0]!r}")
+    raise source.error(path, error.message)
 
 
 def _build(source: ScenarioSource) -> Scenario:

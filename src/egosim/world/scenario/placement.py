@@ -88,11 +88,14 @@ def world_pose(lane_map: LaneMap, start: Start, path: FieldPath, scenario: Scena
     )
 
 
-def ego_placement(scenario: Scenario, lane_map: LaneMap) -> tuple[VehicleModel, VehiclePose, float]:
-    """Model, pose (of the vehicle's reference point) and speed (m/s) of the scenario's ego."""
+def ego_placement(
+    scenario: Scenario, lane_map: LaneMap
+) -> tuple[VehicleModel, VehiclePose, float] | None:
+    """Model, pose (of the vehicle's reference point) and speed (m/s) of the scenario's
+    ego; None when the scenario has no ego section."""
     ego = scenario.ego
     if ego is None:
-        raise scenario.error(("ego",), "the scenario places no ego vehicle")
+        return None
     model = vehicle_model_at(scenario, ego.model, (*ego.path, "model"))
     pose = world_pose(lane_map, ego.start, (*ego.path, "start"), scenario)
     return model, VehiclePose(x=pose.x, y=pose.y, z=pose.z, yaw=pose.heading), ego.speed

@@ -221,7 +221,8 @@ CROSSWALK_SAMPLE_STEP_M = 0.5
 
 
 def crossed_lights(lane_map: LaneMap, light_index: Mapping[str, int]) -> list[tuple[int, ...]]:
-    """Per crosswalk (map order): the lights governing the lanes it lies across."""
+    """Per crosswalk (map order): the lights of its junction governing the lanes it lies
+    across (the traffic that must be held for it)."""
     result = []
     for crosswalk in lane_map.crosswalks.values():
         start, end = np.array(crosswalk.start), np.array(crosswalk.end)
@@ -233,5 +234,12 @@ def crossed_lights(lane_map: LaneMap, light_index: Mapping[str, int]) -> list[tu
             lane_map.lanes[lane_map.lane_ids[k]].traffic_light_id
             for k in projection.lane_index[inside]
         }
-        result.append(tuple(sorted(light_index[i] for i in lights if i is not None)))
+        # A road's lanes away from this junction carry the far junction's light.
+        own = [
+            i
+            for i in lights
+            if i is not None
+            and lane_map.traffic_lights[i].intersection_id == crosswalk.intersection_id
+        ]
+        result.append(tuple(sorted(light_index[i] for i in own)))
     return result

@@ -1,0 +1,115 @@
+"""Scenario errors name the file, the line and the field; they are never tracebacks."""
+
+import textwrap
+
+import jsonschema
+import pytest
+
+from egosim.world import World
+from egosim.world.map import build_builtin_map
+from egosim.world.scenario import ScenarioError, parse_scenario, scenario_schema
+
+LABEL = "scenarios/bad.yaml"
+
+
+def _error(text: str) -> ScenarioError:
+    with pytest.raises(ScenarioError) as caught:
+        parse_scenario(textwrap.dedent(text), LABEL)
+    return caught.value
+
+
+def test_unknown_field_is_located() -> None:
+    error = _error(
+        """\
+        map: straight
+        npcs:
+          - start: {lane: R1_E_1, s: 10}
+            colour: red
+        """
+    )
+    assert (error.label, error.line, error.field) == (LABEL, 4, "npcs[0].colour")
+    assert str(error) == f"{LABEL}:4: npcs[0].colour: unknown field 'colour'"
+
+
+def test_wrong_type_is_located() -> None:
+    error = _error(
+        """\
+        map: straight
+        seed: lots
+        """
+    )
+    assert (error.line, error.field) == (2, "seed")
+    assert "integer" in error.message
+
+
+def test_out_of_range_value_is_located() -> None:
+    error = _error(
+        """\
+        map: straight
+        pedestrians:
+          - sidewalk: SW1
+          - sidewalk: SW2
+            speed_mps: -1.0
+        """
+    )
+    assert (error.line, error.field) == (5, "pedestrians[1].speed_mps")
+
+
+def test_missing_map_is_reported_at_the_top() -> None:
+    error = _error("seed: 3\n")
+    assert error.line == 1
+    assert "'map' is a required property" in str(error)
+
+
+def test_yaml_syntax_error_names_its_line() -> None:
+    error = _error(
+        """\
+        map: straight
+        npcs:
+          - start: {lane: R1_E_1
+        obstacles: []
+        """
+    )
+    assert error.label == LABEL
+    assert error.line in (3, 4)
+    assert "not valid YAML" in error.message
+
+
+def test_duplicate_key_is_an_error() -> None:
+    error = _error("map: straight\nseed: 1\nseed: 2\n")
+    assert (error.line, error.field) == (3, "seed")
+
+
+def test_unknown_lane_is_located_when_placed_on_the_map() -> None:
+    scenario = parse_scenario(
+        textwrap.dedent(
+            """\
+            map: straight
+            npcs:
+              - start: {lane: R1_E_1, s: 10}
+              - start:
+                  lane: R7_Z_9
+            """
+        ),
+        LABEL,
+    )
+    with pytest.raises(ScenarioError) as caught:
+        World(build_builtin_map("straight"), scenario)
+    assert (caught.value.line, caught.value.field) == (5, "npcs[1].start.lane")
+
+
+def test_unknown_model_and_map_mismatch_are_located() -> None:
+    lane_map = build_builtin_map("straight")
+    scenario = parse_scenario(
+        "map: straight\nego:\n  model: Trabant\n  start: {x: 0, y: 0}\n", LABEL
+    )
+    with pytest.raises(ScenarioError) as caught:
+        World(lane_map, scenario)
+    assert (caught.value.line, caught.value.field) == (3, "ego.model")
+    with pytest.raises(ScenarioError) as caught:
+        World(lane_map, parse_scenario("map: town\n", LABEL))
+    assert (caught.value.line, caught.value.field) == (1, "map")
+
+
+def test_schema_is_a_valid_json_schema() -> None:
+    jsonschema.Draft202012Validator.check_schema(scenario_schema())
