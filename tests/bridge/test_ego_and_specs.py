@@ -12,27 +12,31 @@ from egosim.bridge.specs import map_spec, vehicle_spec
 from egosim.bridge.units import heading_deg
 from egosim.msgs import get_profile
 from egosim.world.map import build_builtin_map
-from egosim.world.vehicle import LongitudinalMode, Pose, Vehicle, vehicle_model
+from egosim.world import World
+from egosim.world.vehicle import LongitudinalMode, Pose, vehicle_model
 
 PROFILE = get_profile("26.r1")
 
 
 def test_ego_status_reports_angles_in_degrees_and_lane_quantities() -> None:
-    vehicle = Vehicle.from_catalogue("2016_Kia_Niro(HEV)", Pose(x=10.0, y=-3.0, yaw=math.pi / 2))
-    vehicle.teleport(Pose(x=10.0, y=-3.0, yaw=math.pi / 2), speed=10.0, front_steer=0.05)
-    lane_map = build_builtin_map("straight")
-    status = vehicle.status()
-    lane = lane_map.project(status.pose.x, status.pose.y)
-    message = ego_vehicle_status(PROFILE, header(PROFILE, 1.0, "map"), -1, status, lane)
-    assert message.heading == pytest.approx(90.0)
+    world = World(build_builtin_map("straight"))
+    pose = Pose(x=100.0, y=-1.0, yaw=0.0)
+    world.egos[0].vehicle.teleport(pose, speed=10.0, front_steer=0.05)
+    lane = world.ego_lane_state()
+    message = ego_vehicle_status(
+        PROFILE, header(PROFILE, 1.0, "map"), -1, world.ego_status(), lane
+    )
+    assert message.heading == pytest.approx(0.0)
     assert message.front_steer_angle == pytest.approx(math.degrees(0.05))
     assert message.velocity.x == pytest.approx(10.0)
-    assert message.position.x == pytest.approx(10.0)
-    assert message.lateral_offset == pytest.approx(lane.lateral)
-    assert message.cross_track_error == pytest.approx(-lane.lateral)
-    assert message.distance_left_lane_boundary == pytest.approx(lane.distance_left)
+    assert message.position.x == pytest.approx(100.0)
+    assert message.lateral_offset == pytest.approx(lane.lateral_offset)
+    assert message.cross_track_error == pytest.approx(-lane.lateral_offset)
+    assert message.distance_left_lane_boundary + message.distance_right_lane_boundary == (
+        pytest.approx(3.5)
+    )
     data = PROFILE.message("morai_msgs/EgoVehicleStatus").serialize(message)
-    assert len(data) > 0
+    assert PROFILE.message("morai_msgs/EgoVehicleStatus").deserialize(data).heading == 0.0
 
 
 @pytest.mark.parametrize(("yaw", "heading"), [(0.0, 0.0), (math.pi, 180.0), (-math.pi / 2, -90.0)])

@@ -5,13 +5,17 @@ Frames and units of every EgoVehicleStatus field are listed in docs/protocol.md.
 
 from __future__ import annotations
 
+import logging
 from typing import Any
 
 from ..msgs import Profile
-from ..world.map.projection import LaneProjection
+from ..world import EgoLaneState
 from ..world.vehicle import ControlCommand, VehicleStatus
+from .context import CTRL_MODE_EXTERNAL, BridgeContext
 from .messages import vector3
 from .units import deg, heading_deg, mps
+
+log = logging.getLogger(__name__)
 
 WHEEL_SUFFIXES = (
     ("fl", "front_left"),
@@ -26,7 +30,7 @@ def ego_vehicle_status(
     header: Any,
     unique_id: int,
     status: VehicleStatus,
-    lane: LaneProjection | None,
+    lane: EgoLaneState | None,
 ) -> Any:
     """morai_msgs/EgoVehicleStatus of one ego; lane fields are 0 off the road network."""
     pose = status.pose
@@ -36,7 +40,7 @@ def ego_vehicle_status(
         wheels[f"tire_lateral_force_{suffix}"] = wheel.lateral_force
         wheels[f"side_slip_angle_{suffix}"] = deg(wheel.slip_angle)
         wheels[f"tire_cornering_stiffness_{suffix}"] = wheel.cornering_stiffness
-    lateral = lane.lateral if lane is not None else 0.0
+    lateral = lane.lateral_offset if lane is not None else 0.0
     return profile.message("morai_msgs/EgoVehicleStatus").new(
         header=header,
         unique_id=unique_id,
@@ -51,7 +55,7 @@ def ego_vehicle_status(
         lateral_offset=lateral,
         distance_left_lane_boundary=lane.distance_left if lane is not None else 0.0,
         distance_right_lane_boundary=lane.distance_right if lane is not None else 0.0,
-        cross_track_error=-lateral,
+        cross_track_error=lane.cross_track_error if lane is not None else 0.0,
         **wheels,
     )
 
@@ -67,3 +71,26 @@ def control_command(ctrl_cmd: Any) -> ControlCommand:
         velocity=mps(float(ctrl_cmd.velocity)),
         acceleration=float(ctrl_cmd.acceleration),
     )
+
+
+def publish_ego_status(context: BridgeContext) -> Any:
+    """/Ego_topic: the ego MultiEgoSetting's camera_index selects (the main ego by default)."""
+    world = context.world
+    index = context.camera_index if context.camera_index < len(world.egos) else 0
+    return ego_vehicle_status(
+        context.profile,
+        context.header(),
+        world.egos[index].unique_id,
+        world.ego_status(index),
+        world.ego_lane_state(index),
+    )
+
+
+def on_ctrl_cmd(context: BridgeContext, ctrl_cmd: Any) -> None:
+    """/ctrl_cmd drives the main ego while its control mode is external (EventInfo 3)."""
+    ego = context.world.egos[0]
+    if context.settings_of(ego.unique_id).ctrl_mode != CTRL_MODE_EXTERNAL:
+        return
+    verdict = ego.vehicle.command(control_command(ctrl_cmd))
+    if not verdict.accepted:
+        log.warning("/ctrl_cmd rejected (last valid command kept): %s", verdict.reason)

@@ -2,13 +2,18 @@
 
 from __future__ import annotations
 
+import logging
 from typing import Any
 
 from ..msgs import Profile
+from ..world import World
 from ..world.map.georef import GeoReference
-from ..world.vehicle import VehicleModel
+from ..world.vehicle import VEHICLE_CATALOGUE, VehicleModel
+from .context import BridgeContext
 from .messages import vector3
 from .units import deg
+
+log = logging.getLogger(__name__)
 
 UTM_PLANE_COORDINATE_SYSTEM = 0  # MapSpec.plane_coordinate_system: 0 UTM, 1 TM
 
@@ -40,3 +45,32 @@ def vehicle_spec(profile: Profile, model: VehicleModel | None) -> Any:
         overhang=model.front_overhang,
         rear_overhang=model.rear_overhang,
     )
+
+
+def serve_map_spec(context: BridgeContext, request: Any) -> Any:
+    """/Service_MoraiMapSpec: the loaded map's georeference."""
+    return context.profile.message("morai_msgs/MoraiMapSpecSrvResponse").new(
+        response=map_spec(context.profile, context.world.map.georef)
+    )
+
+
+def serve_vehicle_spec(context: BridgeContext, request: Any) -> Any:
+    """/Service_MoraiVehicleSpec: any vehicle by unique_id; all zeros for an unknown id."""
+    unique_id = int(request.request.unique_id)
+    model = vehicle_model_of(context.world, unique_id)
+    if model is None:
+        log.warning("/Service_MoraiVehicleSpec: no vehicle with unique_id %d", unique_id)
+    return context.profile.message("morai_msgs/MoraiVehicleSpecSrvResponse").new(
+        response=vehicle_spec(context.profile, model)
+    )
+
+
+def vehicle_model_of(world: World, unique_id: int) -> VehicleModel | None:
+    """The catalogue model of the ego or NPC vehicle `unique_id`, None for anything else."""
+    for ego in world.egos:
+        if ego.unique_id == unique_id:
+            return ego.vehicle.model
+    for npc_id, name in zip(world.npcs.unique_ids, world.npcs.names, strict=True):
+        if npc_id == unique_id:
+            return VEHICLE_CATALOGUE.get(name)
+    return None

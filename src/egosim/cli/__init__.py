@@ -8,7 +8,7 @@ import sys
 from collections.abc import Sequence
 
 from .. import __version__
-from . import msgs, topics
+from . import msgs, run, topics
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -18,13 +18,19 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"egosim {__version__}")
     subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    run.add_parser(subparsers)
     msgs.add_parser(subparsers)
     topics.add_parser(subparsers)
     return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    args = build_parser().parse_args(argv)
+    args, extra = build_parser().parse_known_args(argv)
+    # ROS's own command-line arguments (__name:=, from:=to) pass through to the node.
+    ros_args = [arg for arg in extra if ":=" in arg]
+    if len(ros_args) != len(extra) or (ros_args and args.command != "run"):
+        build_parser().error(f"unrecognized arguments: {' '.join(extra)}")
+    args.ros_args = ros_args
     try:
         return args.handler(args)
     except BrokenPipeError:

@@ -1,0 +1,121 @@
+"""`egosim run`: build the world, join (or start) the ROS master, serve, loop, stop cleanly."""
+
+from __future__ import annotations
+
+import logging
+import sys
+import threading
+from pathlib import Path
+
+from ..bridge.bindings import HANDLERS
+from ..bridge.context import BridgeContext
+from ..bridge.core import Bridge
+from ..bridge.network import load_network_settings
+from ..msgs import get_profile
+from ..ros1 import Node, Ros1Error
+from ..world import World
+from ..world.map import BUILTIN_MAP_NAMES, MapError, build_builtin_map
+from ..world.scenario import ScenarioError, load_default_scenario, parse_scenario
+from ..yamltext import YamlFileError
+from .clock import HeaderClock
+from .inbox import Inbox
+from .loop import SimulationLoop
+from .options import ClockMode, RunOptions
+from .signals import stop_on_signals
+
+log = logging.getLogger("egosim")
+
+NODE_NAME = "egosim"
+EXIT_OK = 0
+EXIT_BAD_INPUT = 2
+EXIT_ROS_FAILED = 3
+
+
+class StartupError(Exception):
+    """A startup failure with a one-line reason for the user."""
+
+    def __init__(self, reason: str, exit_code: int = EXIT_BAD_INPUT) -> None:
+        super().__init__(reason)
+        self.exit_code = exit_code
+
+
+def build_world(options: RunOptions) -> World:
+    try:
+        lane_map = build_builtin_map(options.map)
+    except MapError as error:
+        known = ", ".join(BUILTIN_MAP_NAMES)
+        raise StartupError(f"map {options.map!r}: {error} (built-in maps: {known})") from error
+    try:
+        if options.scenario is not None:
+            scenario = parse_scenario(
+                options.scenario.read_text(encoding="utf-8"), str(options.scenario)
+            )
+        elif lane_map.name == "town":
+            scenario = load_default_scenario()
+        else:
+            scenario = None
+        return World(lane_map, scenario, physics_step_s=options.physics_dt)
+    except (OSError, UnicodeDecodeError) as error:
+        raise StartupError(f"cannot read scenario {options.scenario}: {error}") from error
+    except ScenarioError as error:
+        raise StartupError(str(error)) from error
+
+
+def run(options: RunOptions) -> int:
+    """Run the simulator until stopped; the process exit status."""
+    try:
+        return _run(options)
+    except StartupError as error:
+        print(f"egosim: {error}", file=sys.stderr)
+        return error.exit_code
+
+
+def _run(options: RunOptions) -> int:
+    profile = get_profile(options.protocol)
+    world = build_world(options)
+    try:
+        settings = load_network_settings(
+            str(options.network) if options.network is not None else None
+        )
+    except (OSError, YamlFileError) as error:
+        raise StartupError(f"network settings: {error}") from error
+
+    stop = threading.Event()
+    with stop_on_signals(stop):
+        try:
+            node = Node(NODE_NAME, list(options.ros_argv))
+        except (OSError, Ros1Error) as error:
+            reason = f"cannot join or start the ROS master: {error}"
+            raise StartupError(reason, EXIT_ROS_FAILED) from error
+        node.on_shutdown(lambda reason: stop.set())
+        inbox = Inbox()
+        clock = HeaderClock(options.clock, world)
+        roots = options.data_roots or (Path.cwd(),)
+        context = BridgeContext(profile, world, clock, scenario_roots=roots, data_roots=roots)
+        bridge = Bridge(node, profile, settings, HANDLERS, context, inbox)
+        try:
+            bridge.open()
+            if options.clock is not ClockMode.REAL:
+                node.set_param("/use_sim_time", True)
+        except (OSError, Ros1Error) as error:
+            node.shutdown("startup failed")
+            reason = f"cannot register with the ROS master: {error}"
+            raise StartupError(reason, EXIT_ROS_FAILED) from error
+        log.info("egosim up: map %s, master %s", world.map.name, node.master_uri)
+        print("egosim: ready", flush=True)
+
+        def step() -> None:
+            world.step()
+            clock.tick()
+            bridge.publish_due(loop.steps * options.physics_dt)
+
+        max_steps = None
+        if options.duration is not None:
+            max_steps = round(options.duration / options.physics_dt)
+        loop = SimulationLoop(step, inbox, options.physics_dt, options.rtf, stop, max_steps)
+        try:
+            loop.run()
+        finally:
+            inbox.close()
+            node.shutdown("egosim stopping")
+    return EXIT_OK

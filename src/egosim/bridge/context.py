@@ -1,0 +1,66 @@
+"""What every row handler sees: the world, the message profile, the clock, and the
+simulator-side state the protocol adds to the world (lamps, control modes, ...)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..msgs import Profile
+from ..world import World
+from .messages import header
+
+MAP_FRAME = "map"
+
+# EventInfo.ctrl_mode codes.
+CTRL_MODE_KEYBOARD = 1
+CTRL_MODE_GAMEPAD = 2
+CTRL_MODE_EXTERNAL = 3
+CTRL_MODE_AUTO = 4
+
+
+@dataclass
+class Lamps:
+    """morai_msgs/Lamps state of one ego: 0 none / 1 left / 2 right; emergency 0 / 1."""
+
+    turn_signal: int = 0
+    emergency: int = 0
+
+
+@dataclass
+class EgoSettings:
+    """Per-ego settings set through the protocol rather than by physics."""
+
+    ctrl_mode: int = CTRL_MODE_EXTERNAL
+    lamps: Lamps = field(default_factory=Lamps)
+
+
+@dataclass
+class BridgeContext:
+    profile: Profile
+    world: World
+    stamp: Callable[[], float]
+    """The simulator's clock for headers (s): wall time, or sim time with --clock sim/sync."""
+    scenario_roots: tuple[Path, ...] = ()
+    data_roots: tuple[Path, ...] = ()
+    camera_index: int = 0
+    """The ego /Ego_topic reports (MultiEgoSetting.camera_index)."""
+    ego_settings: dict[int, EgoSettings] = field(default_factory=dict)
+    reported: dict[str, int] = field(default_factory=dict)
+    """How many entries of each world log a publisher has already reported."""
+
+    def header(self, frame_id: str = MAP_FRAME) -> Any:
+        return header(self.profile, self.stamp(), frame_id)
+
+    def settings_of(self, unique_id: int) -> EgoSettings:
+        return self.ego_settings.setdefault(unique_id, EgoSettings())
+
+    def unreported(self, log_name: str, entries: list[Any]) -> list[Any]:
+        """Entries of a growing world log not yet published (all of them after a reset)."""
+        done = self.reported.get(log_name, 0)
+        if done > len(entries):
+            done = 0
+        self.reported[log_name] = len(entries)
+        return entries[done:]

@@ -1,0 +1,137 @@
+"""Binds the enabled rows of the protocol table to the ROS node.
+
+Each row's behaviour is a handler (bridge/bindings.py): a builder for
+publishers, a message handler for subscribers, a request handler for
+services. Builders run on the loop thread after a step; received messages
+and service requests are decoded on the transport's threads and applied on
+the loop thread through the inbox.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..app.inbox import Inbox
+from ..msgs import MessageType, MsgsError, Profile
+from ..ros1 import Node, Publisher
+from .network import NetworkSettings
+from .table import Direction, Row
+
+log = logging.getLogger(__name__)
+
+# (context) -> a message, several, or None when there is nothing to say
+Builder = Callable[[Any], Any | Sequence[Any] | None]
+MessageHandler = Callable[[Any, Any], None]  # (context, message)
+RequestHandler = Callable[[Any, Any], Any]  # (context, request) -> response
+
+
+@dataclass(frozen=True)
+class Handlers:
+    publishers: dict[str, Builder] = field(default_factory=dict)
+    subscribers: dict[str, MessageHandler] = field(default_factory=dict)
+    services: dict[str, RequestHandler] = field(default_factory=dict)
+
+    def __contains__(self, key: str) -> bool:
+        return key in self.publishers or key in self.subscribers or key in self.services
+
+
+@dataclass
+class Outlet:
+    """A publishing row: when it is next due and how many headers it has stamped."""
+
+    row: Row
+    publisher: Publisher
+    message_type: MessageType
+    build: Builder
+    period: float | None
+    next_due: float = 0.0
+    seq: int = 0
+
+
+class Bridge:
+    def __init__(
+        self,
+        node: Node,
+        profile: Profile,
+        settings: NetworkSettings,
+        handlers: Handlers,
+        context: Any,
+        inbox: Inbox,
+    ) -> None:
+        self.node = node
+        self.profile = profile
+        self.settings = settings
+        self.handlers = handlers
+        self.context = context
+        self.inbox = inbox
+        self.outlets: list[Outlet] = []
+
+    def open(self) -> None:
+        """Advertise, subscribe and serve every enabled row."""
+        for row in self.settings.enabled_rows():
+            if row.key not in self.handlers:
+                log.info("%s (%s) is not served", row.name, row.type_name)
+                continue
+            if row.direction is Direction.PUBLISH:
+                self._advertise(row)
+            elif row.direction is Direction.SUBSCRIBE:
+                self._subscribe(row)
+            else:
+                self._serve(row)
+
+    def publish_due(self, now: float) -> None:
+        """Build and publish every outlet whose period has elapsed at loop time `now` (s)."""
+        for outlet in self.outlets:
+            if outlet.period is not None and now + 1e-9 < outlet.next_due:
+                continue
+            if outlet.period is not None:
+                outlet.next_due = max(outlet.next_due + outlet.period, now)
+            self.publish(outlet)
+
+    def publish(self, outlet: Outlet) -> None:
+        if outlet.publisher.num_subscribers == 0 and not outlet.publisher.latch:
+            return
+        built = outlet.build(self.context)
+        if built is None:
+            return
+        for message in built if isinstance(built, list | tuple) else (built,):
+            header = getattr(message, "header", None)
+            if header is not None:
+                header.seq = outlet.seq
+                outlet.seq += 1
+            outlet.publisher.publish(outlet.message_type.serialize(message))
+
+    def _advertise(self, row: Row) -> None:
+        message_type = self.profile.message(row.type_name)
+        publisher = self.node.advertise(row.name, message_type)
+        period = 1.0 / row.rate_hz if row.rate_hz else None
+        build = self.handlers.publishers[row.key]
+        self.outlets.append(Outlet(row, publisher, message_type, build, period))
+
+    def _subscribe(self, row: Row) -> None:
+        message_type = self.profile.message(row.type_name)
+        handle = self.handlers.subscribers[row.key]
+
+        def received(data: bytes, header: Any) -> None:
+            try:
+                message = message_type.deserialize(data)
+            except MsgsError as exc:
+                log.error("%s from %s: %s", row.name, header.get("callerid", "?"), exc)
+                return
+            self.inbox.post(lambda: handle(self.context, message))
+
+        self.node.subscribe(row.name, message_type, received)
+
+    def _serve(self, row: Row) -> None:
+        service_type = self.profile.service(row.type_name)
+        handle = self.handlers.services[row.key]
+
+        def serve(data: bytes, header: Any) -> bytes:
+            request = service_type.request.deserialize(data)
+            response = self.inbox.call(lambda: handle(self.context, request))
+            return service_type.response.serialize(response)
+
+        self.node.advertise_service(row.name, service_type, serve)

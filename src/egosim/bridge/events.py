@@ -1,0 +1,77 @@
+"""One-shot vehicle events: MoraiEventCmdSrv and the /lamps topic.
+
+EventInfo.option is an int8 bit mask; the document writes its bits as 0x0001
+ctrl_mode, 0x0010 gear, 0x0100 lamps, 0x1000 set_pause. An int8 can only hold the
+binary reading of that notation (1, 2, 4, 8), so that is what egosim reads; the hex
+reading of gear (0x10 = 16) fits as well and is accepted for gear, as no other bit
+claims 16.
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import Any
+
+from ..world.vehicle import Gear
+from .context import BridgeContext, Lamps
+
+log = logging.getLogger(__name__)
+
+OPTION_CTRL_MODE = 0x01
+OPTION_GEAR = 0x02 | 0x10
+OPTION_LAMPS = 0x04
+OPTION_SET_PAUSE = 0x08
+GEAR_NO_CHANGE = -1
+CTRL_MODES = (1, 2, 3, 4)
+
+
+def apply_lamps(lamps: Lamps, message: Any) -> None:
+    if message.turnSignal in (0, 1, 2):
+        lamps.turn_signal = int(message.turnSignal)
+    else:
+        log.warning("lamps: turnSignal %s is not 0, 1 or 2; ignored", message.turnSignal)
+    if message.emergencySignal in (0, 1):
+        lamps.emergency = int(message.emergencySignal)
+    else:
+        log.warning("lamps: emergencySignal %s is not 0 or 1; ignored", message.emergencySignal)
+
+
+def on_lamps(context: BridgeContext, message: Any) -> None:
+    """/lamps: the main ego's turn and emergency lamps."""
+    apply_lamps(context.settings_of(context.world.egos[0].unique_id).lamps, message)
+
+
+def serve_event_cmd(context: BridgeContext, request: Any) -> Any:
+    """/Service_MoraiEventCmd: apply the selected parts; answer with the resulting state."""
+    event = request.request
+    ego = context.world.egos[0]
+    settings = context.settings_of(ego.unique_id)
+    option = int(event.option) & 0xFF
+    if option & OPTION_CTRL_MODE:
+        if event.ctrl_mode in CTRL_MODES:
+            settings.ctrl_mode = int(event.ctrl_mode)
+        else:
+            log.warning("EventCmd: ctrl_mode %s is not 1..4; ignored", event.ctrl_mode)
+    if option & OPTION_GEAR and event.gear != GEAR_NO_CHANGE:
+        try:
+            ego.vehicle.set_gear(Gear(int(event.gear)))
+        except ValueError:
+            log.warning("EventCmd: gear %s is not -1 or 1..4; ignored", event.gear)
+    if option & OPTION_LAMPS:
+        apply_lamps(settings.lamps, event.lamps)
+    if option & OPTION_SET_PAUSE:
+        context.world.paused = bool(event.set_pause)
+    profile = context.profile
+    lamps = profile.message("morai_msgs/Lamps").new(
+        header=context.header(),
+        turnSignal=settings.lamps.turn_signal,
+        emergencySignal=settings.lamps.emergency,
+    )
+    state = profile.message("morai_msgs/EventInfo").new(
+        option=event.option,
+        ctrl_mode=settings.ctrl_mode,
+        gear=int(ego.vehicle.gear),
+        lamps=lamps,
+        set_pause=context.world.paused,
+    )
+    return profile.message("morai_msgs/MoraiEventCmdSrvResponse").new(response=state)

@@ -1,0 +1,91 @@
+"""Objects around the ego: ObjectStatusList, CollisionData, VehicleCollisionData.
+
+ObjectStatus carries heading in deg, velocity in km/h and acceleration in m/s^2,
+both vectors in the object's own frame (x forward, y left), so `velocity.x`
+is its speed as MORAI clients read it; position is the footprint centre in the
+map frame; size is (length, width, height) in m.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+from ..msgs import Profile
+from ..world.traffic import ObjectState
+from .context import BridgeContext
+from .messages import vector3
+from .units import heading_deg, kmh
+
+
+def to_object_frame(vector: Sequence[float], heading: float) -> tuple[float, float, float]:
+    """A map-frame vector in the frame of an object heading `heading` (rad)."""
+    c, s = math.cos(heading), math.sin(heading)
+    x, y, z = vector
+    return (c * x + s * y, -s * x + c * y, z)
+
+
+def object_status(profile: Profile, state: ObjectState) -> Any:
+    velocity = to_object_frame(state.velocity, state.heading)
+    return profile.message("morai_msgs/ObjectStatus").new(
+        unique_id=state.unique_id,
+        type=int(state.object_type),
+        name=state.name,
+        heading=heading_deg(state.heading),
+        velocity=vector3(profile, [kmh(v) for v in velocity]),
+        acceleration=vector3(profile, to_object_frame(state.acceleration, state.heading)),
+        size=vector3(profile, state.size),
+        position=vector3(profile, state.position),
+    )
+
+
+def publish_object_list(context: BridgeContext) -> Any:
+    """/Object_topic: counts of everything spawned; the N closest objects, closest first."""
+    listing = context.world.object_list(context.camera_index)
+    profile = context.profile
+    return profile.message("morai_msgs/ObjectStatusList").new(
+        header=context.header(),
+        num_of_npcs=listing.num_npcs,
+        num_of_pedestrian=listing.num_pedestrians,
+        num_of_obstacle=listing.num_obstacles,
+        npc_list=[object_status(profile, s) for s in listing.npcs],
+        pedestrian_list=[object_status(profile, s) for s in listing.pedestrians],
+        obstacle_list=[object_status(profile, s) for s in listing.obstacles],
+    )
+
+
+def publish_collision(context: BridgeContext) -> Any:
+    """/CollisionData: the main ego's collisions that began since the last message.
+
+    An empty collision_object list means no new collision; global_offset_* is the
+    position of the most recent collided object.
+    """
+    ego_id = context.world.egos[0].unique_id
+    new = [
+        c
+        for c in context.unreported("ego_collisions", context.world.ego_collision_log)
+        if c.ego_id == ego_id
+    ]
+    offset = new[-1].other.position if new else (0.0, 0.0, 0.0)
+    return context.profile.message("morai_msgs/CollisionData").new(
+        header=context.header(),
+        global_offset_x=offset[0],
+        global_offset_y=offset[1],
+        global_offset_z=offset[2],
+        collision_object=[object_status(context.profile, c.other) for c in new],
+    )
+
+
+def publish_vehicle_collisions(context: BridgeContext) -> Any:
+    """/VehicleCollisionData: NPC-NPC collisions that began since the last message."""
+    profile = context.profile
+    collision_type = profile.message("morai_msgs/VehicleCollision")
+    new = context.unreported("vehicle_collisions", context.world.vehicle_collisions)
+    return profile.message("morai_msgs/VehicleCollisionData").new(
+        header=context.header(),
+        collisions=[
+            collision_type.new(crashed_vehicles=[object_status(profile, v) for v in c.vehicles])
+            for c in new
+        ],
+    )

@@ -1,0 +1,93 @@
+"""`egosim run`: the simulator."""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import math
+import sys
+from pathlib import Path
+
+from ..app.options import ClockMode, RunOptions
+from ..app.runner import run as run_simulator
+from ..msgs import DEFAULT_PROFILE, PROFILES
+
+LOG_LEVELS = ("DEBUG", "INFO", "WARNING", "ERROR")
+
+
+def non_negative_float(text: str) -> float:
+    value = float(text)
+    if not (math.isfinite(value) and value >= 0):
+        raise argparse.ArgumentTypeError(f"expected a number >= 0, got {text}")
+    return value
+
+
+def positive_float(text: str) -> float:
+    value = non_negative_float(text)
+    if value == 0:
+        raise argparse.ArgumentTypeError("expected a number > 0")
+    return value
+
+
+def add_parser(subparsers: argparse._SubParsersAction) -> None:
+    parser = subparsers.add_parser(
+        "run",
+        help="start the simulator",
+        description="Start the simulator: joins the ROS master at ROS_MASTER_URI, or starts "
+        "one there when none answers. Extra ROS arguments (__name:=, __ns:=, from:=to) "
+        "are accepted after the options.",
+    )
+    parser.add_argument("--map", default="town", metavar="NAME|PATH")
+    parser.add_argument("--scenario", type=Path, metavar="PATH")
+    parser.add_argument("--network", type=Path, metavar="PATH", help="network settings YAML")
+    parser.add_argument("--clock", choices=[m.value for m in ClockMode], default="real")
+    parser.add_argument(
+        "--rtf",
+        type=non_negative_float,
+        default=1.0,
+        metavar="FACTOR",
+        help="real-time factor (0: as fast as possible)",
+    )
+    parser.add_argument(
+        "--duration",
+        type=positive_float,
+        metavar="SECONDS",
+        help="stop after this much simulated time",
+    )
+    parser.add_argument("--record", type=Path, metavar="BAG")
+    parser.add_argument("--protocol", choices=PROFILES, default=DEFAULT_PROFILE)
+    parser.add_argument("--log-level", choices=LOG_LEVELS, default="INFO", type=str.upper)
+    parser.add_argument(
+        "--data-root",
+        type=Path,
+        action="append",
+        default=[],
+        metavar="DIR",
+        help="directory that scenario, bag and sensor-data names from the network resolve "
+        "in (repeatable; default: the current directory)",
+    )
+    parser.add_argument("--physics-rate", type=positive_float, default=100.0, metavar="HZ")
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    logging.basicConfig(
+        level=args.log_level,
+        stream=sys.stderr,
+        format="%(asctime)s %(levelname)s %(name)s: %(message)s",
+    )
+    options = RunOptions(
+        map=args.map,
+        scenario=args.scenario,
+        network=args.network,
+        clock=ClockMode(args.clock),
+        rtf=args.rtf,
+        duration=args.duration,
+        record=args.record,
+        protocol=args.protocol,
+        log_level=args.log_level,
+        physics_rate_hz=args.physics_rate,
+        data_roots=tuple(args.data_root),
+        ros_argv=tuple(args.ros_args),
+    )
+    return run_simulator(options)
