@@ -104,17 +104,25 @@ def _run(options: RunOptions) -> int:
         log.info("egosim up: map %s, master %s", world.map.name, node.master_uri)
         print("egosim: ready", flush=True)
 
+        published_steps = 0
+
         def step() -> None:
+            nonlocal published_steps
             world.step()
             clock.tick()
-            bridge.publish_due(loop.steps * options.physics_dt)
+            published_steps += 1
+            bridge.publish_due(published_steps * options.physics_dt)
 
+        context.step = step
         max_steps = None
         if options.duration is not None:
             max_steps = round(options.duration / options.physics_dt)
         loop = SimulationLoop(step, inbox, options.physics_dt, options.rtf, stop, max_steps)
         try:
-            loop.run()
+            if options.clock is ClockMode.SYNC:
+                loop.serve()
+            else:
+                loop.run()
         finally:
             inbox.close()
             node.shutdown("egosim stopping")

@@ -50,6 +50,9 @@ class BridgeContext:
     ego_settings: dict[int, EgoSettings] = field(default_factory=dict)
     reported: dict[str, int] = field(default_factory=dict)
     """How many entries of each world log a publisher has already reported."""
+    step: Callable[[], None] | None = None
+    """Advance the world one physics step and publish what is due (set by the app; the
+    sync-mode services call it)."""
 
     def header(self, frame_id: str = MAP_FRAME) -> Any:
         return header(self.profile, self.stamp(), frame_id)

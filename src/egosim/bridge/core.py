@@ -25,6 +25,8 @@ log = logging.getLogger(__name__)
 # (context) -> a message, several, or None when there is nothing to say
 Builder = Callable[[Any], Any | Sequence[Any] | None]
 MessageHandler = Callable[[Any, Any], None]  # (context, message)
+# (topic, message type, serialized bytes, stamp s): sees every message sent or received
+Tap = Callable[[str, MessageType, bytes, float], None]
 RequestHandler = Callable[[Any, Any], Any]  # (context, request) -> response
 
 
@@ -68,6 +70,7 @@ class Bridge:
         self.context = context
         self.inbox = inbox
         self.outlets: list[Outlet] = []
+        self.taps: list[Tap] = []
 
     def open(self) -> None:
         """Advertise, subscribe and serve every enabled row."""
@@ -92,7 +95,7 @@ class Bridge:
             self.publish(outlet)
 
     def publish(self, outlet: Outlet) -> None:
-        if outlet.publisher.num_subscribers == 0 and not outlet.publisher.latch:
+        if outlet.publisher.num_subscribers == 0 and not self.taps:
             return
         built = outlet.build(self.context)
         if built is None:
@@ -102,7 +105,13 @@ class Bridge:
             if header is not None:
                 header.seq = outlet.seq
                 outlet.seq += 1
-            outlet.publisher.publish(outlet.message_type.serialize(message))
+            data = outlet.message_type.serialize(message)
+            outlet.publisher.publish(data)
+            self._tap(outlet.row.name, outlet.message_type, data)
+
+    def _tap(self, topic: str, message_type: MessageType, data: bytes) -> None:
+        for tap in self.taps:
+            tap(topic, message_type, data, self.context.stamp())
 
     def _advertise(self, row: Row) -> None:
         message_type = self.profile.message(row.type_name)
@@ -121,6 +130,7 @@ class Bridge:
             except MsgsError as exc:
                 log.error("%s from %s: %s", row.name, header.get("callerid", "?"), exc)
                 return
+            self._tap(row.name, message_type, data)
             self.inbox.post(lambda: handle(self.context, message))
 
         self.node.subscribe(row.name, message_type, received)
