@@ -1,8 +1,9 @@
 """The publishing side of a TCPROS topic (ROS wiki: ROS/TCPROS, "Topics").
 
-publish() is called from the simulation loop, so it only appends to one bounded queue per
-subscriber connection; a writer thread per connection does the sending. A subscriber that
-stops reading loses its oldest messages (counted) and delays nobody else.
+publish() is called from the simulation loop, so per subscriber connection it only appends to
+a bounded queue drained by that connection's writer thread (or, when the connection is idle
+and the message small, offers it to the socket without blocking). A subscriber that stops
+reading loses its oldest messages (counted) and delays nobody else.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from dataclasses import dataclass
 
 from .connection_header import error_header, write_header
 from .errors import ConnectionRefusedByPeerError, NodeShutdownError
-from .tcpros import close_quietly, send_frame, set_nodelay
+from .tcpros import close_quietly, encode_frame, send_frame, set_nodelay
 from .types import MessageTypeInfo
 
 log = logging.getLogger(__name__)
@@ -31,6 +32,9 @@ Variants = Mapping[str, bytes] | Callable[[str], bytes]
 
 #: How often an idle writer checks whether its subscriber hung up (s).
 _IDLE_CHECK_S = 1.0
+#: Messages up to this size are offered to an idle connection's socket by publish() itself,
+#: without blocking: handing them to the writer thread would dominate their latency.
+_DIRECT_SEND_MAX = 64 * 1024
 
 
 @dataclass
@@ -60,6 +64,9 @@ class _Outbox:
         self._queue: deque[bytes] = deque()
         self._queue_size = queue_size
         self._ready = threading.Condition()
+        # The unsent end of a frame publish() began sending; it goes out before the queue.
+        self._tail: memoryview | None = None
+        self._writing = False
         self._closed = False
         self._on_closed = on_closed
         self._thread = threading.Thread(
@@ -69,11 +76,34 @@ class _Outbox:
 
     def put(self, data: bytes) -> None:
         with self._ready:
+            if self._closed:
+                return
+            idle = not self._queue and self._tail is None and not self._writing
+            if idle and len(data) <= _DIRECT_SEND_MAX and self._send_now(data):
+                if self._tail is not None:
+                    self._ready.notify()
+                return
             if len(self._queue) >= self._queue_size:
                 self._queue.popleft()
                 self.stats.dropped += 1
             self._queue.append(data)
             self._ready.notify()
+
+    def _send_now(self, data: bytes) -> bool:
+        """Offer a frame to the socket without blocking (lock held, writer idle); False if the
+        socket took none of it. What it did not take is left in ``_tail`` for the writer."""
+        frame = encode_frame(data)
+        try:
+            sent = self.sock.send(frame, socket.MSG_DONTWAIT)
+        except OSError:
+            return False  # full (BlockingIOError) or broken: the writer takes over
+        if sent == 0:
+            return False
+        if sent < len(frame):
+            self._tail = memoryview(frame)[sent:]
+        self.stats.bytes_sent += len(frame)
+        self.stats.messages_sent += 1
+        return True
 
     def close(self) -> None:
         with self._ready:
@@ -96,17 +126,23 @@ class _Outbox:
         try:
             while True:
                 with self._ready:
-                    while not self._queue and not self._closed:
+                    while not self._queue and self._tail is None and not self._closed:
                         if not self._ready.wait(_IDLE_CHECK_S) and self._peer_hung_up():
                             return
                     if self._closed:
                         return
+                    tail, self._tail = self._tail, None
                     batch = list(self._queue)
                     self._queue.clear()
+                    self._writing = True
+                if tail is not None:
+                    self.sock.sendall(tail)
                 for data in batch:
                     send_frame(self.sock, data)
                     self.stats.bytes_sent += len(data) + 4
                     self.stats.messages_sent += 1
+                with self._ready:
+                    self._writing = False
         except OSError as exc:
             log.info(
                 "subscriber %s of connection %d left: %s",

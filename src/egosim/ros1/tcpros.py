@@ -45,13 +45,16 @@ def recv_length_prefixed(sock: socket.socket, max_bytes: int, what: str = "frame
     return recv_exact(sock, size)
 
 
+def encode_frame(data: bytes | memoryview) -> bytes:
+    return _U32.pack(len(data)) + bytes(data)
+
+
 def send_frame(sock: socket.socket, data: bytes | memoryview) -> None:
     """Send a length prefix and ``data`` without concatenating them (large payloads)."""
-    prefix = _U32.pack(len(data))
     if len(data) < 65536:
-        sock.sendall(prefix + bytes(data))
+        sock.sendall(encode_frame(data))
         return
-    chunks = [memoryview(prefix), memoryview(data)]
+    chunks = [memoryview(_U32.pack(len(data))), memoryview(data)]
     while chunks:
         sent = sock.sendmsg(chunks)
         while chunks and sent >= len(chunks[0]):
