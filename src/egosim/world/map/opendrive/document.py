@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import xml.etree.ElementTree as ET
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from egosim.world.map.errors import MapRecordError
@@ -202,7 +203,8 @@ def read_document(xml_text: str) -> Document:
             document.geo_reference = (geo.text or "").strip()
         offset = header.child("offset", "offset")
         if offset is not None:
-            document.offset = tuple(offset.number(n, 0.0) for n in ("x", "y", "z", "hdg"))  # type: ignore[assignment]
+            x, y, z, hdg = (offset.number(n, 0.0) for n in ("x", "y", "z", "hdg"))
+            document.offset = (x, y, z, hdg)
     for road in top.children("road", "road"):
         parsed = _road(road)
         if parsed.id in document.roads:
@@ -298,16 +300,22 @@ def _geometry(element: _Element) -> tuple[float, Pose2, Geometry]:
             length, shape_element.number("curvStart"), shape_element.number("curvEnd")
         )
     elif shape.tag == "poly3":
-        v = tuple(shape_element.number(n) for n in "abcd")
-        geometry = ParamPoly3(length, (0.0, 1.0, 0.0, 0.0), v, length, u_is_p=True)  # type: ignore[arg-type]
+        geometry = ParamPoly3(
+            length, (0.0, 1.0, 0.0, 0.0), _coefficients(shape_element, "abcd"), length, u_is_p=True
+        )
     elif shape.tag == "paramPoly3":
-        u = tuple(shape_element.number(n) for n in ("aU", "bU", "cU", "dU"))
-        v = tuple(shape_element.number(n) for n in ("aV", "bV", "cV", "dV"))
+        u = _coefficients(shape_element, ("aU", "bU", "cU", "dU"))
+        v = _coefficients(shape_element, ("aV", "bV", "cV", "dV"))
         normalized = shape_element.text("pRange", "normalized") == "normalized"
-        geometry = ParamPoly3(length, u, v, 1.0 if normalized else length)  # type: ignore[arg-type]
+        geometry = ParamPoly3(length, u, v, 1.0 if normalized else length)
     else:
         raise shape_element.fail("is not a line, arc, spiral, poly3 or paramPoly3")
     return s, start, geometry
+
+
+def _coefficients(element: _Element, names: Sequence[str]) -> tuple[float, float, float, float]:
+    a, b, c, d = (element.number(name) for name in names)
+    return a, b, c, d
 
 
 def _section(section: _Element) -> LaneSection:

@@ -10,6 +10,7 @@ of arc length over p maps stations to p.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -103,7 +104,7 @@ def evaluate(
     )
 
 
-def _integrate(integrand, u: FloatArray) -> FloatArray:  # type: ignore[no-untyped-def]
+def _integrate(integrand: Callable[[FloatArray], FloatArray], u: FloatArray) -> FloatArray:
     """∫_0^u integrand for each u (any order), by Gauss-Legendre between sorted stations."""
     knots, where = np.unique(np.concatenate(([0.0], u)), return_inverse=True)
     a, b = knots[:-1, None], knots[1:, None]

@@ -16,6 +16,8 @@ FloatArray = npt.NDArray[np.float64]
 MAX_TURN_RAD = 0.02
 # Parametric cubics have no curvature bound at hand: this spacing, m.
 PARAMETRIC_SPACING_M = 0.25
+# However sharp a curve, stations stay at least this far apart, m.
+MIN_SPACING_M = 0.05
 
 
 def reference_poses(road: Road, s: FloatArray) -> FloatArray:
@@ -40,6 +42,7 @@ def sample_stations(road: Road, step: float) -> FloatArray:
     pieces = [[section.s for section in road.sections], [road.length]]
     for start, _, geometry in road.geometries:
         spacing = min(step, MAX_TURN_RAD / max(_max_curvature(geometry), 1e-9))
+        spacing = max(spacing, MIN_SPACING_M)
         pieces.append(start + np.arange(0.0, geometry.length, spacing))
     s = np.concatenate(pieces)
     s = np.unique(np.clip(s, 0.0, road.length))
