@@ -11,10 +11,10 @@ from ..bridge.bindings import HANDLERS
 from ..bridge.context import BridgeContext
 from ..bridge.core import Bridge
 from ..bridge.network import load_network_settings
+from ..maps import MapLoadError, load_map
 from ..msgs import get_profile
 from ..ros1 import Node, Ros1Error
 from ..world import World
-from ..world.map import BUILTIN_MAP_NAMES, MapError, build_builtin_map
 from ..world.scenario import ScenarioError, load_default_scenario, parse_scenario
 from ..yamltext import YamlFileError
 from .clock import HeaderClock
@@ -41,10 +41,9 @@ class StartupError(Exception):
 
 def build_world(options: RunOptions) -> World:
     try:
-        lane_map = build_builtin_map(options.map)
-    except MapError as error:
-        known = ", ".join(BUILTIN_MAP_NAMES)
-        raise StartupError(f"map {options.map!r}: {error} (built-in maps: {known})") from error
+        lane_map = load_map(options.map)
+    except MapLoadError as error:
+        raise StartupError(f"map: {error}") from error
     try:
         if options.scenario is not None:
             scenario = parse_scenario(
