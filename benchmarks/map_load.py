@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import tempfile
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -145,7 +146,7 @@ def mgeo_folder(lane_map: LaneMap) -> dict[str, object]:
     }
 
 
-def best_of(repeats: int, action) -> float:  # type: ignore[no-untyped-def]
+def best_of(repeats: int, action: Callable[[], object]) -> float:
     times = []
     for _ in range(repeats):
         start = time.perf_counter()
@@ -167,9 +168,12 @@ def main() -> None:
         build = best_of(3, lambda: build_mgeo_map("grid", files, []))
         total = best_of(3, lambda: read_map(str(folder)))
         lane_map = read_map(str(folder)).lane_map
-    points = sum(len(link["points"]) for link in files["link_set.json"])  # type: ignore[union-attr]
-    links = len(files["link_set.json"])  # type: ignore[arg-type]
-    print(f"MGeo folder: link_set.json {link_bytes / 1e6:.2f} MB ({links} links, {points} points)")
+    links: list[dict] = files["link_set.json"]  # type: ignore[assignment]
+    points = sum(len(link["points"]) for link in links)
+    print(
+        f"MGeo folder: link_set.json {link_bytes / 1e6:.2f} MB "
+        f"({len(links)} links, {points} points)"
+    )
     print(f"  all files {all_bytes / 1e6:.2f} MB")
     print(
         f"  lanes {len(lane_map.lanes)}, lights {len(lane_map.traffic_lights)}, "
