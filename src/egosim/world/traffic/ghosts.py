@@ -1,0 +1,137 @@
+"""NPC ghosts: NPC vehicles placed from outside (NpcGhostCmd) instead of simulated.
+
+A ghost stays where its last placement put it until the next one. It is an NPC vehicle
+to everybody else: it is listed and collides like one, and the simulated NPCs treat it
+as an occupant of the lane it stands on.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from enum import IntEnum
+
+import numpy as np
+
+from egosim.world.map import LaneMap
+from egosim.world.traffic.leaders import LaneOccupants
+from egosim.world.traffic.objects import ObjectTable, ObjectType
+from egosim.world.vehicle import VehicleModel
+
+
+class TurnSignal(IntEnum):
+    """NpcGhostInfo.turn_signal."""
+
+    OFF = 0
+    LEFT = 1
+    RIGHT = 2
+    HAZARD = 3
+
+
+@dataclass(frozen=True)
+class GhostPlacement:
+    """Where one ghost is now: footprint centre (ENU, m), heading (rad, 0 = east, CCW),
+    speed along the heading (m/s), front wheel angle (rad) and its lamps."""
+
+    unique_id: int
+    model: VehicleModel
+    """Its catalogue model (kept from the first placement of that id)."""
+    position: tuple[float, float, float]
+    heading: float
+    speed: float = 0.0
+    front_steer: float = 0.0
+    turn_signal: TurnSignal = TurnSignal.OFF
+    brake_light: bool = False
+
+
+@dataclass
+class GhostState:
+    placement: GhostPlacement
+    acceleration: float
+    """Along the heading, m/s², from the speeds of the last two placements."""
+    placed_at: float
+    """Simulation time of the last placement, s."""
+
+
+class NpcGhosts:
+    """Every NPC ghost of a world, in the order they first appeared."""
+
+    def __init__(self) -> None:
+        self._ghosts: dict[int, GhostState] = {}
+
+    def __len__(self) -> int:
+        return len(self._ghosts)
+
+    def __contains__(self, unique_id: int) -> bool:
+        return unique_id in self._ghosts
+
+    def clear(self) -> None:
+        self._ghosts.clear()
+
+    @property
+    def unique_ids(self) -> list[int]:
+        return list(self._ghosts)
+
+    def get(self, unique_id: int) -> GhostPlacement:
+        return self._ghosts[unique_id].placement
+
+    def place(self, placements: Sequence[GhostPlacement], sim_time: float) -> None:
+        """Put each ghost where its placement says; a new id becomes a new ghost."""
+        for placement in placements:
+            previous = self._ghosts.get(placement.unique_id)
+            if previous is None:
+                self._ghosts[placement.unique_id] = GhostState(placement, 0.0, sim_time)
+                continue
+            elapsed = sim_time - previous.placed_at
+            if elapsed > 0.0:
+                previous.acceleration = (placement.speed - previous.placement.speed) / elapsed
+                previous.placed_at = sim_time
+            # The body is the one the ghost first appeared as; later names do not rebuild it.
+            previous.placement = GhostPlacement(
+                placement.unique_id,
+                previous.placement.model,
+                placement.position,
+                placement.heading,
+                placement.speed,
+                placement.front_steer,
+                placement.turn_signal,
+                placement.brake_light,
+            )
+
+    def table(self) -> ObjectTable:
+        states = list(self._ghosts.values())
+        if not states:
+            return ObjectTable.empty()
+        n = len(states)
+        heading = np.array([g.placement.heading for g in states])
+        direction = np.column_stack((np.cos(heading), np.sin(heading), np.zeros(n)))
+        speed = np.array([g.placement.speed for g in states])
+        acceleration = np.array([g.acceleration for g in states])
+        models = [g.placement.model for g in states]
+        return ObjectTable(
+            unique_ids=np.array([g.placement.unique_id for g in states], dtype=np.int64),
+            object_types=np.full(n, int(ObjectType.NPC_VEHICLE), np.int64),
+            names=tuple(m.name for m in models),
+            positions=np.array([g.placement.position for g in states], dtype=np.float64),
+            headings=heading,
+            velocities=speed[:, None] * direction,
+            accelerations=acceleration[:, None] * direction,
+            sizes=np.array([(m.length, m.width, m.height) for m in models], dtype=np.float64),
+        )
+
+    def occupants(self, lane_map: LaneMap) -> LaneOccupants:
+        """The ghosts standing on a lane (within half their width of its edge)."""
+        table = self.table()
+        if len(table) == 0:
+            return LaneOccupants.empty()
+        projection = lane_map.project_many(table.positions[:, :2], table.headings)
+        on_lane = np.abs(projection.lateral) <= (projection.width + table.sizes[:, 1]) / 2.0
+        along = np.cos(table.headings - projection.heading) * np.hypot(
+            table.velocities[:, 0], table.velocities[:, 1]
+        )
+        return LaneOccupants(
+            projection.lane_index[on_lane],
+            projection.s[on_lane],
+            table.sizes[on_lane, 0] / 2.0,
+            along[on_lane],
+        )
