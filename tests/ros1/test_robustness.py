@@ -221,6 +221,8 @@ def test_xmlrpc_garbage_gets_faults_and_servers_keep_answering(embedded_master, 
         with pytest.raises(xmlrpc.client.Fault):
             proxy.getPid()  # missing caller_id
         assert b"400" in _send_raw(address, b"\x00\x01\x02 garbage\r\n\r\n")
+        huge = b"POST / HTTP/1.0\r\nContent-Length: 1000000000000\r\n\r\n<methodCall>"
+        assert b" 413 " in _send_raw(address, huge)
         assert proxy.getPid("/x")[0] == 1
 
 
@@ -238,6 +240,9 @@ def test_no_threads_or_sockets_leak_after_bad_peers(embedded_master, make_node):
         sock, _ = raw_subscribe(node, "/chatter", "*")
         sock.close()  # a subscriber that vanishes
         assert slave_call(node, "getPid")[0] == 1
+        for uri in (node.uri, embedded_master.uri):
+            with pytest.raises(xmlrpc.client.Fault):
+                xmlrpc.client.ServerProxy(uri).getPid()
     pub.publish(string_bytes("flush"))
     wait_until(lambda: pub.num_subscribers == 0)
     wait_until(lambda: threading.active_count() <= baseline_threads)

@@ -15,6 +15,9 @@ from .errors import PeerUnreachableError
 
 log = logging.getLogger(__name__)
 
+#: Largest XML-RPC request body accepted (the largest ROS calls carry parameter trees).
+MAX_REQUEST_BYTES = 64 * 1024 * 1024
+
 
 class _TimeoutTransport(xmlrpc.client.Transport):
     def __init__(self, timeout: float) -> None:
@@ -49,6 +52,13 @@ class _RequestHandler(SimpleXMLRPCRequestHandler):
 
     def do_POST(self) -> None:  # noqa: N802 (name given by BaseHTTPRequestHandler)
         self.server.peer.address = self.client_address  # type: ignore[attr-defined]
+        try:
+            length = int(self.headers.get("content-length", 0))
+        except ValueError:
+            length = -1
+        if not 0 <= length <= MAX_REQUEST_BYTES:
+            self.send_error(413 if length > 0 else 400, "bad or oversized Content-Length")
+            return
         super().do_POST()
 
     def log_message(self, format: str, *args: Any) -> None:
