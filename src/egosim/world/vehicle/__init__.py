@@ -6,6 +6,9 @@ Public API:
     Gear                                        P/R/N/D
     VehicleModel, VEHICLE_CATALOGUE, DEFAULT_EGO_MODEL, vehicle_model   the catalogue
     Wheels, WheelStatus                         per-wheel outputs
+    SkidSteerVehicle, SideEffortCommand, BodyVelocityCommand   skid-steer ground vehicles
+    GroundVehicleModel, GROUND_VEHICLE_CATALOGUE              their catalogue
+    EGO_MODELS, ego_model, ego_vehicle, EgoModel, EgoVehicle  an ego of its model's kind
     VehicleError, UnknownVehicleModelError
 """
 
@@ -22,22 +25,40 @@ from egosim.world.vehicle.control import (
     ControlCommand,
     LongitudinalMode,
 )
+from egosim.world.vehicle.ego_kinds import (
+    EGO_MODELS,
+    EgoModel,
+    EgoVehicle,
+    ego_model,
+    ego_vehicle,
+)
 from egosim.world.vehicle.errors import UnknownVehicleModelError, VehicleError
 from egosim.world.vehicle.gear import Gear
+from egosim.world.vehicle.ground_catalogue import GROUND_VEHICLE_CATALOGUE, GroundVehicleModel
+from egosim.world.vehicle.skid_steer import SkidSteerVehicle
+from egosim.world.vehicle.skid_steer_commands import BodyVelocityCommand, SideEffortCommand
 from egosim.world.vehicle.vehicle import Pose, RoadSurface, Vehicle, VehicleStatus
 from egosim.world.vehicle.wheels import Wheels, WheelStatus
 
 __all__ = [
     "DEFAULT_COMMAND_TIMEOUT",
     "DEFAULT_EGO_MODEL",
+    "EGO_MODELS",
+    "GROUND_VEHICLE_CATALOGUE",
     "VEHICLE_CATALOGUE",
+    "BodyVelocityCommand",
     "CommandGate",
     "CommandVerdict",
     "ControlCommand",
+    "EgoModel",
+    "EgoVehicle",
     "Gear",
+    "GroundVehicleModel",
     "LongitudinalMode",
     "Pose",
     "RoadSurface",
+    "SideEffortCommand",
+    "SkidSteerVehicle",
     "UnknownVehicleModelError",
     "Vehicle",
     "VehicleError",
@@ -45,5 +66,7 @@ __all__ = [
     "VehicleStatus",
     "WheelStatus",
     "Wheels",
+    "ego_model",
+    "ego_vehicle",
     "vehicle_model",
 ]
