@@ -53,7 +53,14 @@ from egosim.world.traffic import (
     walk_signals,
 )
 from egosim.world.traffic.object_list import ObjectList
-from egosim.world.vehicle import DEFAULT_EGO_MODEL, Pose, Vehicle, VehicleStatus, vehicle_model
+from egosim.world.vehicle import (
+    DEFAULT_EGO_MODEL,
+    EgoVehicle,
+    Pose,
+    VehicleStatus,
+    ego_model,
+    ego_vehicle,
+)
 
 DEFAULT_PHYSICS_STEP_S = 0.01
 DEFAULT_OBJECT_LIST_SIZE = 20
@@ -65,7 +72,7 @@ PEDESTRIAN_HALF_DEPTH_M = 0.5
 class Ego:
     """One ego vehicle: its object id and the vehicle model that moves it."""
 
-    def __init__(self, unique_id: int, vehicle: Vehicle) -> None:
+    def __init__(self, unique_id: int, vehicle: EgoVehicle) -> None:
         self.unique_id = unique_id
         self.vehicle = vehicle
 
@@ -144,7 +151,7 @@ class World:
 
     def add_ego(self, model_name: str, pose: Pose) -> Ego:
         """A further ego vehicle (the first one is the main ego)."""
-        ego = Ego(self._next_id, Vehicle(vehicle_model(model_name), pose))
+        ego = Ego(self._next_id, ego_vehicle(ego_model(model_name), pose))
         self._next_id += 1
         self.egos.append(ego)
         return ego
@@ -385,7 +392,7 @@ class World:
             model, pose, speed = ego
             main = self.egos[0]
             if main.vehicle.model != model:
-                main.vehicle = Vehicle(model, pose)
+                main.vehicle = ego_vehicle(model, pose)
             main.vehicle.teleport(pose, speed)
         self.npcs.spawn(npcs)
         self.pedestrians.spawn(walkers)

@@ -5,7 +5,8 @@ Errors (unknown lanes, sidewalks, models ...) name the scenario's file, line and
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
+from typing import TypeVar
 
 import numpy as np
 
@@ -21,8 +22,10 @@ from egosim.world.traffic.pedestrians import (
     crosswalk_path,
     sidewalk_path,
 )
-from egosim.world.vehicle import VEHICLE_CATALOGUE, VehicleModel
+from egosim.world.vehicle import EGO_MODELS, VEHICLE_CATALOGUE, EgoModel
 from egosim.world.vehicle import Pose as VehiclePose
+
+ModelT = TypeVar("ModelT")
 
 
 def check_map(scenario: Scenario, lane_map: LaneMap) -> None:
@@ -32,11 +35,16 @@ def check_map(scenario: Scenario, lane_map: LaneMap) -> None:
         )
 
 
-def vehicle_model_at(scenario: Scenario, name: str, path: FieldPath) -> VehicleModel:
+def vehicle_model_at(
+    scenario: Scenario,
+    name: str,
+    path: FieldPath,
+    catalogue: Mapping[str, ModelT] = VEHICLE_CATALOGUE,
+) -> ModelT:
     try:
-        return VEHICLE_CATALOGUE[name]
+        return catalogue[name]
     except KeyError:
-        known = ", ".join(sorted(VEHICLE_CATALOGUE))
+        known = ", ".join(sorted(catalogue))
         raise scenario.error(path, f"unknown vehicle model {name!r}; known: {known}") from None
 
 
@@ -90,13 +98,13 @@ def world_pose(lane_map: LaneMap, start: Start, path: FieldPath, scenario: Scena
 
 def ego_placement(
     scenario: Scenario, lane_map: LaneMap
-) -> tuple[VehicleModel, VehiclePose, float] | None:
+) -> tuple[EgoModel, VehiclePose, float] | None:
     """Model, pose (of the vehicle's reference point) and speed (m/s) of the scenario's
     ego; None when the scenario has no ego section."""
     ego = scenario.ego
     if ego is None:
         return None
-    model = vehicle_model_at(scenario, ego.model, (*ego.path, "model"))
+    model = vehicle_model_at(scenario, ego.model, (*ego.path, "model"), EGO_MODELS)
     pose = world_pose(lane_map, ego.start, (*ego.path, "start"), scenario)
     return model, VehiclePose(x=pose.x, y=pose.y, z=pose.z, yaw=pose.heading), ego.speed
 
