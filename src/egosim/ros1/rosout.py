@@ -9,6 +9,7 @@ from functools import cache
 
 from egosim.msgs import DEFAULT_PROFILE, MessageType, get_profile
 
+from .errors import NodeShutdownError
 from .publication import Publisher
 
 ROSOUT_TOPIC = "/rosout"
@@ -46,6 +47,8 @@ class RosoutHandler(logging.Handler):
         self._busy.active = True
         try:
             self._publisher.publish(self.serialize(record))
+        except NodeShutdownError:
+            pass  # a record logged while the node shuts down has nowhere to go
         except Exception:
             self.handleError(record)
         finally:
