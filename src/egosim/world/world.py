@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,6 +21,7 @@ from egosim.world.collision import (
     touching_pairs,
 )
 from egosim.world.map import LaneMap
+from egosim.world.recorded_scene import RecordedScene
 from egosim.world.scenario import Scenario, ScenarioLoadOptions, ScenarioLoadReport
 from egosim.world.scenario.placement import (
     check_map,
@@ -52,6 +53,7 @@ from egosim.world.traffic import (
     crossed_lights,
     walk_signals,
 )
+from egosim.world.traffic.ghosts import GhostPlacement, NpcGhosts
 from egosim.world.traffic.object_list import ObjectList
 from egosim.world.vehicle import (
     DEFAULT_EGO_MODEL,
@@ -118,6 +120,7 @@ class World:
         self._graph = LaneGraph(lane_map, self.signals.light_ids)
         self._crossed_lights = crossed_lights(lane_map, self._light_positions())
         self.npcs = NpcFleet(self._graph, np.random.default_rng(0))
+        self.npc_ghosts = NpcGhosts()
         self.pedestrians = PedestrianCrowd()
         self.obstacles = StaticObstacles()
         self._obstacle_occupants = LaneOccupants.empty()
@@ -133,6 +136,8 @@ class World:
         """Every NPC-NPC collision since the objects were last deleted, oldest first."""
         self.network_settings_request: dict | None = None
         """The network settings of the last ScenarioLoad that asked for them."""
+        self.recorded = RecordedScene()
+        """What a replay shows instead of simulating (nothing by default); see show_recorded."""
         self._footprints = self._current_footprints()
         if scenario is not None:
             self.load_scenario(scenario)
@@ -155,6 +160,10 @@ class World:
         self._next_id += 1
         self.egos.append(ego)
         return ego
+
+    def keep_egos(self, count: int) -> None:
+        """Remove the egos after the first `count` (the main ego always stays)."""
+        del self.egos[max(count, 1) :]
 
     def ego_status(self, index: int = 0) -> VehicleStatus:
         return self.egos[index].vehicle.status()
@@ -218,26 +227,60 @@ class World:
             sizes=np.array([r[6] for r in rows], dtype=np.float64).reshape(-1, 3),
         )
 
+    def _shown_tables(self) -> list[ObjectTable]:
+        """NPCs, pedestrians and obstacles in view: the recorded ones where a replay shows
+        them, else the simulated ones."""
+        recorded = self.recorded
+        return [
+            ObjectTable.concatenate([self.npcs.table(), self.npc_ghosts.table()])
+            if recorded.npcs is None
+            else recorded.npcs,
+            self.pedestrians.table() if recorded.pedestrians is None else recorded.pedestrians,
+            self.obstacles.table() if recorded.obstacles is None else recorded.obstacles,
+        ]
+
     def objects(self) -> ObjectTable:
         """Every object: egos, then NPCs, pedestrians and obstacles."""
-        return ObjectTable.concatenate(
-            [self._ego_table(), self.npcs.table(), self.pedestrians.table(), self.obstacles.table()]
-        )
+        return ObjectTable.concatenate([self._ego_table(), *self._shown_tables()])
 
     def object_list(self, ego_index: int = 0, size: int | None = None) -> ObjectList:
         """ObjectStatusList: counts of all spawned objects; the `size` (default
         object_list_size) objects closest to the ego, split by kind, closest first."""
-        others = ObjectTable.concatenate(
-            [self.npcs.table(), self.pedestrians.table(), self.obstacles.table()]
-        )
+        npcs, pedestrians, obstacles = self._shown_tables()
+        others = ObjectTable.concatenate([npcs, pedestrians, obstacles])
         status = self.ego_status(ego_index)
         centre = self.egos[ego_index].box_centre(status)
         return closest_objects(
             others,
             centre,
             self.object_list_size if size is None else size,
-            counts=(len(self.npcs), len(self.pedestrians), len(self.obstacles)),
+            counts=(len(npcs), len(pedestrians), len(obstacles)),
         )
+
+    def place_npc_ghosts(self, placements: Sequence[GhostPlacement]) -> list[int]:
+        """NpcGhostCmd: each placed NPC leaves the simulation and stands where it is told;
+        an unknown id becomes a new NPC. Returns the ids refused: those of an ego, a
+        pedestrian or an obstacle."""
+        taken = {ego.unique_id for ego in self.egos}
+        taken.update(int(i) for i in self.pedestrians.unique_ids)
+        taken.update(int(i) for i in self.obstacles.table().unique_ids)
+        accepted = [p for p in placements if p.unique_id not in taken]
+        ids = [p.unique_id for p in accepted]
+        self.npcs.remove(np.flatnonzero(np.isin(self.npcs.unique_ids, ids)))
+        self.npc_ghosts.place(accepted, self.sim_time)
+        self._next_id = max([self._next_id, *(i + 1 for i in ids)])
+        return [p.unique_id for p in placements if p.unique_id in taken]
+
+    # -- replay ------------------------------------------------------------------------
+
+    def show_recorded(self, scene: RecordedScene) -> None:
+        """Show `scene` from now on: its ego pose at once, its object tables instead of
+        the simulated agents of those kinds, which stop being stepped until a later
+        scene leaves their kind out (RecordedScene() returns to full simulation)."""
+        self.recorded = scene
+        if scene.ego is not None:
+            ego = scene.ego
+            self.egos[0].vehicle.teleport(ego.pose, ego.speed, ego.front_steer, ego.rear_steer)
 
     # -- stepping ----------------------------------------------------------------------
 
@@ -249,15 +292,25 @@ class World:
         if self.paused:
             return
         self.signals.step(dt)
-        for ego in self.egos:
-            ego.vehicle.step(dt)
+        recorded = self.recorded
+        for index, ego in enumerate(self.egos):
+            # A replayed main ego holds the recorded pose show_recorded gave it.
+            if index > 0 or recorded.ego is None:
+                ego.vehicle.step(dt)
         lights = LightsView.of(self.signals.aspects(), self.signals.light_types)
         others = LaneOccupants.concatenate(
-            [self._ego_occupants(), self._pedestrian_occupants(), self._obstacle_occupants]
+            [
+                self._ego_occupants(),
+                self.npc_ghosts.occupants(self.map),
+                self._pedestrian_occupants(),
+                self._obstacle_occupants,
+            ]
         )
-        self.npcs.step(dt, lights, others)
-        stops_traffic = (lights.aspects == RED) | (lights.aspects == OFF) | lights.flashing
-        self.pedestrians.step(dt, walk_signals(self._crossed_lights, stops_traffic))
+        if recorded.npcs is None:
+            self.npcs.step(dt, lights, others)
+        if recorded.pedestrians is None:
+            stops_traffic = (lights.aspects == RED) | (lights.aspects == OFF) | lights.flashing
+            self.pedestrians.step(dt, walk_signals(self._crossed_lights, stops_traffic))
         self.sim_time += dt
         self._collide()
 
@@ -278,9 +331,10 @@ class World:
         )
 
     def _pedestrian_occupants(self) -> LaneOccupants:
-        if len(self.pedestrians) == 0:
+        _, pedestrians, _ = self._shown_tables()
+        if len(pedestrians) == 0:
             return LaneOccupants.empty()
-        projection = self.map.project_many(self.pedestrians.position)
+        projection = self.map.project_many(pedestrians.positions[:, :2])
         near = np.abs(projection.lateral) <= projection.width / 2.0 + PEDESTRIAN_LANE_MARGIN_M
         count = int(np.count_nonzero(near))
         return LaneOccupants(
@@ -336,8 +390,11 @@ class World:
         if not fresh:
             return
         slot = {int(uid): k for k, uid in enumerate(ids)}
-        npc_slot = {int(uid): k for k, uid in enumerate(self.npcs.unique_ids)}
-        walker_slot = {int(uid): k for k, uid in enumerate(self.pedestrians.unique_ids)}
+        # Only simulated agents can be halted; recorded ones go where the recording says.
+        npcs = self.npcs.unique_ids if self.recorded.npcs is None else []
+        walkers = self.pedestrians.unique_ids if self.recorded.pedestrians is None else []
+        npc_slot = {int(uid): k for k, uid in enumerate(npcs)}
+        walker_slot = {int(uid): k for k, uid in enumerate(walkers)}
         egos = {ego.unique_id: ego for ego in self.egos}
         for a, b in fresh:
             records = (table.record(slot[a]), table.record(slot[b]))
@@ -349,9 +406,9 @@ class World:
                     self.ego_collisions[me.unique_id] = record
                     self.ego_collision_log.append(record)
                     self._halt_ego(egos[me.unique_id])
-                elif me.object_type == ObjectType.NPC_VEHICLE:
+                elif me.object_type == ObjectType.NPC_VEHICLE and me.unique_id in npc_slot:
                     self.npcs.stop([npc_slot[me.unique_id]])
-                elif me.object_type == ObjectType.PEDESTRIAN:
+                elif me.object_type == ObjectType.PEDESTRIAN and me.unique_id in walker_slot:
                     self.pedestrians.stop([walker_slot[me.unique_id]])
 
     @staticmethod
@@ -383,6 +440,7 @@ class World:
         self.signals = signals
         if options.delete_all:
             self.npcs.clear()
+            self.npc_ghosts.clear()
             self.pedestrians.clear()
             self.obstacles.clear()
             self.vehicle_collisions.clear()
