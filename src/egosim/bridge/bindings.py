@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from . import ego, events, lights, objects, scenarios, specs
+from . import ego, events, ground_vehicle, lights, objects, scenarios, specs
 from .core import Handlers
 
 HANDLERS = Handlers(
@@ -16,6 +16,9 @@ HANDLERS = Handlers(
     },
     subscribers={
         "ctrl_cmd": ego.on_ctrl_cmd,
+        "webot_cmd": ground_vehicle.on_webot_cmd,
+        "gv_direct_cmd": ground_vehicle.on_gv_direct_cmd,
+        "gv_state_cmd": ground_vehicle.on_gv_state_cmd,
         "set_traffic_light": lights.on_set_traffic_light,
         "intersection_control": lights.on_intersection_control,
         "scenario_load": scenarios.on_scenario_load,

@@ -50,6 +50,8 @@ class BridgeContext:
     ego_settings: dict[int, EgoSettings] = field(default_factory=dict)
     reported: dict[str, int] = field(default_factory=dict)
     """How many entries of each world log a publisher has already reported."""
+    warned: set[str] = field(default_factory=set)
+    """Warnings already logged, so repeated bad input is reported once."""
     step: Callable[[], None] | None = None
     """Advance the world one physics step and publish what is due (set by the app; the
     sync-mode services call it)."""

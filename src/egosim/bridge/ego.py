@@ -10,8 +10,9 @@ from typing import Any
 
 from ..msgs import Profile
 from ..world import EgoLaneState
-from ..world.vehicle import ControlCommand, VehicleStatus
-from .context import CTRL_MODE_EXTERNAL, BridgeContext
+from ..world.vehicle import ControlCommand, Vehicle, VehicleStatus
+from .context import BridgeContext
+from .ground_vehicle import commanded_main_ego
 from .messages import vector3
 from .units import deg, heading_deg, mps
 
@@ -87,9 +88,10 @@ def publish_ego_status(context: BridgeContext) -> Any:
 
 
 def on_ctrl_cmd(context: BridgeContext, ctrl_cmd: Any) -> None:
-    """/ctrl_cmd drives the main ego while its control mode is external (EventInfo 3)."""
-    ego = context.world.egos[0]
-    if context.settings_of(ego.unique_id).ctrl_mode != CTRL_MODE_EXTERNAL:
+    """/ctrl_cmd drives the main ego while its control mode is external (EventInfo 3)
+    and it is a road vehicle."""
+    ego = commanded_main_ego(context, "ctrl_cmd", Vehicle)
+    if ego is None:
         return
     verdict = ego.vehicle.command(control_command(ctrl_cmd))
     if not verdict.accepted:

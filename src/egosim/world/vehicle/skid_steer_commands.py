@@ -79,6 +79,8 @@ class SkidSteerGate:
 
     def submit(self, command: SkidSteerCommand, sim_time: float) -> CommandVerdict:
         """Accept `command` at sim_time (s), clamped into range, unless it is invalid."""
+        if not isinstance(command, SideEffortCommand | BodyVelocityCommand):
+            return CommandVerdict(False, reason=f"a skid-steer takes no {type(command).__name__}")
         if not all(math.isfinite(value) for value in astuple(command)):
             return CommandVerdict(False, reason="non-finite value")
         clamped: tuple[str, ...] = ()

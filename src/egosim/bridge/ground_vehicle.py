@@ -1,0 +1,124 @@
+"""Ground vehicle command inputs: GVDirectCmd, GVStateCmd and WeBOT's geometry_msgs/Twist.
+
+They drive a main ego whose model is a ground vehicle (a skid-steer); sent to a
+car they are ignored, as CtrlCmd is when the ego is a skid-steer, with one
+warning per row. All their quantities are already SI (m/s, rad/s, -1..1).
+Semantics and codes are listed in docs/protocol.md.
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import Any
+
+from ..world import Ego
+from ..world.vehicle import (
+    BodyVelocityCommand,
+    SideEffortCommand,
+    SkidSteerVehicle,
+    Vehicle,
+)
+from .context import CTRL_MODE_EXTERNAL, BridgeContext
+
+log = logging.getLogger(__name__)
+
+# GVDirectCmd.steerType (the protocol document's "Table 1" is missing; these are egosim's).
+STEER_TYPE_SKID = 0  # throttle and skidSteering drive the two sides
+STEER_TYPE_WHEEL_ANGLES = 1  # steerAngle[] steers the wheels: no ground model has steered wheels
+
+# GVStateCmd.latCtrlType, numbered like steerType.
+LAT_CTRL_ANGULAR_VELOCITY = 0  # targetAngularVelocity sets the yaw rate
+LAT_CTRL_STEER_ANGLES = 1  # targetSteerAngle[]: as STEER_TYPE_WHEEL_ANGLES, unsupported
+
+
+def warn_once(context: BridgeContext, key: str, text: str) -> None:
+    """Log `text` the first time `key` comes up, so a 50 Hz stream does not flood the log."""
+    if key not in context.warned:
+        context.warned.add(key)
+        log.warning(text)
+
+
+def commanded_main_ego(
+    context: BridgeContext, row_key: str, kind: type[Vehicle] | type[SkidSteerVehicle]
+) -> Ego | None:
+    """The main ego when a command of row `row_key` may drive it: its control mode is
+    external (EventInfo 3) and its vehicle is of `kind`; None otherwise."""
+    ego = context.world.egos[0]
+    if context.settings_of(ego.unique_id).ctrl_mode != CTRL_MODE_EXTERNAL:
+        return None
+    if not isinstance(ego.vehicle, kind):
+        warn_once(
+            context,
+            f"{row_key}: kind",
+            f"{row_key} ignored: the ego's model {ego.vehicle.model.name} does not take it "
+            f"(ground vehicle models take webot_cmd, gv_direct_cmd, gv_state_cmd; "
+            f"road vehicles take ctrl_cmd)",
+        )
+        return None
+    return ego
+
+
+def _drive(
+    context: BridgeContext, row_key: str, command: SideEffortCommand | BodyVelocityCommand
+) -> None:
+    ego = commanded_main_ego(context, row_key, SkidSteerVehicle)
+    if ego is None:
+        return
+    verdict = ego.vehicle.command(command)
+    if not verdict.accepted:
+        warn_once(
+            context,
+            f"{row_key}: {verdict.reason}",
+            f"{row_key} rejected (last valid command kept): {verdict.reason}",
+        )
+
+
+def on_gv_direct_cmd(context: BridgeContext, message: Any) -> None:
+    """/gv_direct_cmd: throttle, skid steering and brake of the two sides (steerType 0)."""
+    if message.steerType != STEER_TYPE_SKID:
+        warn_once(
+            context,
+            f"gv_direct_cmd: steerType {message.steerType}",
+            f"gv_direct_cmd ignored: steerType {message.steerType} is not supported "
+            f"(0 skid steering; 1 wheel steering angles needs steered wheels)",
+        )
+        return
+    _drive(
+        context,
+        "gv_direct_cmd",
+        SideEffortCommand(
+            throttle=float(message.throttle),
+            skid_steering=float(message.skidSteering),
+            brake=float(message.brake),
+        ),
+    )
+
+
+def on_gv_state_cmd(context: BridgeContext, message: Any) -> None:
+    """/gv_state_cmd: target forward speed (m/s) and yaw rate (rad/s) (latCtrlType 0)."""
+    if message.latCtrlType != LAT_CTRL_ANGULAR_VELOCITY:
+        warn_once(
+            context,
+            f"gv_state_cmd: latCtrlType {message.latCtrlType}",
+            f"gv_state_cmd ignored: latCtrlType {message.latCtrlType} is not supported "
+            f"(0 angular velocity; 1 steering angles needs steered wheels)",
+        )
+        return
+    _drive(
+        context,
+        "gv_state_cmd",
+        BodyVelocityCommand(
+            linear=float(message.targetLongitudinalVelocity),
+            angular=float(message.targetAngularVelocity),
+        ),
+    )
+
+
+def on_webot_cmd(context: BridgeContext, twist: Any) -> None:
+    """/commands/vel: linear.x (m/s) and angular.z (rad/s); a ground vehicle has no other
+    degrees of freedom, so the other components are not read."""
+    _drive(
+        context,
+        "webot_cmd",
+        BodyVelocityCommand(linear=float(twist.linear.x), angular=float(twist.angular.z)),
+    )
