@@ -1,0 +1,216 @@
+"""The `sensors:` section of the network settings file: mounts, noise and LiDAR geometry.
+
+Topic names, rates and on/off of the sensor rows come from the `rows:` section like
+every other row; this section holds what MORAI's sensor edit dialog holds:
+
+sensors:
+  seed: 0                        # noise generator seed (one stream per sensor)
+  gps:
+    frame_id: gps
+    mount: {x: 0.0, y: 0.0, z: 1.5, roll_deg: 0, pitch_deg: 0, yaw_deg: 0}
+    noise: {horizontal_std_m: 0.0, vertical_std_m: 0.0}
+  imu:
+    mount: {...}
+    noise: {orientation_std_rad: 0.0, angular_velocity_std_rad_s: 0.0,
+            linear_acceleration_std_m_s2: 0.0,
+            angular_velocity_bias_rad_s: [0, 0, 0], linear_acceleration_bias_m_s2: [0, 0, 0]}
+  lidar:
+    mount: {x: 0.0, y: 0.0, z: 1.8}
+    channels: 16
+    min_elevation_deg: -15
+    max_elevation_deg: 15
+    horizontal_resolution_deg: 0.2
+    min_range_m: 0.5
+    max_range_m: 100
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field, fields, replace
+from typing import Any, TypeVar
+
+from ..sensors import GpsNoise, ImuNoise, LidarConfig, MountPose, SensorConfigError
+from ..yamltext import YamlDocument
+from .units import rad
+
+T = TypeVar("T")
+
+SENSOR_KINDS = ("gps", "imu", "lidar")
+"""Also the sensor indices of SensorPosControl: 0 GPS, 1 IMU, 2 LiDAR."""
+
+MOUNT_FIELDS = {
+    "x": "x",
+    "y": "y",
+    "z": "z",
+    "roll_deg": "roll",
+    "pitch_deg": "pitch",
+    "yaw_deg": "yaw",
+}
+LIDAR_FIELDS = (
+    "channels",
+    "min_elevation_deg",
+    "max_elevation_deg",
+    "horizontal_resolution_deg",
+    "min_range_m",
+    "max_range_m",
+)
+DEFAULT_GPS_MOUNT = MountPose(z=1.5)
+DEFAULT_IMU_MOUNT = MountPose()
+
+
+@dataclass(frozen=True)
+class GpsSettings:
+    frame_id: str = "gps"
+    mount: MountPose = DEFAULT_GPS_MOUNT
+    noise: GpsNoise = field(default_factory=GpsNoise)
+
+
+@dataclass(frozen=True)
+class ImuSettings:
+    frame_id: str = "imu"
+    mount: MountPose = DEFAULT_IMU_MOUNT
+    noise: ImuNoise = field(default_factory=ImuNoise)
+
+
+@dataclass(frozen=True)
+class LidarSettings:
+    frame_id: str = "lidar"
+    config: LidarConfig = field(default_factory=LidarConfig)
+
+
+@dataclass(frozen=True)
+class SensorSettings:
+    seed: int = 0
+    gps: GpsSettings = field(default_factory=GpsSettings)
+    imu: ImuSettings = field(default_factory=ImuSettings)
+    lidar: LidarSettings = field(default_factory=LidarSettings)
+
+
+Path = tuple[str, ...]
+
+
+def parse_sensor_settings(document: YamlDocument, data: Any) -> SensorSettings:
+    """The `sensors:` mapping of a network settings document; errors name file, line, field."""
+    path: Path = ("sensors",)
+    if data is None:
+        return SensorSettings()
+    _check_keys(document, path, data, ("seed", *SENSOR_KINDS))
+    seed = data.get("seed", 0)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise document.error((*path, "seed"), "expected a non-negative integer")
+    return SensorSettings(
+        seed=seed,
+        gps=_gps(document, (*path, "gps"), data.get("gps")),
+        imu=_imu(document, (*path, "imu"), data.get("imu")),
+        lidar=_lidar(document, (*path, "lidar"), data.get("lidar")),
+    )
+
+
+def _gps(document: YamlDocument, path: Path, data: Any) -> GpsSettings:
+    defaults = GpsSettings()
+    if data is None:
+        return defaults
+    _check_keys(document, path, data, ("frame_id", "mount", "noise"))
+    return GpsSettings(
+        frame_id=_frame_id(document, path, data, defaults.frame_id),
+        mount=_mount(document, (*path, "mount"), data.get("mount"), defaults.mount),
+        noise=_noise(document, (*path, "noise"), data.get("noise"), GpsNoise),
+    )
+
+
+def _imu(document: YamlDocument, path: Path, data: Any) -> ImuSettings:
+    defaults = ImuSettings()
+    if data is None:
+        return defaults
+    _check_keys(document, path, data, ("frame_id", "mount", "noise"))
+    return ImuSettings(
+        frame_id=_frame_id(document, path, data, defaults.frame_id),
+        mount=_mount(document, (*path, "mount"), data.get("mount"), defaults.mount),
+        noise=_noise(document, (*path, "noise"), data.get("noise"), ImuNoise),
+    )
+
+
+def _lidar(document: YamlDocument, path: Path, data: Any) -> LidarSettings:
+    defaults = LidarSettings()
+    if data is None:
+        return defaults
+    _check_keys(document, path, data, ("frame_id", "mount", *LIDAR_FIELDS))
+    geometry: dict[str, Any] = {}
+    for name in LIDAR_FIELDS:
+        if name in data:
+            geometry[name] = _number(
+                document, (*path, name), data[name], integer=name == "channels"
+            )
+    if geometry.get("horizontal_resolution_deg", 1.0) <= 0:
+        raise document.error((*path, "horizontal_resolution_deg"), "must be > 0 deg")
+    mount = _mount(document, (*path, "mount"), data.get("mount"), defaults.config.mount)
+    config = _built(document, path, lambda: replace(defaults.config, mount=mount, **geometry))
+    return LidarSettings(frame_id=_frame_id(document, path, data, defaults.frame_id), config=config)
+
+
+def _mount(document: YamlDocument, path: Path, data: Any, default: MountPose) -> MountPose:
+    if data is None:
+        return default
+    _check_keys(document, path, data, tuple(MOUNT_FIELDS))
+    values = {}
+    for key, attribute in MOUNT_FIELDS.items():
+        if key in data:
+            value = _number(document, (*path, key), data[key])
+            values[attribute] = rad(value) if key.endswith("_deg") else value
+    return replace(default, **values)
+
+
+def _noise(document: YamlDocument, path: Path, data: Any, kind: Callable[..., T]) -> T:
+    """GpsNoise or ImuNoise from their own field names (std values, bias vectors)."""
+    if data is None:
+        return kind()
+    names = tuple(f.name for f in fields(kind))  # type: ignore[arg-type]
+    _check_keys(document, path, data, names)
+    values: dict[str, Any] = {}
+    for name, value in data.items():
+        if name.endswith("_bias_rad_s") or name.endswith("_bias_m_s2"):
+            values[name] = _vector(document, (*path, name), value)
+        else:
+            values[name] = _number(document, (*path, name), value)
+    return _built(document, path, lambda: kind(**values))
+
+
+def _frame_id(document: YamlDocument, path: Path, data: dict, default: str) -> str:
+    frame_id = data.get("frame_id", default)
+    if not isinstance(frame_id, str) or not frame_id or "/" in frame_id.strip("/"):
+        raise document.error((*path, "frame_id"), f"not a tf frame name: {frame_id!r}")
+    return frame_id
+
+
+def _check_keys(document: YamlDocument, path: Path, data: Any, known: tuple[str, ...]) -> None:
+    if not isinstance(data, dict):
+        raise document.error(path, f"expected a mapping ({', '.join(known)})")
+    for key in data:
+        if key not in known:
+            raise document.error((*path, str(key)), f"unknown field (known: {', '.join(known)})")
+
+
+def _number(document: YamlDocument, path: Path, value: Any, integer: bool = False) -> Any:
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise document.error(path, "expected a number")
+    if not math.isfinite(value):
+        raise document.error(path, "expected a finite number")
+    if integer and not isinstance(value, int):
+        raise document.error(path, "expected an integer")
+    return value
+
+
+def _vector(document: YamlDocument, path: Path, value: Any) -> tuple[float, float, float]:
+    if not isinstance(value, list) or len(value) != 3:
+        raise document.error(path, "expected a list of 3 numbers (x, y, z)")
+    return tuple(float(_number(document, (*path, str(k)), v)) for k, v in enumerate(value))  # type: ignore[return-value]
+
+
+def _built(document: YamlDocument, path: Path, build: Callable[[], T]) -> T:
+    """The sensor models check their own parameters; their errors point at `path`."""
+    try:
+        return build()
+    except SensorConfigError as error:
+        raise document.error(path, str(error)) from None

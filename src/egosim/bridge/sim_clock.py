@@ -1,0 +1,20 @@
+"""/clock: rosgraph_msgs/Clock with the simulation time, after every step.
+
+Published with `--clock sim` and `--clock sync`, where the simulator sets
+/use_sim_time and stamps headers with the simulation time; nothing is published
+in real time, where nodes use their wall clocks.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .context import BridgeContext
+from .messages import time_msg
+from .sensor_messages import clock_message
+
+
+def publish_clock(context: BridgeContext) -> Any:
+    if not context.publishes_clock:
+        return None
+    return clock_message(context.profile, time_msg(context.profile, context.stamp()))

@@ -1,0 +1,237 @@
+"""MORAI's synchronous mode (morai_msgs 26.r1): the client steps the world.
+
+Served with `--clock sync`; in the other clock modes every request is refused
+(result / tick_status false) because the loop already steps the world.
+
+Frames: SyncModeCmd(start) answers with the current frame F and the tick length
+(time_step ms; 0 asks for the simulator's physics step). Every tick advances the
+world by exactly one step of time_step and the frame by one. WaitForTick(frame=N)
+ticks until the world is at frame N, publishing each tick's due outputs before it
+answers; N at or before the current frame does not tick (tick_status false), and
+more than MAX_TICKS_PER_REQUEST ticks at once are refused.
+
+A request tagged with frame N (CtrlCmd, SetGear, ScenarioLoad, AddObject,
+RemoveObject) takes effect in the tick that produces frame N, i.e. before the
+world steps from N-1 to N: for N = current + 1 it is applied at once (its result
+is the real outcome), for a later N it is kept until then (result true: accepted;
+a failure then is logged), and for N at or before the current frame it is refused
+(result false), since that tick is over.
+
+WaitForTickResponse.time is the simulation time in seconds with 6 decimals
+("12.340000").
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..world.vehicle import Gear
+from .context import BridgeContext
+from .ego import ego_vehicle_status, on_ctrl_cmd
+from .scenarios import ScenarioRequestError, load_requested_scenario
+
+log = logging.getLogger(__name__)
+
+MAX_TICKS_PER_REQUEST = 1000
+MAX_TIME_STEP_MS = 1000
+MAX_PENDING_ACTIONS = 10_000
+
+Action = Callable[[BridgeContext], bool]
+
+
+@dataclass
+class SyncSession:
+    """The synchronous-mode state of a `--clock sync` run."""
+
+    active: bool = False
+    user_id: str = ""
+    frame: int = 0
+    time_step_ms: int = 0
+    pending: dict[int, list[tuple[str, Action]]] = field(default_factory=dict)
+
+
+def _session(context: BridgeContext, service: str) -> SyncSession | None:
+    """The active session, or None (logged) when sync mode is off or not running."""
+    session = context.sync
+    if session is None:
+        log.error("%s: synchronous mode needs `egosim run --clock sync`", service)
+        return None
+    if not session.active:
+        log.error("%s: synchronous mode is not started (call SyncModeCmd first)", service)
+        return None
+    return session
+
+
+def result_message(context: BridgeContext, ok: bool) -> Any:
+    return context.profile.message("morai_msgs/SyncModeResultResponse").new(result=ok)
+
+
+def service_response(context: BridgeContext, service_type: str, response: Any) -> Any:
+    return context.profile.message(f"morai_msgs/{service_type}Response").new(response=response)
+
+
+def serve_sync_mode_cmd(context: BridgeContext, request: Any) -> Any:
+    """/SyncModeCmd: start (with a tick length) or stop synchronous mode."""
+    command = request.request
+    session = context.sync
+    ok = session is not None
+    if session is None:
+        log.error("/SyncModeCmd: synchronous mode needs `egosim run --clock sync`")
+    elif command.start_sync_mode:
+        step_ms = int(command.time_step) or round(context.world.physics_step_s * 1000)
+        ok = 0 < step_ms <= MAX_TIME_STEP_MS
+        if ok:
+            session.active, session.user_id, session.time_step_ms = True, command.user_id, step_ms
+            log.info(
+                "sync mode started by %r at frame %d, %d ms",
+                command.user_id,
+                session.frame,
+                step_ms,
+            )
+        else:
+            log.error("/SyncModeCmd: time_step %d ms is not 1..%d", step_ms, MAX_TIME_STEP_MS)
+    else:
+        session.active = False
+        session.pending.clear()
+        log.info("sync mode stopped at frame %d", session.frame)
+    return service_response(
+        context,
+        "MoraiSyncModeCmdSrv",
+        context.profile.message("morai_msgs/SyncModeCmdResponse").new(
+            user_id=command.user_id,
+            frame=session.frame if session is not None else 0,
+            result=ok,
+            time_step=session.time_step_ms if session is not None else 0,
+        ),
+    )
+
+
+def serve_wait_for_tick(context: BridgeContext, request: Any) -> Any:
+    """/SyncModeWaitForTick: tick to the requested frame; the ego's status there."""
+    tick = request.request
+    session = _session(context, "/SyncModeWaitForTick")
+    ticked = False
+    if session is not None:
+        target = int(tick.frame)
+        if tick.user_id != session.user_id:
+            log.error("/SyncModeWaitForTick: user %r did not start sync mode", tick.user_id)
+        elif target <= session.frame:
+            log.warning(
+                "/SyncModeWaitForTick: frame %d is not after the current %d", target, session.frame
+            )
+        elif target - session.frame > MAX_TICKS_PER_REQUEST:
+            log.error(
+                "/SyncModeWaitForTick: %d ticks at once (max %d)",
+                target - session.frame,
+                MAX_TICKS_PER_REQUEST,
+            )
+        else:
+            while session.frame < target:
+                _tick(context, session)
+            ticked = True
+    world = context.world
+    return service_response(
+        context,
+        "MoraiWaitForTickSrv",
+        context.profile.message("morai_msgs/WaitForTickResponse").new(
+            tick_status=ticked,
+            pause_status=world.paused,
+            frame=session.frame if session is not None else 0,
+            vehicle_status=ego_vehicle_status(
+                context.profile,
+                context.header(),
+                world.egos[0].unique_id,
+                world.ego_status(0),
+                world.ego_lane_state(0),
+            ),
+            time=f"{world.sim_time:.6f}",
+        ),
+    )
+
+
+def _tick(context: BridgeContext, session: SyncSession) -> None:
+    frame = session.frame + 1
+    for name, action in session.pending.pop(frame, []):
+        if not action(context):
+            log.error("%s for frame %d failed", name, frame)
+    context.step(session.time_step_ms / 1000.0)
+    session.frame = frame
+
+
+def at_frame(context: BridgeContext, service: str, frame: int, action: Action) -> bool:
+    """Apply `action` in the tick producing `frame` (see the module's docstring)."""
+    session = _session(context, service)
+    if session is None:
+        return False
+    if frame <= session.frame:
+        log.error("%s: frame %d is not after the current %d", service, frame, session.frame)
+        return False
+    if frame == session.frame + 1:
+        return action(context)
+    if sum(len(actions) for actions in session.pending.values()) >= MAX_PENDING_ACTIONS:
+        log.error("%s: %d requests already wait for their frames", service, MAX_PENDING_ACTIONS)
+        return False
+    session.pending.setdefault(frame, []).append((service, action))
+    return True
+
+
+def serve_ctrl_cmd(context: BridgeContext, request: Any) -> Any:
+    """/SyncModeCtrlCmd: the main ego's CtrlCmd from the tick producing `frame` on."""
+    command = request.request.command
+
+    def drive(context: BridgeContext) -> bool:
+        on_ctrl_cmd(context, command)
+        return True
+
+    ok = at_frame(context, "/SyncModeCtrlCmd", int(request.request.frame), drive)
+    return service_response(context, "MoraiSyncModeCtrlCmdSrv", result_message(context, ok))
+
+
+def serve_set_gear(context: BridgeContext, request: Any) -> Any:
+    """/SyncModeSetGear: the main ego's gear (EventInfo codes 1 P, 2 R, 3 N, 4 D)."""
+    try:
+        gear = Gear(int(request.request.gear))
+    except ValueError:
+        log.error("/SyncModeSetGear: gear %s is not 1..4", request.request.gear)
+        gear = None
+
+    def shift(context: BridgeContext) -> bool:
+        context.world.egos[0].vehicle.set_gear(gear)
+        return True
+
+    ok = gear is not None and at_frame(
+        context, "/SyncModeSetGear", int(request.request.frame), shift
+    )
+    return service_response(context, "MoraiSyncModeSetGearSrv", result_message(context, ok))
+
+
+def serve_scenario_load(context: BridgeContext, request: Any) -> Any:
+    """/SyncModeScenarioLoad: ScenarioLoad (same fields and file roots) at a frame."""
+    load = request.request
+
+    def apply(context: BridgeContext) -> bool:
+        try:
+            load_requested_scenario(context, load)
+        except ScenarioRequestError as error:
+            log.error("/SyncModeScenarioLoad: %s", error)
+            return False
+        return True
+
+    ok = at_frame(context, "/SyncModeScenarioLoad", int(load.frame), apply)
+    return service_response(context, "MoraiSyncModeSLSrv", result_message(context, ok))
+
+
+def publish_sync_mode_info(context: BridgeContext) -> Any:
+    """/SyncModeInfo: who runs sync mode, whether it is on, and the current frame."""
+    session = context.sync
+    if session is None:
+        return None
+    return context.profile.message("morai_msgs/SyncModeInfo").new(
+        master_id=session.user_id,
+        status=session.active,
+        frame=session.frame,
+        can_send_tick=session.active,
+    )
