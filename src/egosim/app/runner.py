@@ -11,6 +11,8 @@ from ..bridge.bindings import HANDLERS
 from ..bridge.context import BridgeContext
 from ..bridge.core import Bridge
 from ..bridge.network import load_network_settings
+from ..bridge.sensor_rig import SensorRig
+from ..bridge.sync_mode import SyncSession
 from ..maps import MapLoadError, load_map
 from ..msgs import get_profile
 from ..ros1 import Node, Ros1Error
@@ -90,7 +92,16 @@ def _run(options: RunOptions) -> int:
         inbox = Inbox()
         clock = HeaderClock(options.clock, world)
         roots = options.data_roots or (Path.cwd(),)
-        context = BridgeContext(profile, world, clock, scenario_roots=roots, data_roots=roots)
+        context = BridgeContext(
+            profile,
+            world,
+            clock,
+            scenario_roots=roots,
+            data_roots=roots,
+            sensors=SensorRig(settings.sensors, world.map.georef),
+            sync=SyncSession() if options.clock is ClockMode.SYNC else None,
+            publishes_clock=options.clock is not ClockMode.REAL,
+        )
         bridge = Bridge(node, profile, settings, HANDLERS, context, inbox)
         try:
             bridge.open()
@@ -103,14 +114,15 @@ def _run(options: RunOptions) -> int:
         log.info("egosim up: map %s, master %s", world.map.name, node.master_uri)
         print("egosim: ready", flush=True)
 
-        published_steps = 0
+        loop_time = 0.0
 
-        def step() -> None:
-            nonlocal published_steps
-            world.step()
+        def step(dt: float = options.physics_dt) -> None:
+            # Publishing runs on loop time, which advances while the world is paused.
+            nonlocal loop_time
+            world.step(dt)
             clock.tick()
-            published_steps += 1
-            bridge.publish_due(published_steps * options.physics_dt)
+            loop_time += dt
+            bridge.publish_due(loop_time)
 
         context.step = step
         max_steps = None

@@ -2,7 +2,19 @@
 
 from __future__ import annotations
 
-from . import ego, events, ground_vehicle, lights, objects, scenarios, specs
+from . import (
+    ego,
+    events,
+    ground_vehicle,
+    lights,
+    objects,
+    scenarios,
+    sensor_files,
+    sensor_rows,
+    sim_clock,
+    specs,
+    sync_mode,
+)
 from .core import Handlers
 
 HANDLERS = Handlers(
@@ -13,6 +25,12 @@ HANDLERS = Handlers(
         "vehicle_collision": objects.publish_vehicle_collisions,
         "traffic_light_status": lights.publish_traffic_light_status,
         "intersection_status": lights.publish_intersection_status,
+        "gps": sensor_rows.publish_gps,
+        "imu": sensor_rows.publish_imu,
+        "lidar": sensor_rows.publish_lidar,
+        "tf": sensor_rows.publish_tf,
+        "clock": sim_clock.publish_clock,
+        "sync_mode_info": sync_mode.publish_sync_mode_info,
     },
     subscribers={
         "ctrl_cmd": ego.on_ctrl_cmd,
@@ -23,6 +41,8 @@ HANDLERS = Handlers(
         "intersection_control": lights.on_intersection_control,
         "scenario_load": scenarios.on_scenario_load,
         "lamps": events.on_lamps,
+        "sensor_pos_control": sensor_rows.on_sensor_pos_control,
+        "save_sensor_data": sensor_files.on_save_sensor_data,
     },
     services={
         "event_cmd": events.serve_event_cmd,
@@ -30,5 +50,10 @@ HANDLERS = Handlers(
         "vehicle_spec": specs.serve_vehicle_spec,
         "tl_info": lights.serve_tl_info,
         "scenario_load_srv": scenarios.serve_scenario_load,
+        "sync_mode_cmd": sync_mode.serve_sync_mode_cmd,
+        "sync_mode_wait_for_tick": sync_mode.serve_wait_for_tick,
+        "sync_mode_ctrl_cmd": sync_mode.serve_ctrl_cmd,
+        "sync_mode_set_gear": sync_mode.serve_set_gear,
+        "sync_mode_scenario_load": sync_mode.serve_scenario_load,
     },
 )

@@ -6,11 +6,16 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..msgs import Profile
+from ..replay import DEFAULT_TOPICS, ReplaySession, ReplayTopics
 from ..world import World
 from .messages import header
+
+if TYPE_CHECKING:
+    from .sensor_rig import SensorRig
+    from .sync_mode import SyncSession
 
 MAP_FRAME = "map"
 
@@ -52,9 +57,15 @@ class BridgeContext:
     """How many entries of each world log a publisher has already reported."""
     warned: set[str] = field(default_factory=set)
     """Warnings already logged, so repeated bad input is reported once."""
-    step: Callable[[], None] | None = None
-    """Advance the world one physics step and publish what is due (set by the app; the
-    sync-mode services call it)."""
+    step: Callable[[float], None] | None = None
+    """Advance the world one step of the given dt (s) and publish what is due (set by the
+    app; the sync-mode services call it)."""
+    sensors: SensorRig | None = None
+    """The main ego's GPS, IMU and LiDAR (set by the app from the network settings)."""
+    sync: SyncSession | None = None
+    """Synchronous-mode state; None unless the run uses --clock sync."""
+    publishes_clock: bool = False
+    """Headers carry simulation time and /clock is published (--clock sim and sync)."""
 
     def header(self, frame_id: str = MAP_FRAME) -> Any:
         return header(self.profile, self.stamp(), frame_id)

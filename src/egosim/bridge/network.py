@@ -5,16 +5,19 @@ ego_input: MoraiCmdController      # or WeBOTCmdController, GVDirectCmd, GVState
 rows:
   ego_status: {name: /Ego_topic, rate_hz: 100}
   collision: {enabled: false}
+sensors:                           # mounts, noise, LiDAR geometry (bridge/sensor_settings.py)
+  lidar: {channels: 32}
 """
 
 from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from ..yamltext import YamlDocument, parse_yaml
+from .sensor_settings import SensorSettings, parse_sensor_settings
 from .table import DEFAULT_EGO_INPUT, EGO_INPUT_ROWS, ROWS, ROWS_BY_KEY, Direction, Row
 
 ROS_NAME = re.compile(r"^[~/]?[A-Za-z][\w/]*$")
@@ -27,6 +30,7 @@ class NetworkSettings:
 
     ego_input: str
     rows: tuple[Row, ...]
+    sensors: SensorSettings = field(default_factory=SensorSettings)
 
     def row(self, key: str) -> Row:
         return next(row for row in self.rows if row.key == key)
@@ -55,11 +59,11 @@ def parse_network_settings(text: str, label: str) -> NetworkSettings:
     document = parse_yaml(text, label)
     data = document.data if document.data is not None else {}
     if not isinstance(data, dict):
-        raise document.error((), "expected a mapping with 'ego_input' and/or 'rows'")
-    unknown = set(data) - {"ego_input", "rows"}
+        raise document.error((), "expected a mapping with 'ego_input', 'rows' and/or 'sensors'")
+    unknown = set(data) - {"ego_input", "rows", "sensors"}
     if unknown:
         key = sorted(unknown)[0]
-        raise document.error((key,), "unknown setting (known: ego_input, rows)")
+        raise document.error((key,), "unknown setting (known: ego_input, rows, sensors)")
     ego_input = data.get("ego_input", DEFAULT_EGO_INPUT)
     if ego_input not in EGO_INPUT_ROWS:
         raise document.error(("ego_input",), f"must be one of {', '.join(EGO_INPUT_ROWS)}")
@@ -67,7 +71,8 @@ def parse_network_settings(text: str, label: str) -> NetworkSettings:
     if not isinstance(rows, dict):
         raise document.error(("rows",), "expected a mapping of row key to settings")
     overrides = {key: _override(document, key, value) for key, value in rows.items()}
-    return settings_for(ego_input, overrides)
+    sensors = parse_sensor_settings(document, data.get("sensors"))
+    return replace(settings_for(ego_input, overrides), sensors=sensors)
 
 
 def _override(document: YamlDocument, key: Any, value: Any) -> Row:

@@ -133,6 +133,14 @@ ROWS: tuple[Row, ...] = (
         S,
         "/ego_setting",
     ),
+    # Sensors of the main ego (sim -> user); mounts and noise in the network settings' sensors:
+    Row("gps", "GPS", "morai_msgs/GPSMessage", P, "/gps", 10),
+    Row("imu", "IMU", "sensor_msgs/Imu", P, "/imu", 100),
+    Row("lidar", "3D LiDAR", "sensor_msgs/PointCloud2", P, "/lidar3D", 10),
+    Row("tf", "TF2Publisher", "tf2_msgs/TFMessage", P, "/tf", 50),
+    # Simulation time (--clock sim / sync); no rate: after every step
+    Row("clock", "Clock", "rosgraph_msgs/Clock", P, "/clock"),
+    Row("sync_mode_info", "SyncModeInfoPublisher", "morai_msgs/SyncModeInfo", P, "/SyncModeInfo"),
     # Services
     Row(
         "event_cmd",
@@ -165,6 +173,56 @@ ROWS: tuple[Row, ...] = (
         "morai_msgs/MoraiVehicleSpecSrv",
         V,
         "/Service_MoraiVehicleSpec",
+    ),
+    # Synchronous mode (--clock sync)
+    Row(
+        "sync_mode_cmd",
+        "SyncModeCmdServiceProvider",
+        "morai_msgs/MoraiSyncModeCmdSrv",
+        V,
+        "/SyncModeCmd",
+    ),
+    Row(
+        "sync_mode_wait_for_tick",
+        "SyncModeWaitForTickServiceProvider",
+        "morai_msgs/MoraiWaitForTickSrv",
+        V,
+        "/SyncModeWaitForTick",
+    ),
+    Row(
+        "sync_mode_ctrl_cmd",
+        "SyncModeCtrlCmdServiceProvider",
+        "morai_msgs/MoraiSyncModeCtrlCmdSrv",
+        V,
+        "/SyncModeCtrlCmd",
+    ),
+    Row(
+        "sync_mode_set_gear",
+        "SyncModeSetGearServiceProvider",
+        "morai_msgs/MoraiSyncModeSetGearSrv",
+        V,
+        "/SyncModeSetGear",
+    ),
+    Row(
+        "sync_mode_scenario_load",
+        "SyncModeMoraiSLServiceProvider",
+        "morai_msgs/MoraiSyncModeSLSrv",
+        V,
+        "/SyncModeScenarioLoad",
+    ),
+    Row(
+        "sync_mode_add_object",
+        "SyncModeAddObjectServiceProvider",
+        "morai_msgs/MoraiSyncModeAddObjectSrv",
+        V,
+        "/SyncModeAddObject",
+    ),
+    Row(
+        "sync_mode_remove_object",
+        "SyncModeRemoveObjectServiceProvider",
+        "morai_msgs/MoraiSyncModeRemoveObjectSrv",
+        V,
+        "/SyncModeRemoveObject",
     ),
 )
 
