@@ -66,6 +66,15 @@ class BridgeContext:
     """Synchronous-mode state; None unless the run uses --clock sync."""
     publishes_clock: bool = False
     """Headers carry simulation time and /clock is published (--clock sim and sync)."""
+    replay_topics: ReplayTopics = DEFAULT_TOPICS
+    """Where a replayed bag holds the ego, object and command rows."""
+    replay: ReplaySession = field(init=False)
+    """The rosbag replay system behind /Morai_SimProc; bags resolve in data_roots."""
+
+    def __post_init__(self) -> None:
+        self.replay = ReplaySession(
+            self.data_roots, profile=self.profile.name, topics=self.replay_topics
+        )
 
     def header(self, frame_id: str = MAP_FRAME) -> Any:
         return header(self.profile, self.stamp(), frame_id)
