@@ -235,3 +235,47 @@ def test_a_signal_in_two_controllers_is_refused():
     )
     with pytest.raises(MapRecordError, match="signal TL2 is already in controller 1"):
         build(text)
+
+
+def signal_line(signal_id: str) -> str:
+    return next(
+        line for line in JUNCTION_XODR.read_text().splitlines() if f'id="{signal_id}"' in line
+    )
+
+
+def test_a_signal_reference_governs_the_referencing_road_too():
+    reference = '<signalReference s="0" t="5" id="TL3" orientation="-"/>'
+    lane_map, _ = build(JUNCTION_XODR.read_text().replace(signal_line("TL1"), reference))
+    assert set(lane_map.traffic_lights["TL3"].lane_ids) == {"1_0_1", "3_0_1"}
+    assert lane_map.lane("1_0_1").traffic_light_id == "TL3"
+    assert "TL1" not in lane_map.traffic_lights
+
+
+def test_a_stop_line_at_a_connector_start_belongs_to_the_lane_before_it():
+    text = JUNCTION_XODR.read_text().replace(signal_line("TL4"), "")
+    on_connector = (
+        '<signals><signal s="0.5" t="-3" id="TL4" dynamic="yes" orientation="+" '
+        'type="1000001" subtype="-1"/></signals></road>'
+    )
+    head, tail = text.split('<road name="" length="20" id="10" junction="100">')
+    tail = tail.replace("</road>", on_connector, 1)
+    lane_map, _ = build(head + '<road name="" length="20" id="10" junction="100">' + tail)
+    assert lane_map.traffic_lights["TL4"].lane_ids == ("4_0_1",)
+    assert lane_map.lane("4_0_1").stop_line_s == pytest.approx(100.0)
+    assert lane_map.lane("10_0_-1").stop_line_s is None
+
+
+def test_validity_and_orientation_select_the_governed_lanes():
+    signal = (
+        '<signals><signal s="80" t="-9" id="S1" dynamic="yes" orientation="+" '
+        'type="1000001" subtype="-1"><validity fromLane="-2" toLane="-2"/></signal></signals>'
+    )
+    lanes = f"<left>{lane(1)}</left><right>{lane(-1)}{lane(-2)}</right>"
+    lane_map, notes = build(single_road(lanes).replace("</road>", signal + "</road>"))
+    assert lane_map.traffic_lights["S1"].lane_ids == ("7_0_-2",)
+    assert lane_map.lane("7_0_-2").stop_line_s == pytest.approx(80.0)
+    assert lane_map.lane("7_0_-1").stop_line_s is None
+    # A light in no controller runs as an intersection of its own.
+    (site,) = lane_map.intersections.values()
+    assert site.approach_groups == (("S1",),)
+    assert any("S1 is in no controller" in note for note in notes)
