@@ -29,6 +29,10 @@ from egosim.world.vehicle.skid_steer_commands import (
 from egosim.world.vehicle.vehicle import DEFAULT_MAX_SUBSTEP, Pose, RoadSurface, VehicleStatus
 from egosim.world.vehicle.wheels import Wheels, WheelStatus
 
+STANDSTILL_SPEED = 0.01
+"""A side commanded to stop that is slower than this (m/s) is held at rest, as the
+holding brake of a drive controller does; without it the lag would creep forever."""
+
 
 def side_speed_after(speed: float, target: float, model: GroundVehicleModel, dt: float) -> float:
     """One side's ground speed (m/s) after dt (s) of following target (m/s).
@@ -38,7 +42,8 @@ def side_speed_after(speed: float, target: float, model: GroundVehicleModel, dt:
     """
     change = (target - speed) * -math.expm1(-dt / model.motor_time_constant)
     limit = model.max_track_accel * dt
-    return speed + min(max(change, -limit), limit)
+    after = speed + min(max(change, -limit), limit)
+    return 0.0 if target == 0.0 and abs(after) < STANDSTILL_SPEED else after
 
 
 class SkidSteerVehicle:
