@@ -331,10 +331,15 @@ class World:
         )
 
     def _pedestrian_occupants(self) -> LaneOccupants:
-        _, pedestrians, _ = self._shown_tables()
-        if len(pedestrians) == 0:
+        recorded = self.recorded.pedestrians
+        if recorded is None:
+            # Sidewalk walkers never leave the kerb: only the others can be in a lane.
+            walkers = self.pedestrians.position[self.pedestrians.on_road]
+        else:
+            walkers = recorded.positions[:, :2]
+        if len(walkers) == 0:
             return LaneOccupants.empty()
-        projection = self.map.project_many(pedestrians.positions[:, :2])
+        projection = self.map.project_many(walkers)
         near = np.abs(projection.lateral) <= projection.width / 2.0 + PEDESTRIAN_LANE_MARGIN_M
         count = int(np.count_nonzero(near))
         return LaneOccupants(

@@ -40,6 +40,7 @@ class LaneGraph:
             self.speed_limit, [_comfortable_curve_speed(lane) for lane in lanes]
         )
         """Speed (m/s) an NPC drives at most on each lane: limit and curvature."""
+        self.is_junction = np.array([lane.is_junction for lane in lanes], dtype=bool)
         self.turn = np.array([_turn_direction(lane) for lane in lanes], dtype=np.int64)
         self.successors: list[tuple[int, ...]] = [
             tuple(lane_map.lane_index(s) for s in lane.successors) for lane in lanes

@@ -17,6 +17,11 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.world.traffic.idm import IntelligentDriverModel
+from egosim.world.traffic.junction_rules import (
+    DECISION_MARGIN_M,
+    junction_conflicts,
+    junction_entry_gap,
+)
 from egosim.world.traffic.lane_graph import LaneGraph
 from egosim.world.traffic.leaders import LaneOccupants, leaders_ahead
 from egosim.world.traffic.objects import ObjectTable, ObjectType
@@ -28,6 +33,13 @@ IntArray = npt.NDArray[np.int64]
 
 LOOKAHEAD_LANES = 2
 """Lanes beyond the current one searched for a leader and a stop line."""
+
+# Every per-NPC field, for removing NPCs.
+_PER_NPC_ARRAYS = (
+    "unique_ids", "dims", "lane", "next_lanes", "s", "speed", "accel", "lateral",
+    "target_speed", "speed_factor", "delay", "crashed", "yellow", "pose", "yaw_rate",
+)  # fmt: skip
+_PER_NPC_LISTS = ("names", "routes", "route_pos")
 
 # Latched reaction to a yellow, reset on every new lane and on every go aspect.
 _YELLOW_UNDECIDED, _YELLOW_STOP, _YELLOW_PASS = 0, 1, 2
@@ -65,6 +77,7 @@ class NpcFleet:
         self.graph = graph
         self.rng = rng
         self.idm = idm or IntelligentDriverModel()
+        self.conflicts = junction_conflicts(graph.lane_map)
         self.clear()
 
     def clear(self) -> None:
@@ -129,6 +142,15 @@ class NpcFleet:
                 self.next_lanes[i, k] = previous
         self.pose = self._poses()
 
+    def remove(self, indices: npt.ArrayLike) -> None:
+        """Take these NPCs out of the fleet (e.g. an NPC ghost takes one over)."""
+        keep = np.ones(len(self), bool)
+        keep[indices] = False
+        for name in _PER_NPC_ARRAYS:
+            setattr(self, name, getattr(self, name)[keep])
+        for name in _PER_NPC_LISTS:
+            setattr(self, name, [v for v, k in zip(getattr(self, name), keep, strict=True) if k])
+
     def _choose_successor(self, i: int, lane: int) -> int:
         """The lane NPC i takes after `lane`: its route's next match, else a random pick."""
         if lane < 0:
@@ -178,7 +200,13 @@ class NpcFleet:
 
         v0 = self._desired_speed()
         accel = self.idm.acceleration(self.speed, v0, gap, closing)
-        stop_gap = np.minimum(self._stop_line_gap(lights, half), self._dead_end_gap(half))
+        stop_gap = np.minimum.reduce(
+            [
+                self._stop_line_gap(lights, half),
+                self._dead_end_gap(half),
+                self._junction_gap(occupants, half),
+            ]
+        )
         accel = np.minimum(accel, self.idm.acceleration(self.speed, v0, stop_gap, self.speed))
         accel[frozen] = 0.0
 
@@ -236,6 +264,29 @@ class NpcFleet:
         self.yellow[undecided] = np.where(stoppable[undecided], _YELLOW_STOP, _YELLOW_PASS)
         must_stop = relevant & ~proceed & (self.yellow != _YELLOW_PASS)
         return np.where(must_stop, distance, np.inf)
+
+    def _junction_gap(self, occupants: LaneOccupants, half: FloatArray) -> FloatArray:
+        """Distance (m) to the junction entry where yielding or a full exit holds it."""
+        graph = self.graph
+        lanes = len(graph)
+        occupied = np.zeros(lanes, dtype=bool)
+        occupied[occupants.lane] = True
+        rear = np.full(lanes + 1, np.inf)
+        np.minimum.at(rear, occupants.lane, occupants.s - occupants.half_length)
+        entering = np.where(graph.is_junction[self.lane], -1, self.next_lanes[:, 0])
+        entry_distance = graph.length[self.lane] - self.s - half
+        decision = self.speed**2 / (2.0 * self.idm.comfortable_decel_mps2) + DECISION_MARGIN_M
+        return junction_entry_gap(
+            self.conflicts,
+            graph.is_junction,
+            entry_distance,
+            entering,
+            exit_room=rear[self.next_lanes[:, 1]],
+            needed_room=self.dims[:, 0] + self.idm.min_gap_m,
+            stoppable=self.idm.can_stop_within(self.speed, entry_distance),
+            occupied=occupied,
+            decision_distance=decision,
+        )
 
     def _dead_end_gap(self, half: FloatArray) -> FloatArray:
         dead_end = self.next_lanes[:, 0] < 0

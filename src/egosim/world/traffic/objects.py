@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import IntEnum
+from itertools import chain
 
 import numpy as np
 import numpy.typing as npt
@@ -87,7 +88,7 @@ class ObjectTable:
         return cls(
             np.concatenate([t.unique_ids for t in tables]),
             np.concatenate([t.object_types for t in tables]),
-            tuple(name for t in tables for name in t.names),
+            tuple(chain.from_iterable(t.names for t in tables)),
             np.concatenate([t.positions for t in tables]),
             np.concatenate([t.headings for t in tables]),
             np.concatenate([t.velocities for t in tables]),

@@ -28,11 +28,13 @@ _PATH_KEY_GAP_M = 1.0
 @dataclass(frozen=True, eq=False)
 class WalkPath:
     """An (M, 2) polyline; `closed` paths run back from the last point to the first.
-    gates: (station m, crosswalk index) where crossing needs the walk signal."""
+    gates: (station m, crosswalk index) where crossing needs the walk signal; on_road:
+    the path may lead onto lanes (sidewalks never do)."""
 
     points: FloatArray
     closed: bool
     gates: tuple[tuple[float, int], ...] = ()
+    on_road: bool = True
 
     @property
     def loop_points(self) -> FloatArray:
@@ -50,7 +52,7 @@ class WalkPath:
 def sidewalk_path(sidewalk: Sidewalk) -> WalkPath:
     """Along a sidewalk; round and round when it is closed, else to its end."""
     points = sidewalk.points[:, :2]
-    return WalkPath(points, closed=bool(np.array_equal(points[0], points[-1])))
+    return WalkPath(points, closed=bool(np.array_equal(points[0], points[-1])), on_road=False)
 
 
 def crosswalk_path(crosswalk: Crosswalk, crosswalk_index: int) -> WalkPath:
@@ -116,6 +118,7 @@ class PedestrianCrowd:
         self.dims = self.dims.reshape(-1, 3)
         self.walk_speed = np.array([p.speed for p in spawns], dtype=np.float64)
         self.closed = np.array([p.path.closed for p in spawns], dtype=bool)
+        self.on_road = np.array([p.path.on_road for p in spawns], dtype=bool)
         steps = [np.hypot(*np.diff(points, axis=0).T) for points in paths]
         self.length = np.array([float(np.sum(step)) for step in steps])
         counts = np.array([len(points) for points in paths], dtype=np.int64)
