@@ -64,8 +64,17 @@ class RospyDriver:
             self.popen.stdin.flush()
             return self._reply()
 
-    def subscribe(self, topic: str, type_name: str) -> None:
-        self.request("subscribe", topic=topic, type=type_name)
+    def subscribe(self, topic: str, type_name: str, raw: bool = False) -> None:
+        """Subscribe; `raw` messages are {"hex": serialized bytes} as received."""
+        self.request("subscribe", topic=topic, type=type_name, raw=raw)
+
+    def wait_connected(self, topic: str, count: int = 1, timeout: float = 20.0) -> None:
+        """Wait until a subscribed topic has `count` publishers connected."""
+        self.request("wait_connected", topic=topic, count=count, timeout=timeout)
+
+    def now(self) -> float:
+        """The client's ROS time (s): simulation time when /use_sim_time is set."""
+        return self.request("now")
 
     def messages(
         self, topic: str, since: int = 0, count: int = 1, timeout: float = 20.0

@@ -93,13 +93,19 @@ def to_plain(value):
     return value
 
 
+def to_hex(message):
+    """A rospy.AnyMsg's serialized bytes, as they came off the wire."""
+    return {"hex": message._buff.hex()}
+
+
 class Inbox:
-    def __init__(self):
+    def __init__(self, convert=to_plain):
         self.messages = []
         self.condition = threading.Condition()
+        self.convert = convert
 
     def __call__(self, message):
-        plain = to_plain(message)
+        plain = self.convert(message)
         plain["_received"] = time.time()
         with self.condition:
             self.messages.append(plain)
@@ -107,17 +113,37 @@ class Inbox:
 
 
 subscriptions = {}
+subscribers = {}
 publishers = {}
 streams = {}
 
 
 def op_subscribe(request):
+    """Subscribe to topic; with "raw", keep each message's serialized bytes (hex)."""
     topic = request["topic"]
     if topic not in subscriptions:
-        inbox = Inbox()
-        rospy.Subscriber(topic, message_class(request["type"]), inbox, queue_size=1000)
+        raw = request.get("raw", False)
+        inbox = Inbox(to_hex if raw else to_plain)
+        message_type = rospy.AnyMsg if raw else message_class(request["type"])
+        subscribers[topic] = rospy.Subscriber(topic, message_type, inbox, queue_size=1000)
         subscriptions[topic] = inbox
     return True
+
+
+def op_wait_connected(request):
+    """Wait until the subscription to topic has `count` publishers connected."""
+    subscriber = subscribers[request["topic"]]
+    deadline = time.time() + request.get("timeout", 20.0)
+    while subscriber.get_num_connections() < request.get("count", 1):
+        if time.time() > deadline:
+            raise RuntimeError("no publisher connected to " + request["topic"])
+        time.sleep(0.02)
+    return True
+
+
+def op_now(request):
+    """The node's ROS time (simulation time when /use_sim_time is set), s."""
+    return rospy.get_time()
 
 
 def op_messages(request):
@@ -192,6 +218,8 @@ def op_get_param(request):
 
 OPS = {
     "subscribe": op_subscribe,
+    "wait_connected": op_wait_connected,
+    "now": op_now,
     "messages": op_messages,
     "publish": op_publish,
     "stream": op_stream,
