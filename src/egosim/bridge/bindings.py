@@ -8,6 +8,7 @@ from . import (
     ground_vehicle,
     lights,
     objects,
+    replay_rows,
     scenarios,
     sensor_files,
     sensor_rows,
@@ -31,6 +32,8 @@ HANDLERS = Handlers(
         "tf": sensor_rows.publish_tf,
         "clock": sim_clock.publish_clock,
         "sync_mode_info": sync_mode.publish_sync_mode_info,
+        "sim_proc_status": replay_rows.publish_sim_proc_status,
+        "replay_info": replay_rows.publish_replay_info,
     },
     subscribers={
         "ctrl_cmd": ego.on_ctrl_cmd,
@@ -55,5 +58,6 @@ HANDLERS = Handlers(
         "sync_mode_ctrl_cmd": sync_mode.serve_ctrl_cmd,
         "sync_mode_set_gear": sync_mode.serve_set_gear,
         "sync_mode_scenario_load": sync_mode.serve_scenario_load,
+        "sim_proc": replay_rows.serve_sim_proc,
     },
 )
