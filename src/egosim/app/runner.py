@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import sys
 import threading
@@ -11,10 +12,12 @@ from ..bridge.bindings import HANDLERS
 from ..bridge.context import BridgeContext
 from ..bridge.core import Bridge
 from ..bridge.network import load_network_settings
+from ..bridge.replay_rows import advance_replay, replay_topics
 from ..bridge.sensor_rig import SensorRig
 from ..bridge.sync_mode import SyncSession
 from ..maps import MapLoadError, load_map
 from ..msgs import get_profile
+from ..replay import RecorderError
 from ..ros1 import Node, Ros1Error
 from ..world import World
 from ..world.scenario import ScenarioError, load_default_scenario, parse_scenario
@@ -23,6 +26,7 @@ from .clock import HeaderClock
 from .inbox import Inbox
 from .loop import SimulationLoop
 from .options import ClockMode, RunOptions
+from .recording import TopicRecorder, open_recorder
 from .signals import stop_on_signals
 
 log = logging.getLogger("egosim")
@@ -81,8 +85,16 @@ def _run(options: RunOptions) -> int:
     except (OSError, YamlFileError) as error:
         raise StartupError(f"network settings: {error}") from error
 
+    recorder = None
+    if options.record is not None:
+        try:
+            recorder = TopicRecorder(open_recorder(options.record))
+        except RecorderError as error:
+            raise StartupError(f"--record: {error}") from error
+
     stop = threading.Event()
-    with stop_on_signals(stop):
+    # The bag is closed (index and header written) however the run ends.
+    with stop_on_signals(stop), recorder or contextlib.nullcontext():
         try:
             node = Node(NODE_NAME, list(options.ros_argv))
         except (OSError, Ros1Error) as error:
@@ -101,8 +113,11 @@ def _run(options: RunOptions) -> int:
             sensors=SensorRig(settings.sensors, world.map.georef),
             sync=SyncSession() if options.clock is ClockMode.SYNC else None,
             publishes_clock=options.clock is not ClockMode.REAL,
+            replay_topics=replay_topics(settings),
         )
         bridge = Bridge(node, profile, settings, HANDLERS, context, inbox)
+        if recorder is not None:
+            bridge.taps.append(recorder.tap())
         try:
             bridge.open()
             if options.clock is not ClockMode.REAL:
@@ -119,6 +134,7 @@ def _run(options: RunOptions) -> int:
         def step(dt: float = options.physics_dt) -> None:
             # Publishing runs on loop time, which advances while the world is paused.
             nonlocal loop_time
+            advance_replay(context, dt)
             world.step(dt)
             clock.tick()
             loop_time += dt
