@@ -8,7 +8,7 @@ import sys
 from collections.abc import Sequence
 
 from .. import __version__
-from . import msgs, run, topics
+from . import msgs, record, run, topics
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -21,6 +21,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_parser(subparsers)
     msgs.add_parser(subparsers)
     topics.add_parser(subparsers)
+    record.add_parser(subparsers)
     return parser
 
 
@@ -28,7 +29,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args, extra = build_parser().parse_known_args(argv)
     # ROS's own command-line arguments (__name:=, from:=to) pass through to the node.
     ros_args = [arg for arg in extra if ":=" in arg]
-    if len(ros_args) != len(extra) or (ros_args and args.command != "run"):
+    if len(ros_args) != len(extra) or (ros_args and args.command not in ("run", "record")):
         build_parser().error(f"unrecognized arguments: {' '.join(extra)}")
     args.ros_args = ros_args
     try:
