@@ -1,0 +1,143 @@
+"""The world as a MORAI client sees it: objects, collisions, lights, intersections."""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import pytest
+
+from egosim.world.map import build_builtin_map
+from tests.e2e import scenarios
+
+pytestmark = pytest.mark.ros
+
+EGO = ("/Ego_topic", "morai_msgs/EgoVehicleStatus")
+OBJECTS = ("/Object_topic", "morai_msgs/ObjectStatusList")
+CTRL = ("/ctrl_cmd", "morai_msgs/CtrlCmd")
+
+
+def distance(a: dict, b: dict) -> float:
+    return math.hypot(a["x"] - b["x"], a["y"] - b["y"])
+
+
+def test_object_list_counts_everything_and_orders_closest_first(egosim, rospy_client) -> None:
+    client = rospy_client(egosim())
+    client.subscribe(*OBJECTS)
+    client.subscribe(*EGO)
+    objects = client.next_message(OBJECTS[0])
+    ego = client.next_message(EGO[0])
+    assert (objects["num_of_npcs"], objects["num_of_pedestrian"], objects["num_of_obstacle"]) == (
+        8,
+        6,
+        4,
+    )
+    listed = objects["npc_list"] + objects["pedestrian_list"] + objects["obstacle_list"]
+    assert len(listed) <= 20
+    # Ordered by distance from the ego's footprint centre, which sits up to a metre from
+    # the reference point /Ego_topic reports.
+    for kind in ("npc_list", "pedestrian_list", "obstacle_list"):
+        ranges = [distance(o["position"], ego["position"]) for o in objects[kind]]
+        assert all(later >= earlier - 1.0 for earlier, later in itertools.pairwise(ranges))
+    assert {o["type"] for o in objects["npc_list"]} == {1}
+    assert {o["type"] for o in objects["pedestrian_list"]} == {0}
+    assert {o["type"] for o in objects["obstacle_list"]} == {2}
+    assert len({o["unique_id"] for o in listed}) == len(listed)
+
+
+def test_driving_into_an_obstacle_reports_one_collision(egosim, rospy_client) -> None:
+    simulator = egosim("--map", "straight")
+    scenario = scenarios.write(simulator.data_root, "obstacle.yaml", scenarios.OBSTACLE_AHEAD)
+    simulator = egosim("--map", "straight", "--scenario", str(scenario))
+    client = rospy_client(simulator)
+    client.subscribe("/CollisionData", "morai_msgs/CollisionData")
+    client.subscribe(*EGO)
+    client.stream(*CTRL, {"longlCmdType": 1, "accel": 0.5}, rate=50)
+    since = 0
+    hits = []
+    while not hits:
+        received = client.messages("/CollisionData", since=since, count=1, timeout=30)
+        assert received, "no CollisionData"
+        since += len(received)
+        hits = [m for m in received if m["collision_object"]]
+    client.stop_stream(CTRL[0])
+    hit = hits[0]
+    assert len(hit["collision_object"]) == 1
+    barrier = hit["collision_object"][0]
+    assert barrier["type"] == 2
+    assert (hit["global_offset_x"], hit["global_offset_y"]) == pytest.approx((40.0, -1.75))
+    later = client.messages("/CollisionData", since=since, count=5)
+    assert all(not m["collision_object"] for m in later)
+    assert client.next_message(EGO[0])["velocity"]["x"] < 1.0
+
+
+def test_red_override_stops_an_npc_before_its_stop_line(egosim, rospy_client) -> None:
+    lane = build_builtin_map("town").lane("R2_E_1")
+    stop_line_x = lane.centerline[0][0] + lane.stop_line_s
+    probe = egosim("--map", "straight")
+    scenario = scenarios.write(probe.data_root, "red.yaml", scenarios.RED_LIGHT_TOWN)
+    client = rospy_client(egosim("--scenario", str(scenario), "--clock", "sim", "--rtf", "5"))
+    client.subscribe(*OBJECTS)
+    client.publish(
+        "/SetTrafficLight",
+        "morai_msgs/SetTrafficLight",
+        {"trafficLightIndex": lane.traffic_light_id, "trafficLightStatus": 1},
+    )
+    npc = client.next_message(OBJECTS[0])["npc_list"][0]
+    deadline_stamp = None
+    while True:
+        message = client.next_message(OBJECTS[0])
+        npc = message["npc_list"][0]
+        stamp = message["header"]["stamp"]
+        deadline_stamp = deadline_stamp or stamp + 40.0
+        if npc["velocity"]["x"] < 0.05 and npc["position"]["x"] > stop_line_x - 30:
+            break
+        assert stamp < deadline_stamp, f"NPC still moving at {npc}"
+    front = npc["position"]["x"] + npc["size"]["x"] / 2
+    assert front <= stop_line_x + 0.01
+    status = client.call(
+        "/Morai_TLSrv", "morai_msgs/MoraiTLInfoSrv", {"request": {"idx": lane.traffic_light_id}}
+    )
+    assert status["response"]["status"] == 1
+
+
+def test_intersection_control_sets_phase_and_time(egosim, rospy_client) -> None:
+    client = rospy_client(egosim())
+    client.subscribe("/InsnStatus", "morai_msgs/IntersectionStatus")
+    before = client.messages("/InsnStatus", count=64)
+    assert {m["intersection_index"] for m in before} == set(range(1, 33))
+    client.publish(
+        "/InsnControl",
+        "morai_msgs/IntersectionControl",
+        {"intersection_index": 6, "intersection_status": 1, "intersection_status_time": 2.0},
+    )
+    since = len(client.messages("/InsnStatus", count=0, timeout=0))
+    while True:
+        batch = client.messages("/InsnStatus", since=since, count=32)
+        since += len(batch)
+        controlled = [m for m in batch if m["intersection_index"] == 6]
+        if controlled and controlled[-1]["intersection_status"] == 1:
+            break
+    assert 2.0 <= controlled[-1]["intersection_status_time"] < 3.0
+
+
+def test_traffic_light_status_follows_an_override(egosim, rospy_client) -> None:
+    client = rospy_client(egosim())
+    client.subscribe("/GetTrafficLightStatus", "morai_msgs/GetTrafficLightStatus")
+    light = client.next_message("/GetTrafficLightStatus")
+    assert light["trafficLightType"] in (0, 1, 2, 100)
+    client.publish(
+        "/SetTrafficLight",
+        "morai_msgs/SetTrafficLight",
+        {"trafficLightIndex": light["trafficLightIndex"], "trafficLightStatus": 4},
+    )
+    while client.next_message("/GetTrafficLightStatus")["trafficLightStatus"] != 4:
+        pass
+    info = client.call(
+        "/Morai_TLSrv",
+        "morai_msgs/MoraiTLInfoSrv",
+        {"request": {"idx": light["trafficLightIndex"]}},
+    )
+    assert info["response"]["status"] == 4
+    unknown = client.call("/Morai_TLSrv", "morai_msgs/MoraiTLInfoSrv", {"request": {"idx": "X"}})
+    assert unknown["response"]["status"] == -1
