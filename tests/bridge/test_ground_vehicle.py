@@ -10,6 +10,7 @@ import pytest
 from egosim.bridge.context import CTRL_MODE_KEYBOARD, BridgeContext
 from egosim.bridge.ego import on_ctrl_cmd
 from egosim.bridge.ground_vehicle import on_gv_direct_cmd, on_gv_state_cmd, on_webot_cmd
+from egosim.bridge.specs import serve_vehicle_spec
 from egosim.msgs import get_profile
 from egosim.world import World
 from egosim.world.map import build_builtin_map
@@ -125,3 +126,17 @@ def test_ground_commands_wait_for_external_control_mode() -> None:
     context.settings_of(context.world.egos[0].unique_id).ctrl_mode = CTRL_MODE_KEYBOARD
     run(context, on_webot_cmd, twist(1.0, 0.0), seconds=1.0)
     assert context.world.ego_status().speed == 0.0
+
+
+def test_vehicle_spec_of_a_skid_steer_ego_has_its_size_and_no_steering() -> None:
+    context = context_with("UGV_6W_Skid_Steer")
+    request = PROFILE.message("morai_msgs/MoraiVehicleSpecSrvRequest").new(
+        request=PROFILE.message("morai_msgs/VehicleSpecIndex").new(
+            unique_id=context.world.egos[0].unique_id
+        )
+    )
+    spec = serve_vehicle_spec(context, request).response
+    assert (spec.size.x, spec.size.y, spec.size.z) == pytest.approx((2.0, 1.4, 1.0))
+    assert spec.wheel_base == pytest.approx(1.5)
+    assert spec.max_steering == 0.0
+    assert spec.overhang + spec.wheel_base + spec.rear_overhang == pytest.approx(2.0)
