@@ -1,0 +1,155 @@
+"""MORAI's synchronous mode: the client steps the world, one step per tick, reproducibly."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+pytestmark = pytest.mark.ros
+
+EGO = ("/Ego_topic", "morai_msgs/EgoVehicleStatus")
+OBJECTS = ("/Object_topic", "morai_msgs/ObjectStatusList")
+SYNC_CMD = ("/SyncModeCmd", "morai_msgs/MoraiSyncModeCmdSrv")
+TICK = ("/SyncModeWaitForTick", "morai_msgs/MoraiWaitForTickSrv")
+CTRL = ("/SyncModeCtrlCmd", "morai_msgs/MoraiSyncModeCtrlCmdSrv")
+GEAR = ("/SyncModeSetGear", "morai_msgs/MoraiSyncModeSetGearSrv")
+USER = "planner"
+# /Ego_topic after every 10 ms step, so each tick publishes exactly one status.
+EVERY_STEP = "rows:\n  ego_status: {rate_hz: 100}\n  object_status: {rate_hz: 100}\n"
+
+
+def start_sync_mode(client, time_step_ms: int = 10) -> int:
+    reply = client.call(
+        *SYNC_CMD,
+        {"request": {"user_id": USER, "start_sync_mode": True, "time_step": time_step_ms}},
+    )["response"]
+    assert reply["result"] is True
+    assert reply["time_step"] == time_step_ms
+    return reply["frame"]
+
+
+def tick(client, frame: int, user_id: str = USER) -> dict:
+    return client.call(*TICK, {"request": {"user_id": user_id, "frame": frame}})["response"]
+
+
+def ctrl(client, frame: int, accel: float) -> bool:
+    command = {"longlCmdType": 1, "accel": accel, "brake": 0.0}
+    request = {"frame": frame, "command": command, "sensor_capture": False}
+    return client.call(*CTRL, {"request": request})["response"]["result"]
+
+
+@pytest.fixture
+def network_file(tmp_path: Path) -> str:
+    path = tmp_path / "network.yaml"
+    path.write_text(EVERY_STEP)
+    return str(path)
+
+
+def test_each_tick_steps_the_world_exactly_once(egosim, rospy_client, network_file) -> None:
+    client = rospy_client(egosim("--map", "straight", "--clock", "sync", "--network", network_file))
+    client.subscribe(*EGO)
+    client.wait_connected(EGO[0])
+    first = start_sync_mode(client, time_step_ms=20)
+    replies = [tick(client, first + k) for k in range(1, 11)]
+    assert [r["frame"] for r in replies] == [first + k for k in range(1, 11)]
+    assert all(r["tick_status"] and not r["pause_status"] for r in replies)
+    assert [r["time"] for r in replies] == [f"{0.02 * k:.6f}" for k in range(1, 11)]
+    statuses = client.messages(EGO[0], count=10)
+    assert [round(m["header"]["stamp"], 9) for m in statuses] == [
+        pytest.approx(0.02 * k) for k in range(1, 11)
+    ]
+    assert [r["vehicle_status"]["header"]["stamp"] for r in replies] == [
+        m["header"]["stamp"] for m in statuses
+    ]
+
+
+def test_a_tick_to_a_later_frame_steps_once_per_frame(egosim, rospy_client, network_file) -> None:
+    client = rospy_client(egosim("--map", "straight", "--clock", "sync", "--network", network_file))
+    client.subscribe(*EGO)
+    client.wait_connected(EGO[0])
+    first = start_sync_mode(client)
+    reply = tick(client, first + 5)
+    assert (reply["frame"], reply["time"]) == (first + 5, "0.050000")
+    assert len(client.messages(EGO[0], count=5)) == 5
+
+
+def test_the_current_or_a_past_frame_does_not_tick(egosim, rospy_client) -> None:
+    client = rospy_client(egosim("--map", "straight", "--clock", "sync"))
+    first = start_sync_mode(client)
+    tick(client, first + 3)
+    for frame in (first + 3, first + 1):
+        reply = tick(client, frame)
+        assert reply["tick_status"] is False
+        assert (reply["frame"], reply["time"]) == (first + 3, "0.030000")
+
+
+def test_only_the_user_who_started_it_ticks(egosim, rospy_client) -> None:
+    client = rospy_client(egosim("--map", "straight", "--clock", "sync"))
+    first = start_sync_mode(client)
+    assert tick(client, first + 1, user_id="intruder")["tick_status"] is False
+    assert tick(client, first + 1)["tick_status"] is True
+
+
+def test_ticks_need_sync_mode_started(egosim, rospy_client) -> None:
+    client = rospy_client(egosim("--map", "straight", "--clock", "sync"))
+    reply = tick(client, 1)
+    assert (reply["tick_status"], reply["frame"], reply["time"]) == (False, 0, "0.000000")
+
+
+def test_sync_mode_is_refused_outside_clock_sync(egosim, rospy_client) -> None:
+    client = rospy_client(egosim("--map", "straight"))
+    request = {"request": {"user_id": USER, "start_sync_mode": True, "time_step": 10}}
+    assert client.call(*SYNC_CMD, request)["response"]["result"] is False
+    assert ctrl(client, 1, 1.0) is False
+
+
+def test_a_command_takes_effect_at_its_frame(egosim, rospy_client) -> None:
+    client = rospy_client(egosim("--map", "straight", "--clock", "sync"))
+    first = start_sync_mode(client)
+    assert ctrl(client, first + 5, 1.0) is True
+    assert tick(client, first + 4)["vehicle_status"]["velocity"]["x"] == 0.0
+    moving = tick(client, first + 20)["vehicle_status"]
+    assert moving["velocity"]["x"] > 0.0
+    assert moving["accel"] == pytest.approx(1.0)
+    assert ctrl(client, first + 20, 0.0) is False  # that tick is over
+    assert ctrl(client, first + 2, 0.0) is False
+
+
+def test_set_gear_at_a_frame(egosim, rospy_client) -> None:
+    client = rospy_client(egosim("--map", "straight", "--clock", "sync"))
+    first = start_sync_mode(client)
+    reverse = {"request": {"gear": 2, "frame": first + 1}}
+    assert client.call(*GEAR, reverse)["response"]["result"] is True
+    assert ctrl(client, first + 1, 1.0) is True
+    backwards = tick(client, first + 30)["vehicle_status"]
+    assert backwards["velocity"]["x"] < 0.0
+    bad = {"request": {"gear": 9, "frame": first + 31}}
+    assert client.call(*GEAR, bad)["response"]["result"] is False
+
+
+def drive_and_record(egosim, rospy_client, network_file) -> dict[str, list[str]]:
+    client = rospy_client(egosim("--clock", "sync", "--network", network_file))
+    for topic, type_name in (EGO, OBJECTS):
+        client.subscribe(topic, type_name, raw=True)
+        client.wait_connected(topic)
+    first = start_sync_mode(client)
+    for k in range(1, 151):
+        if k % 30 == 1:
+            assert ctrl(client, first + k, 0.2 + k / 500.0) is True
+        assert tick(client, first + k)["tick_status"] is True
+    return {
+        topic: [m["hex"] for m in client.messages(topic, count=150)]
+        for topic in (EGO[0], OBJECTS[0])
+    }
+
+
+def test_two_runs_of_the_same_calls_publish_the_same_bytes(
+    egosim, rospy_client, network_file
+) -> None:
+    first = drive_and_record(egosim, rospy_client, network_file)
+    second = drive_and_record(egosim, rospy_client, network_file)
+    for topic in (EGO[0], OBJECTS[0]):
+        assert len(first[topic]) == 150
+        assert first[topic] == second[topic]
+    assert len(set(first[EGO[0]])) == 150  # the ego moved and time went on
