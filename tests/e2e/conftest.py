@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import subprocess
 import sys
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
@@ -10,8 +11,13 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import RosProcess, free_port
-from tests.debian_ros import require_ros
+from tests.debian_ros import ROS_PYTHON, require_ros
 from tests.e2e.driver import RospyDriver
+
+PEERS = Path(__file__).parent / "peers"
+MORAI_MSGS_26R1 = (
+    Path(__file__).parents[2] / "src" / "egosim" / "msgs" / "definitions" / "26.r1" / "morai_msgs"
+)
 
 
 @dataclass
@@ -58,3 +64,18 @@ def rospy_client(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Callable[.
     finally:
         for driver in drivers:
             driver.close()
+
+
+@pytest.fixture(scope="session")
+def built_msg_packages(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """morai_msgs (26.r1, from egosim's shipped files) and its dependencies as genpy-built
+    Python packages, as a user's `catkin_make` leaves them; put it on PYTHONPATH."""
+    require_ros()
+    outdir = tmp_path_factory.mktemp("msg_packages")
+    subprocess.run(
+        [ROS_PYTHON, str(PEERS / "build_msg_packages.py"), str(outdir), str(MORAI_MSGS_26R1)],
+        check=True,
+        capture_output=True,
+        timeout=300,
+    )
+    return outdir
