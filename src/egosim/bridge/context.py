@@ -14,6 +14,7 @@ from ..world import World
 from .messages import header
 
 if TYPE_CHECKING:
+    from ..world.traffic.autopilot import LaneAutopilot
     from .sensor_rig import SensorRig
     from .sync_mode import SyncSession
 
@@ -68,6 +69,13 @@ class BridgeContext:
     """Headers carry simulation time and /clock is published (--clock sim and sync)."""
     replay_topics: ReplayTopics = DEFAULT_TOPICS
     """Where a replayed bag holds the ego, object and command rows."""
+    autopilots: dict[int, LaneAutopilot] = field(default_factory=dict)
+    """The autopilot of each ego in control mode auto, by unique id."""
+    open_row: Callable[[str, str, Callable[..., Any]], Callable[[], None] | None] | None = None
+    """(row key, namespace, handler): open a topic row under a namespace at run time;
+    returns what closes it, None if the row is disabled (set by the app: Bridge.open_row)."""
+    ego_rows: dict[int, list[Callable[[], None]]] = field(default_factory=dict)
+    """What closes the namespaced topics of each additional ego, by unique id."""
     replay: ReplaySession = field(init=False)
     """The rosbag replay system behind /Morai_SimProc; bags resolve in data_roots."""
 

@@ -11,12 +11,12 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from ..app.inbox import Inbox
 from ..msgs import MessageType, MsgsError, Profile
-from ..ros1 import Node, Publisher
+from ..ros1 import Node, Publisher, Subscriber
 from .network import NetworkSettings
 from .table import Direction, Row
 
@@ -79,11 +79,33 @@ class Bridge:
                 log.info("%s (%s) is not served", row.name, row.type_name)
                 continue
             if row.direction is Direction.PUBLISH:
-                self._advertise(row)
+                self._advertise(row, self.handlers.publishers[row.key])
             elif row.direction is Direction.SUBSCRIBE:
-                self._subscribe(row)
+                self._subscribe(row, self.handlers.subscribers[row.key])
             else:
                 self._serve(row)
+
+    def open_row(
+        self, key: str, namespace: str, handler: Builder | MessageHandler
+    ) -> Callable[[], None] | None:
+        """Advertise or subscribe the topic row `key` under `namespace` at run time (loop
+        thread) with `handler`, e.g. the topics of an ego that appears; returns what
+        closes it, or None when the network settings disable the row."""
+        row = self.settings.row(key)
+        if not row.enabled:
+            return None
+        row = replace(row, name=f"{namespace.rstrip('/')}/{row.name.lstrip('/~')}")
+        if row.direction is Direction.SUBSCRIBE:
+            return self._subscribe(row, handler).close
+        if row.direction is not Direction.PUBLISH:
+            raise ValueError(f"{row.name}: only topics are opened at run time")
+        outlet = self._advertise(row, handler)
+
+        def close() -> None:
+            self.outlets.remove(outlet)
+            outlet.publisher.close()
+
+        return close
 
     def publish_due(self, now: float) -> None:
         """Build and publish every outlet whose period has elapsed at loop time `now` (s)."""
@@ -113,16 +135,16 @@ class Bridge:
         for tap in self.taps:
             tap(topic, message_type, data, self.context.stamp())
 
-    def _advertise(self, row: Row) -> None:
+    def _advertise(self, row: Row, build: Builder) -> Outlet:
         message_type = self.profile.message(row.type_name)
         publisher = self.node.advertise(row.name, message_type)
         period = 1.0 / row.rate_hz if row.rate_hz else None
-        build = self.handlers.publishers[row.key]
-        self.outlets.append(Outlet(row, publisher, message_type, build, period))
+        outlet = Outlet(row, publisher, message_type, build, period)
+        self.outlets.append(outlet)
+        return outlet
 
-    def _subscribe(self, row: Row) -> None:
+    def _subscribe(self, row: Row, handle: MessageHandler) -> Subscriber:
         message_type = self.profile.message(row.type_name)
-        handle = self.handlers.subscribers[row.key]
 
         def received(data: bytes, header: Any) -> None:
             try:
@@ -133,7 +155,7 @@ class Bridge:
             self._tap(row.name, message_type, data)
             self.inbox.post(lambda: handle(self.context, message))
 
-        self.node.subscribe(row.name, message_type, received)
+        return self.node.subscribe(row.name, message_type, received)
 
     def _serve(self, row: Row) -> None:
         service_type = self.profile.service(row.type_name)

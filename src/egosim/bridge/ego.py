@@ -12,7 +12,7 @@ from ..msgs import Profile
 from ..world import EgoLaneState
 from ..world.vehicle import ControlCommand, Vehicle, VehicleStatus
 from .context import BridgeContext
-from .ground_vehicle import commanded_main_ego
+from .ground_vehicle import commanded_ego
 from .messages import vector3
 from .units import deg, heading_deg, mps
 
@@ -78,6 +78,12 @@ def publish_ego_status(context: BridgeContext) -> Any:
     """/Ego_topic: the ego MultiEgoSetting's camera_index selects (the main ego by default)."""
     world = context.world
     index = context.camera_index if context.camera_index < len(world.egos) else 0
+    return ego_status_of(context, index)
+
+
+def ego_status_of(context: BridgeContext, index: int) -> Any:
+    """EgoVehicleStatus of the ego at `index` of the world's egos."""
+    world = context.world
     return ego_vehicle_status(
         context.profile,
         context.header(),
@@ -90,9 +96,14 @@ def publish_ego_status(context: BridgeContext) -> Any:
 def on_ctrl_cmd(context: BridgeContext, ctrl_cmd: Any) -> None:
     """/ctrl_cmd drives the main ego while its control mode is external (EventInfo 3)
     and it is a road vehicle."""
-    ego = commanded_main_ego(context, "ctrl_cmd", Vehicle)
+    drive_with_ctrl_cmd(context, 0, "ctrl_cmd", ctrl_cmd)
+
+
+def drive_with_ctrl_cmd(context: BridgeContext, index: int, row_key: str, ctrl_cmd: Any) -> None:
+    """Hand a CtrlCmd to the ego at `index` if its control mode and kind take it."""
+    ego = commanded_ego(context, index, row_key, Vehicle)
     if ego is None:
         return
     verdict = ego.vehicle.command(control_command(ctrl_cmd))
     if not verdict.accepted:
-        log.warning("/ctrl_cmd rejected (last valid command kept): %s", verdict.reason)
+        log.warning("%s rejected (last valid command kept): %s", row_key, verdict.reason)

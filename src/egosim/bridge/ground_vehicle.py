@@ -43,7 +43,14 @@ def commanded_main_ego(
 ) -> Ego | None:
     """The main ego when a command of row `row_key` may drive it: its control mode is
     external (EventInfo 3) and its vehicle is of `kind`; None otherwise."""
-    ego = context.world.egos[0]
+    return commanded_ego(context, 0, row_key, kind)
+
+
+def commanded_ego(
+    context: BridgeContext, index: int, row_key: str, kind: type[Vehicle] | type[SkidSteerVehicle]
+) -> Ego | None:
+    """commanded_main_ego for the ego at `index` of the world's egos."""
+    ego = context.world.egos[index]
     if context.settings_of(ego.unique_id).ctrl_mode != CTRL_MODE_EXTERNAL:
         return None
     if not isinstance(ego.vehicle, kind):
