@@ -10,6 +10,7 @@ from pathlib import Path
 
 from ..bridge.bindings import HANDLERS
 from ..bridge.context import BridgeContext
+from ..bridge.control_modes import drive_autopilots
 from ..bridge.core import Bridge
 from ..bridge.network import load_network_settings
 from ..bridge.replay_rows import advance_replay, replay_topics
@@ -116,6 +117,7 @@ def _run(options: RunOptions) -> int:
             replay_topics=replay_topics(settings),
         )
         bridge = Bridge(node, profile, settings, HANDLERS, context, inbox)
+        context.open_row = bridge.open_row
         if recorder is not None:
             bridge.taps.append(recorder.tap())
         try:
@@ -135,6 +137,7 @@ def _run(options: RunOptions) -> int:
             # Publishing runs on loop time, which advances while the world is paused.
             nonlocal loop_time
             advance_replay(context, dt)
+            drive_autopilots(context)
             world.step(dt)
             clock.tick()
             loop_time += dt

@@ -1,0 +1,41 @@
+"""What EventInfo.ctrl_mode means for an ego (bridge/events.py and MultiEgoSetting set it).
+
+3 external: the ego obeys its command input (the default). 1 keyboard and 2 gamepad:
+a headless simulator has no human input, so the ego gets no command at all and its
+command timeout brakes it to a stop. 4 auto: MORAI's internal controller drives, here
+the lane-following autopilot of world.traffic.autopilot, commanded before every step.
+"""
+
+from __future__ import annotations
+
+from ..world.traffic import LightsView
+from ..world.traffic.autopilot import LaneAutopilot
+from ..world.vehicle import Vehicle
+from .context import CTRL_MODE_AUTO, BridgeContext
+
+
+def drive_autopilots(context: BridgeContext) -> None:
+    """Command every road-vehicle ego in auto mode for the coming step (loop thread).
+
+    An ego's autopilot is made when it enters auto mode and dropped when it leaves, so
+    it plans afresh from wherever the ego is when auto mode is chosen again.
+    """
+    world = context.world
+    auto = [
+        ego
+        for ego in world.egos
+        if context.settings_of(ego.unique_id).ctrl_mode == CTRL_MODE_AUTO
+        and isinstance(ego.vehicle, Vehicle)
+    ]
+    driven = {ego.unique_id for ego in auto}
+    for unique_id in set(context.autopilots) - driven:
+        del context.autopilots[unique_id]
+    if not auto:
+        return
+    lights = LightsView.of(world.signals.aspects(), world.signals.light_types)
+    for ego in auto:
+        autopilot = context.autopilots.get(ego.unique_id)
+        if autopilot is None:
+            autopilot = context.autopilots[ego.unique_id] = LaneAutopilot(world.npcs.graph)
+        vehicle = ego.vehicle
+        vehicle.command(autopilot.command(vehicle.model, vehicle.status(), lights))
