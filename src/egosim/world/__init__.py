@@ -2,9 +2,16 @@
 
 Public API:
     World, Ego, EgoLaneState                 the assembly the bridge drives
+    UnknownObjectModelError                  World.add_object's refusal
     egosim.world.map, .vehicle, .traffic, .signals, .scenario, .collision   the parts
 """
 
-from egosim.world.world import DEFAULT_PHYSICS_STEP_S, Ego, EgoLaneState, World
+from egosim.world.world import (
+    DEFAULT_PHYSICS_STEP_S,
+    Ego,
+    EgoLaneState,
+    UnknownObjectModelError,
+    World,
+)
 
-__all__ = ["DEFAULT_PHYSICS_STEP_S", "Ego", "EgoLaneState", "World"]
+__all__ = ["DEFAULT_PHYSICS_STEP_S", "Ego", "EgoLaneState", "UnknownObjectModelError", "World"]

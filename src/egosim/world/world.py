@@ -53,8 +53,11 @@ from egosim.world.traffic import (
     crossed_lights,
     walk_signals,
 )
+from egosim.world.traffic.catalogue import OBSTACLE_MODELS
 from egosim.world.traffic.ghosts import GhostPlacement, NpcGhosts
+from egosim.world.traffic.npc_vehicles import NpcSpawn
 from egosim.world.traffic.object_list import ObjectList
+from egosim.world.traffic.obstacles import ObstacleSpawn
 from egosim.world.vehicle import (
     DEFAULT_EGO_MODEL,
     EgoVehicle,
@@ -63,12 +66,21 @@ from egosim.world.vehicle import (
     ego_model,
     ego_vehicle,
 )
+from egosim.world.vehicle.catalogue import VEHICLE_CATALOGUE
 
 DEFAULT_PHYSICS_STEP_S = 0.01
 DEFAULT_OBJECT_LIST_SIZE = 20
 # A pedestrian this close to a lane's edge (m) already counts as in the lane for drivers.
 PEDESTRIAN_LANE_MARGIN_M = 1.0
 PEDESTRIAN_HALF_DEPTH_M = 0.5
+
+
+class UnknownObjectModelError(ValueError):
+    """A model name that is neither an obstacle nor a vehicle of the catalogues."""
+
+    def __init__(self, name: str) -> None:
+        known = ", ".join(sorted([*OBSTACLE_MODELS, *VEHICLE_CATALOGUE]))
+        super().__init__(f"unknown object model {name!r}; known: {known}")
 
 
 class Ego:
@@ -270,6 +282,42 @@ class World:
         self.npc_ghosts.place(accepted, self.sim_time)
         self._next_id = max([self._next_id, *(i + 1 for i in ids)])
         return [p.unique_id for p in placements if p.unique_id in taken]
+
+    def add_object(
+        self, model_name: str, position: tuple[float, float, float], heading: float
+    ) -> int:
+        """SyncModeAddObject: a new object of a catalogue model; its unique id.
+
+        An obstacle model stands with its footprint centre at `position` (m), heading
+        `heading` (rad); a vehicle model becomes an NPC at rest on the lane nearest to
+        `position` (preferring lanes along `heading`), which then drives like any NPC.
+        """
+        unique_id = self._next_id
+        if model_name in OBSTACLE_MODELS:
+            model = OBSTACLE_MODELS[model_name]
+            size = (model.length, model.width, model.height)
+            self.obstacles.spawn([ObstacleSpawn(unique_id, model_name, position, heading, size)])
+            self._place_obstacles_on_lanes()
+        elif model_name in VEHICLE_CATALOGUE:
+            lane = self.map.project(position[0], position[1], heading)
+            index = self.map.lane_index(lane.lane_id)
+            model = VEHICLE_CATALOGUE[model_name]
+            self.npcs.spawn([NpcSpawn(unique_id, model, index, lane.s, lane.lateral)])
+        else:
+            raise UnknownObjectModelError(model_name)
+        self._next_id += 1
+        return unique_id
+
+    def remove_object(self, unique_id: int) -> bool:
+        """SyncModeRemoveObject: take out the NPC or obstacle `unique_id`; False if none."""
+        npc = np.flatnonzero(self.npcs.unique_ids == unique_id)
+        if len(npc):
+            self.npcs.remove(npc)
+            return True
+        if self.obstacles.remove(unique_id):
+            self._place_obstacles_on_lanes()
+            return True
+        return False
 
     # -- replay ------------------------------------------------------------------------
 

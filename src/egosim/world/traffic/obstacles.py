@@ -35,6 +35,18 @@ class StaticObstacles:
 
     def spawn(self, spawns: Sequence[ObstacleSpawn]) -> None:
         self._spawns += spawns
+        self._build_table()
+
+    def remove(self, unique_id: int) -> bool:
+        """Take out the obstacle `unique_id`; False if there is none."""
+        kept = [o for o in self._spawns if o.unique_id != unique_id]
+        if len(kept) == len(self._spawns):
+            return False
+        self._spawns = kept
+        self._build_table()
+        return True
+
+    def _build_table(self) -> None:
         n = len(self._spawns)
         self._table = ObjectTable(
             unique_ids=np.array([o.unique_id for o in self._spawns], dtype=np.int64),
