@@ -8,6 +8,7 @@ import sys
 import pytest
 
 from egosim.cli import main
+from egosim.msgs import PROFILES
 from tests.contract import load_contract
 
 
@@ -17,9 +18,12 @@ def listing(capsys: pytest.CaptureFixture[str], *args: str) -> dict[str, tuple[s
     return {name: (md5, kind) for md5, kind, name in rows}
 
 
-def test_lists_every_contract_type_with_its_md5(capsys: pytest.CaptureFixture[str]) -> None:
-    rows = listing(capsys, "--profile", "26.r1")
-    contract = load_contract("26.r1")
+@pytest.mark.parametrize("profile", PROFILES)
+def test_lists_every_contract_type_with_its_md5(
+    capsys: pytest.CaptureFixture[str], profile: str
+) -> None:
+    rows = listing(capsys, "--profile", profile)
+    contract = load_contract(profile)
     for name, message in contract["messages"].items():
         assert rows[name] == (message["md5sum"], "msg")
     for name, service in contract["services"].items():
@@ -32,6 +36,13 @@ def test_shows_one_definition(capsys: pytest.CaptureFixture[str]) -> None:
     out = capsys.readouterr().out
     assert "b36ceb480d187645a32b95c2be82bf56" in out
     assert "float64 front_steer" in out
+
+
+def test_older_release_shows_its_own_definition(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["msgs", "--profile", "24.r2", "morai_msgs/CtrlCmd"]) == 0
+    out = capsys.readouterr().out
+    assert "718f1a493f1a335da59a19f673d82bb4" in out
+    assert "float64 steering" in out
 
 
 def test_md5_only(capsys: pytest.CaptureFixture[str]) -> None:

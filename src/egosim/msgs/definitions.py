@@ -8,7 +8,7 @@ from importlib import resources
 from .errors import UnknownProfileError
 
 DEFAULT_PROFILE = "26.r1"
-PROFILES: tuple[str, ...] = ("26.r1",)
+PROFILES: tuple[str, ...] = ("26.r1", "24.r2", "2021.08")
 # Standard types missing from rosbags' Noetic store, shipped for every profile.
 STANDARD_FOLDER = "standard"
 
