@@ -177,13 +177,17 @@ def test_rosbag_record_of_egosim_topic(embedded_master, spawn_ros, make_node, tm
     node = make_node("egosim", master_uri=embedded_master.uri)
     pub = node.advertise("/Ego_topic", EGO)
     bag = tmp_path / "ego.bag"
-    recorder = spawn_ros(["rosbag", "record", "-O", str(bag), "/Ego_topic"], embedded_master.uri)
-    wait_until(lambda: pub.num_subscribers == 1)
     sent = 25
+    # With --limit the recorder closes the bag and exits by itself once it has written
+    # `sent` messages, so an exit means every message arrived.
+    recorder = spawn_ros(
+        ["rosbag", "record", "--limit", str(sent), "-O", str(bag), "/Ego_topic"],
+        embedded_master.uri,
+    )
+    wait_until(lambda: pub.num_subscribers == 1)
     for i in range(sent):
         pub.publish(EGO.serialize(EGO.new(unique_id=i)))
-    wait_until(lambda: pub.connections[0].messages_sent == sent)
-    recorder.kill()
+    assert recorder.wait() == 0
     with Reader(bag) as reader:
         connection = next(c for c in reader.connections if c.topic == "/Ego_topic")
         assert connection.msgtype == "morai_msgs/msg/EgoVehicleStatus"
