@@ -6,6 +6,7 @@ from __future__ import annotations
 import bisect
 import math
 import shutil
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -16,6 +17,7 @@ from rosbags.rosbag1 import Reader
 from rosbags.typesys.msg import denormalize_msgtype
 
 from egosim.msgs import get_profile
+from tests.conftest import EVENT_TIMEOUT_S
 from tests.e2e.driver import RospyDriver
 
 pytestmark = pytest.mark.ros
@@ -32,7 +34,7 @@ PLAY = 1
 LOAD, SET_TARGET, SET_SPEED = 0x0001, 0x0010, 0x1000
 TARGET_EGO, TARGET_NPC, TARGET_PEDESTRIAN = 0x0001, 0x0010, 0x0100
 SUCCESS, BAG_LOAD_FAILED = 0x01, 0x20
-REPLAY_MODE, AT_END = 0x10, 0x20
+SIMULATION_MODE, REPLAY_MODE, AT_END = 0x01, 0x10, 0x20
 
 RECORD_S = 20.0
 TOLERANCE_M = 0.01
@@ -43,6 +45,8 @@ LISTS_OF_TARGET = {
     TARGET_PEDESTRIAN: ("pedestrian_list",),
 }
 PROFILE = get_profile("26.r1")
+# What the tests read of each recorded EgoVehicleStatus (heading and steering in deg).
+EGO_FIELDS = ("x", "y", "heading", "accel", "brake", "front_steer")
 
 
 def read_bag(path: Path) -> dict[str, list[tuple[int, Any]]]:
@@ -68,7 +72,7 @@ class Recording:
     start_ns: int
     end_ns: int
     ego_times: list[int]
-    ego_xy: list[tuple[float, float]]
+    ego_rows: list[tuple[float, ...]]  # EGO_FIELDS
     object_times: list[int]
     object_lists: list[dict[str, dict[int, tuple[float, float]]]]
 
@@ -85,7 +89,10 @@ class Recording:
             min(times),
             max(ends),
             [t for t, _ in egos],
-            [(m.position.x, m.position.y) for _, m in egos],
+            [
+                (m.position.x, m.position.y, m.heading, m.accel, m.brake, m.front_steer_angle)
+                for _, m in egos
+            ],
             [t for t, _ in lists],
             [
                 {
@@ -100,10 +107,14 @@ class Recording:
     def duration_s(self) -> float:
         return (self.end_ns - self.start_ns) / 1e9
 
-    def ego_at(self, t_ns: float) -> tuple[float, float]:
-        """The ego's recorded position, linear between the messages around t."""
+    def ego_at(self, t_ns: float) -> dict[str, float]:
+        """The ego's recorded EGO_FIELDS, linear between the messages around t."""
         i, j, alpha = bracket(self.ego_times, t_ns)
-        return lerp(self.ego_xy[i], self.ego_xy[j], alpha)
+        return dict(zip(EGO_FIELDS, lerp(self.ego_rows[i], self.ego_rows[j], alpha), strict=True))
+
+    def ego_xy(self, t_ns: float) -> tuple[float, float]:
+        ego = self.ego_at(t_ns)
+        return (ego["x"], ego["y"])
 
     def objects_at(self, t_ns: float, list_name: str) -> dict[int, tuple[float, float]]:
         """The latest list at or before t, each object moved towards the next list."""
@@ -121,8 +132,8 @@ def bracket(times: list[int], t: float) -> tuple[int, int, float]:
     return i, i + 1, (t - times[i]) / (times[i + 1] - times[i])
 
 
-def lerp(a: tuple[float, float], b: tuple[float, float], alpha: float) -> tuple[float, float]:
-    return (a[0] + alpha * (b[0] - a[0]), a[1] + alpha * (b[1] - a[1]))
+def lerp(a: tuple[float, ...], b: tuple[float, ...], alpha: float) -> tuple[float, ...]:
+    return tuple(p + alpha * (q - p) for p, q in zip(a, b, strict=True))
 
 
 def xy(vector: dict[str, float]) -> tuple[float, float]:
@@ -142,31 +153,40 @@ def sim_proc(client: RospyDriver, **fields: Any) -> bool:
     return client.call(*SIM_PROC, {"request": handle})["response"]["result"]
 
 
-def status_at_end(client: RospyDriver, after: float) -> dict[str, Any]:
-    """The first MoraiSimProcStatus at the end of a bag played by a command later than
-    `after` (s), waiting generously."""
+def status_after(
+    client: RospyDriver, after: float, accept: Callable[[dict[str, Any]], bool] = bool
+) -> dict[str, Any]:
+    """The first MoraiSimProcStatus that reports a command later than `after` (s) and
+    that `accept`s, waiting generously."""
     since = 0
     for _ in range(600):
         received = client.messages(STATUS[0], since=since, count=1, timeout=60)
         since += len(received)
         for status in received:
-            if status["current_status"] == AT_END and status["latest_command_time"] > after:
+            if status["latest_command_time"] > after and accept(status):
                 return status
-    raise AssertionError("the replay never reached the awaited status")
+    raise AssertionError("no MoraiSimProcStatus reported the awaited state")
+
+
+def at_end(status: dict[str, Any]) -> bool:
+    return status["current_status"] == AT_END
 
 
 def record_drive(
-    egosim: Callable[..., Any], rospy_client: Callable[..., RospyDriver], bag: Path
+    egosim: Callable[..., Any],
+    rospy_client: Callable[..., RospyDriver],
+    bag: Path,
+    duration: float = RECORD_S,
 ) -> None:
-    """20 s of the default scenario with a scripted controller, recorded by egosim."""
+    """`duration` s of the default scenario with a scripted controller, recorded by egosim."""
     recording = egosim(
-        "--clock", "sim", "--rtf", "0", "--duration", str(RECORD_S), "--record", str(bag)
+        "--clock", "sim", "--rtf", "0", "--duration", str(duration), "--record", str(bag)
     )
     driver = rospy_client(recording)
     # Accelerate while steering gently left, then brake: a curved drive that stops.
     driver.stream(*CTRL, {"longlCmdType": 1, "accel": 0.5, "front_steer": 0.03}, rate=50)
     driver.subscribe(*EGO)
-    driver.messages(EGO[0], count=100, timeout=60)
+    driver.messages(EGO[0], count=round(duration * 5), timeout=60)
     driver.stream(*CTRL, {"longlCmdType": 1, "brake": 0.3, "front_steer": -0.02}, rate=50)
     assert recording.process.wait(120) == 0
 
@@ -182,7 +202,7 @@ def test_replayed_trajectories_match_the_recording(
     record_drive(egosim, rospy_client, bag)
     recording = Recording.of(bag)
     assert recording.duration_s == pytest.approx(RECORD_S, abs=0.1)
-    recorded_ego_path = math.dist(recording.ego_xy[0], recording.ego_xy[-1])
+    recorded_ego_path = math.dist(recording.ego_rows[0][:2], recording.ego_rows[-1][:2])
     assert recorded_ego_path > 5.0, "the scripted controller should have moved the ego"
 
     player = egosim("--clock", "sim", "--rtf", "0")
@@ -199,7 +219,12 @@ def test_replayed_trajectories_match_the_recording(
 
 
 def replay_and_compare(
-    client: RospyDriver, recording: Recording, speed: int, target: int, after: float
+    client: RospyDriver,
+    recording: Recording,
+    speed: int,
+    target: int,
+    after: float,
+    bag_name: str = "drive.bag",
 ) -> float:
     """Play the whole bag for one target at one speed; compare what the simulator reports
     with the recording at matched times. The time (s) the play command arrived."""
@@ -208,11 +233,11 @@ def replay_and_compare(
         client,
         sim_process_status=PLAY,
         replay_option=LOAD | SET_TARGET | SET_SPEED,
-        rosbag_file_name="drive.bag",
+        rosbag_file_name=bag_name,
         replay_target_option=target,
         replay_speed=speed,
     )
-    end = status_at_end(client, after)
+    end = status_after(client, after, at_end)
     assert end["command_result"] == SUCCESS
     assert end["current_mode"] == REPLAY_MODE
     commanded = end["latest_command_time"]
@@ -230,7 +255,7 @@ def replay_and_compare(
     egos, lists = matched(EGO[0]), matched(OBJECTS[0])
     case = f"{speed}x, target {target:#06x}"
     assert len(egos) >= 10 and len(lists) >= 10, case
-    ego_errors = [math.dist(xy(m["position"]), recording.ego_at(t)) for t, m in egos]
+    ego_errors = [math.dist(xy(m["position"]), recording.ego_xy(t)) for t, m in egos]
     if target == TARGET_EGO:
         assert max(ego_errors) < TOLERANCE_M, case
     else:
@@ -245,3 +270,115 @@ def replay_and_compare(
             errors += [math.dist(shown[uid], expected[uid]) for uid in expected]
         assert errors and max(errors) < TOLERANCE_M, (case, list_name)
     return commanded
+
+
+def test_missing_corrupt_or_outside_bags_fail_to_load_and_the_simulation_goes_on(
+    egosim: Callable[..., Any], rospy_client: Callable[..., RospyDriver], tmp_path: Path
+) -> None:
+    player = egosim("--clock", "sim", "--rtf", "0")
+    (player.data_root / "corrupt.bag").write_bytes(b"#ROSBAG V2.0\n" + bytes(range(256)) * 8)
+    (player.data_root / "notes.bag").write_text("not a bag at all\n")
+    (tmp_path / "outside.bag").write_bytes(b"")
+    client = rospy_client(player)
+    client.subscribe(*STATUS)
+    client.subscribe(*EGO)
+    commanded = -1.0
+    for name in ("missing.bag", "corrupt.bag", "notes.bag", "../outside.bag", "/etc/passwd"):
+        loaded = sim_proc(
+            client, sim_process_status=PLAY, replay_option=LOAD, rosbag_file_name=name
+        )
+        status = status_after(client, commanded)
+        commanded = status["latest_command_time"]
+        assert not loaded, name
+        assert status["command_result"] == BAG_LOAD_FAILED, name
+        assert status["current_mode"] == SIMULATION_MODE, name
+        # Still simulating: the ego keeps being reported, later and later.
+        first = client.next_message(EGO[0])["header"]["stamp"]
+        assert client.next_message(EGO[0])["header"]["stamp"] > first
+    assert player.process.popen.poll() is None
+
+
+def test_replay_info_reports_the_recorded_inputs_and_objects(
+    egosim: Callable[..., Any], rospy_client: Callable[..., RospyDriver], tmp_path: Path
+) -> None:
+    bag = tmp_path / "data" / "short.bag"
+    record_drive(egosim, rospy_client, bag, duration=4.0)
+    recording = Recording.of(bag)
+    player = egosim("--clock", "sim", "--rtf", "0")
+    client = rospy_client(player)
+    for topic in (STATUS, REPLAY_INFO):
+        client.subscribe(*topic)
+    assert sim_proc(
+        client,
+        sim_process_status=PLAY,
+        replay_option=LOAD | SET_SPEED,
+        rosbag_file_name="short.bag",
+        replay_speed=2,
+    )
+    end = status_after(client, -1.0, at_end)
+    commanded = end["latest_command_time"]
+    infos = client.messages(REPLAY_INFO[0], count=0, timeout=0)
+    # Nothing before the command: ReplayInfo is published during replay only.
+    assert infos and min(m["header"]["stamp"] for m in infos) > commanded
+    playing = [m for m in infos if m["header"]["stamp"] <= commanded + recording.duration_s / 2]
+    assert len(playing) >= 10
+    for info in playing:
+        t = recording.start_ns + (info["header"]["stamp"] - commanded) * 2 * 1e9
+        ego = recording.ego_at(t)
+        assert info["ego_acc"] == pytest.approx(ego["accel"], abs=1e-9)
+        assert info["ego_brake"] == pytest.approx(ego["brake"], abs=1e-9)
+        assert info["ego_steer"] == pytest.approx(ego["front_steer"], abs=1e-6)
+        q = info["orientation"]
+        assert q["x"] == pytest.approx(0.0) and q["y"] == pytest.approx(0.0)
+        yaw = math.degrees(2 * math.atan2(q["z"], q["w"]))
+        assert math.remainder(yaw - ego["heading"], 360.0) == pytest.approx(0.0, abs=1e-6)
+        # The yaw rate lies between the recorded heading's slopes just before and after t.
+        slopes = [
+            math.radians(
+                recording.ego_at(t + d)["heading"] - recording.ego_at(t + d - 1e6)["heading"]
+            )
+            / 1e-3
+            for d in (-1e6, 2e6)
+        ]
+        assert min(slopes) - 1e-6 <= info["angular_velocity"]["z"] <= max(slopes) + 1e-6
+        for list_name, count in (
+            ("npc_list", "num_of_npcs"),
+            ("pedestrian_list", "num_of_pedestrian"),
+            ("obstacle_list", "num_of_obstacle"),
+        ):
+            expected = recording.objects_at(t, list_name)
+            shown = {o["unique_id"]: xy(o["position"]) for o in info[list_name]}
+            assert info[count] == len(shown)
+            assert shown.keys() == expected.keys()
+            assert all(math.dist(shown[u], expected[u]) < TOLERANCE_M for u in expected)
+
+
+def test_a_bag_recorded_by_rosbag_record_replays(
+    egosim: Callable[..., Any],
+    rospy_client: Callable[..., RospyDriver],
+    spawn_ros: Callable[..., Any],
+) -> None:
+    simulator = egosim("--clock", "sim", "--rtf", "2")
+    client = rospy_client(simulator)
+    for topic in (EGO, OBJECTS, STATUS):
+        client.subscribe(*topic)
+    bag = simulator.data_root / "rosbag.bag"
+    rosbag = spawn_ros(
+        ["/usr/bin/rosbag", "record", "-O", str(bag), EGO[0], OBJECTS[0]],
+        master_uri=simulator.master_uri,
+        ROS_IP="127.0.0.1",
+    )
+    # rosbag's recorder prints nothing when it subscribes; its bag appears when it does.
+    active = bag.with_name(bag.name + ".active")
+    deadline = time.monotonic() + EVENT_TIMEOUT_S
+    while not active.exists():
+        assert time.monotonic() < deadline, rosbag.stderr_text()
+        time.sleep(0.05)
+    client.stream(*CTRL, {"longlCmdType": 1, "accel": 0.6, "front_steer": 0.04}, rate=50)
+    client.messages(EGO[0], count=300, timeout=120)
+    client.stop_stream(CTRL[0])
+    rosbag.kill()  # SIGINT: rosbag closes the bag
+    assert bag.exists()
+    recording = Recording.of(bag)
+    assert recording.duration_s > 2.0
+    replay_and_compare(client, recording, 1, TARGET_EGO, after=-1.0, bag_name="rosbag.bag")
