@@ -62,6 +62,7 @@ from egosim.world.vehicle import (
     DEFAULT_EGO_MODEL,
     EgoVehicle,
     Pose,
+    RoadSurface,
     VehicleStatus,
     ego_model,
     ego_vehicle,
@@ -73,6 +74,8 @@ DEFAULT_OBJECT_LIST_SIZE = 20
 # A pedestrian this close to a lane's edge (m) already counts as in the lane for drivers.
 PEDESTRIAN_LANE_MARGIN_M = 1.0
 PEDESTRIAN_HALF_DEPTH_M = 0.5
+# Length of lane over which the grade under an ego is measured, m.
+GRADE_BASE_M = 1.0
 
 
 class UnknownObjectModelError(ValueError):
@@ -341,10 +344,11 @@ class World:
             return
         self.signals.step(dt)
         recorded = self.recorded
+        surfaces = self._road_surfaces()
         for index, ego in enumerate(self.egos):
             # A replayed main ego holds the recorded pose show_recorded gave it.
             if index > 0 or recorded.ego is None:
-                ego.vehicle.step(dt)
+                ego.vehicle.step(dt, surfaces[index])
         lights = LightsView.of(self.signals.aspects(), self.signals.light_types)
         others = LaneOccupants.concatenate(
             [
@@ -361,6 +365,23 @@ class World:
             self.pedestrians.step(dt, walk_signals(self._crossed_lights, stops_traffic))
         self.sim_time += dt
         self._collide()
+
+    def _road_surfaces(self) -> list[RoadSurface]:
+        """The road under each ego: the height of its lane there, and the pitch the
+        lane's grade gives a vehicle facing the ego's way (roll: none)."""
+        poses = [ego.vehicle.status().pose for ego in self.egos]
+        yaws = np.array([p.yaw for p in poses])
+        projection = self.map.project_many([(p.x, p.y) for p in poses], yaws)
+        lanes = projection.lane_index
+        below = self.map.poses_at(lanes, projection.s - GRADE_BASE_M / 2.0)
+        above = self.map.poses_at(lanes, projection.s + GRADE_BASE_M / 2.0)
+        here = self.map.poses_at(lanes, projection.s)
+        run = np.maximum(np.hypot(*(above[:, :2] - below[:, :2]).T), 1e-9)
+        grade = (above[:, 2] - below[:, 2]) / run * np.cos(yaws - projection.heading)
+        return [
+            RoadSurface(z=float(z), pitch=float(-np.arctan(g)))
+            for z, g in zip(here[:, 2], grade, strict=True)
+        ]
 
     def _ego_occupants(self) -> LaneOccupants:
         statuses = [ego.vehicle.status() for ego in self.egos]
