@@ -153,3 +153,50 @@ def test_two_runs_of_the_same_calls_publish_the_same_bytes(
         assert len(first[topic]) == 150
         assert first[topic] == second[topic]
     assert len(set(first[EGO[0]])) == 150  # the ego moved and time went on
+
+
+ADD = ("/SyncModeAddObject", "morai_msgs/MoraiSyncModeAddObjectSrv")
+REMOVE = ("/SyncModeRemoveObject", "morai_msgs/MoraiSyncModeRemoveObjectSrv")
+LOAD = ("/SyncModeScenarioLoad", "morai_msgs/MoraiSyncModeSLSrv")
+
+
+def obstacles_after_tick(client, frame: int) -> list[dict]:
+    since = len(client.messages(OBJECTS[0], count=0, timeout=0))
+    tick(client, frame)
+    return client.messages(OBJECTS[0], since=since, count=1)[0]["obstacle_list"]
+
+
+def test_objects_come_and_go_at_their_frames(egosim, rospy_client, network_file) -> None:
+    client = rospy_client(egosim("--map", "straight", "--clock", "sync", "--network", network_file))
+    client.subscribe(*OBJECTS)
+    client.wait_connected(OBJECTS[0])
+    first = start_sync_mode(client)
+    cone = {"name": "Cone", "position": {"x": 10.0, "y": -1.75, "z": 0.0}, "heading": 90.0}
+    assert client.call(*ADD, {"request": {**cone, "frame": first + 2}})["response"]["result"]
+    unknown = {**cone, "name": "Flying_Saucer", "frame": first + 1}  # applied at once
+    assert client.call(*ADD, {"request": unknown})["response"]["result"] is False
+    assert obstacles_after_tick(client, first + 1) == []
+    (added,) = obstacles_after_tick(client, first + 2)
+    assert (added["name"], added["heading"]) == ("Cone", pytest.approx(90.0))
+    assert (added["position"]["x"], added["position"]["y"]) == (10.0, -1.75)
+    remove = {"unique_id": added["unique_id"], "frame": first + 3}
+    assert client.call(*REMOVE, {"request": remove})["response"]["result"] is True
+    assert obstacles_after_tick(client, first + 3) == []
+    again = {"unique_id": added["unique_id"], "frame": first + 4}
+    assert client.call(*REMOVE, {"request": again})["response"]["result"] is False
+
+
+def test_scenario_load_at_a_frame(egosim, rospy_client, network_file) -> None:
+    simulator = egosim("--map", "straight", "--clock", "sync", "--network", network_file)
+    (simulator.data_root / "barrier.yaml").write_text(
+        "map: straight\nobstacles:\n  - {model: Barrier, pose: {x: 30.0, y: -1.75}}\n"
+    )
+    client = rospy_client(simulator)
+    client.subscribe(*OBJECTS)
+    client.wait_connected(OBJECTS[0])
+    first = start_sync_mode(client)
+    load = {"frame": first + 1, "file_name": "barrier", "load_obstacle_data": True}
+    assert client.call(*LOAD, {"request": load})["response"]["result"] is True
+    assert [o["name"] for o in obstacles_after_tick(client, first + 1)] == ["Barrier"]
+    missing = {**load, "frame": first + 2, "file_name": "no_such_scenario"}
+    assert client.call(*LOAD, {"request": missing})["response"]["result"] is False

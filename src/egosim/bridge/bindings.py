@@ -15,6 +15,7 @@ from . import (
     sim_clock,
     specs,
     sync_mode,
+    sync_objects,
 )
 from .core import Handlers
 
@@ -58,6 +59,8 @@ HANDLERS = Handlers(
         "sync_mode_ctrl_cmd": sync_mode.serve_ctrl_cmd,
         "sync_mode_set_gear": sync_mode.serve_set_gear,
         "sync_mode_scenario_load": sync_mode.serve_scenario_load,
+        "sync_mode_add_object": sync_objects.serve_add_object,
+        "sync_mode_remove_object": sync_objects.serve_remove_object,
         "sim_proc": replay_rows.serve_sim_proc,
     },
 )

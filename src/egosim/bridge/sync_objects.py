@@ -1,0 +1,62 @@
+"""/SyncModeAddObject and /SyncModeRemoveObject: objects in or out at a frame.
+
+AddObject.name is a model of the obstacle catalogue (a static box standing at
+`position`) or of the vehicle catalogue (an NPC placed on the lane nearest to
+`position`, which then drives); heading is in degrees (ENU, 0 = east,
+counter-clockwise), like every MORAI heading. RemoveObject takes out the NPC or
+obstacle with that unique_id (egos and pedestrians cannot be removed).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from typing import Any
+
+from ..world import UnknownObjectModelError
+from .context import BridgeContext
+from .sync_mode import at_frame, result_message, service_response
+from .units import rad
+
+log = logging.getLogger(__name__)
+
+
+def add_requested_object(context: BridgeContext, request: Any) -> bool:
+    position = (float(request.position.x), float(request.position.y), float(request.position.z))
+    heading = float(request.heading)
+    if not all(math.isfinite(v) for v in (*position, heading)):
+        log.error("SyncModeAddObject: %r: position or heading is not finite", request.name)
+        return False
+    try:
+        unique_id = context.world.add_object(request.name, position, rad(heading))
+    except UnknownObjectModelError as error:
+        log.error("SyncModeAddObject: %s", error)
+        return False
+    log.info("SyncModeAddObject: %s added as object %d", request.name, unique_id)
+    return True
+
+
+def remove_requested_object(context: BridgeContext, request: Any) -> bool:
+    if not context.world.remove_object(int(request.unique_id)):
+        log.error("SyncModeRemoveObject: no NPC or obstacle %d", request.unique_id)
+        return False
+    return True
+
+
+def serve_add_object(context: BridgeContext, request: Any) -> Any:
+    add = request.request
+    ok = at_frame(
+        context, "/SyncModeAddObject", int(add.frame), lambda c: add_requested_object(c, add)
+    )
+    return service_response(context, "MoraiSyncModeAddObjectSrv", result_message(context, ok))
+
+
+def serve_remove_object(context: BridgeContext, request: Any) -> Any:
+    remove = request.request
+    ok = at_frame(
+        context,
+        "/SyncModeRemoveObject",
+        int(remove.frame),
+        lambda c: remove_requested_object(c, remove),
+    )
+    return service_response(context, "MoraiSyncModeRemoveObjectSrv", result_message(context, ok))
