@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from ..world.traffic import LightsView
 from ..world.traffic.autopilot import LaneAutopilot
+from ..world.traffic.road_users import lane_occupants_of
 from ..world.vehicle import Vehicle
 from .context import CTRL_MODE_AUTO, BridgeContext
 
@@ -33,9 +34,11 @@ def drive_autopilots(context: BridgeContext) -> None:
     if not auto:
         return
     lights = LightsView.of(world.signals.aspects(), world.signals.light_types)
+    objects = world.objects()
     for ego in auto:
         autopilot = context.autopilots.get(ego.unique_id)
         if autopilot is None:
             autopilot = context.autopilots[ego.unique_id] = LaneAutopilot(world.npcs.graph)
+        others = lane_occupants_of(objects, world.map, but=ego.unique_id)
         vehicle = ego.vehicle
-        vehicle.command(autopilot.command(vehicle.model, vehicle.status(), lights))
+        vehicle.command(autopilot.command(vehicle.model, vehicle.status(), lights, others))

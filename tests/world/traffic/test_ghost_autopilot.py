@@ -9,6 +9,7 @@ from egosim.world import World
 from egosim.world.signals import GREEN, RED
 from egosim.world.traffic import LightsView
 from egosim.world.traffic.autopilot import STOP_MARGIN_M, LaneAutopilot
+from egosim.world.traffic.road_users import lane_occupants_of
 
 # R5_E_1 runs east from junction 6 to junction 7, whose light TL7_W governs it.
 APPROACH, LIGHT = "R5_E_1", "TL7_W"
@@ -20,7 +21,9 @@ def _drive(world: World, autopilot: LaneAutopilot, seconds: float) -> list[tuple
     trace = []
     for _ in range(round(seconds / world.physics_step_s)):
         lights = LightsView.of(world.signals.aspects(), world.signals.light_types)
-        ego.vehicle.command(autopilot.command(ego.vehicle.model, ego.vehicle.status(), lights))
+        others = lane_occupants_of(world.objects(), world.map, but=ego.unique_id)
+        command = autopilot.command(ego.vehicle.model, ego.vehicle.status(), lights, others)
+        ego.vehicle.command(command)
         world.step()
         trace.append((ego.vehicle.status().speed, abs(world.ego_lane_state().lateral_offset)))
     return trace
@@ -64,3 +67,24 @@ def test_stops_before_the_stop_line_on_red_and_goes_on_green() -> None:
     world.signals.set_light(LIGHT, GREEN)
     _drive(world, autopilot, 15.0)
     assert world.ego_lane_state().lane_id != APPROACH
+
+
+def test_stops_behind_a_parked_car_and_follows_a_slower_one() -> None:
+    parked = {"start": {"lane": "R1_E_1", "s": 300.0}, "start_delay_s": 1.0e6}
+    world = world_from(
+        {"map": "straight", "ego": {"start": {"lane": "R1_E_1", "s": 5.0}}, "npcs": [parked]}
+    )
+    autopilot = LaneAutopilot(world.npcs.graph)
+    trace = _drive(world, autopilot, 40.0)
+    gap = world.npcs.s[0] - world.npcs.dims[0, 0] / 2.0 - _front_station(world)
+    assert trace[-1][0] == pytest.approx(0.0, abs=0.05)
+    assert 0.5 * autopilot.idm.min_gap_m < gap < autopilot.idm.min_gap_m + 1.0
+    assert world.ego_collision_log == []
+
+    slower = {"start": {"lane": "R1_E_1", "s": 100.0}, "speed_mps": 10.0, "target_speed_mps": 10.0}
+    world = world_from(
+        {"map": "straight", "ego": {"start": {"lane": "R1_E_1", "s": 5.0}}, "npcs": [slower]}
+    )
+    trace = _drive(world, LaneAutopilot(world.npcs.graph), 40.0)
+    assert trace[-1][0] == pytest.approx(10.0, abs=0.3)
+    assert world.ego_collision_log == []

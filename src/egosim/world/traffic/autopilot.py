@@ -3,9 +3,10 @@
 It follows the lane the vehicle is on and the lanes after it (the straightest successor
 at each fork) with pure-pursuit steering. Longitudinally it asks, in velocity mode, for
 the speed the NPCs drive at (the lane's limit capped by its comfortable curve speed,
-slowing in time for the next lane's), and for less where it must stop: before a stop
-line whose light says stop (a yellow judged once per approach, as the NPCs do) and
-before a dead end. It does not follow other road users.
+slowing in time for the next lane's), and for less where it must: behind the nearest
+road user on its planned lanes, before a stop line whose light says stop (a yellow
+judged once per approach, as the NPCs do) and before a dead end. Each of these is a
+comfortable braking curve towards a point short of the obstacle.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import numpy as np
 from egosim.world.map import Lane
 from egosim.world.traffic.idm import IntelligentDriverModel
 from egosim.world.traffic.lane_graph import TURN_STRAIGHT, LaneGraph
+from egosim.world.traffic.leaders import LaneOccupants
 from egosim.world.traffic.signal_rules import LightsView, signal_permissions
 from egosim.world.vehicle import ControlCommand, LongitudinalMode, VehicleModel, VehicleStatus
 from egosim.world.vehicle.pedal_control import SPEED_GAIN
@@ -48,17 +50,25 @@ class LaneAutopilot:
         self._yellow = _YELLOW_UNDECIDED
 
     def command(
-        self, model: VehicleModel, status: VehicleStatus, lights: LightsView
+        self,
+        model: VehicleModel,
+        status: VehicleStatus,
+        lights: LightsView,
+        others: LaneOccupants | None = None,
     ) -> ControlCommand:
+        """The command for the coming step among `others` (every road user but this one)."""
         pose = status.pose
         s = self._locate(pose.x, pose.y, pose.yaw)
         front = s + model.cg_to_front_axle + model.front_overhang
+        preview = STOP_PREVIEW_S * status.speed
         stop = min(
             self._stop_line_distance(front, status.speed, lights), self._dead_end_distance(front)
         )
-        target = min(
-            self._cruise_speed(s), self._braking_speed(stop - STOP_PREVIEW_S * status.speed)
-        )
+        target = min(self._cruise_speed(s), self._braking_speed(stop - STOP_MARGIN_M - preview))
+        if others is not None:
+            gap, leader_speed = self._leader(s, front, others)
+            room = gap - self.idm.min_gap_m - preview
+            target = min(target, self._braking_speed(room, leader_speed))
         return ControlCommand(
             mode=LongitudinalMode.VELOCITY,
             velocity=max(target, 0.0),
@@ -133,13 +143,27 @@ class LaneAutopilot:
             self._yellow = _YELLOW_STOP if stoppable else _YELLOW_PASS
         return math.inf if self._yellow == _YELLOW_PASS else float(distance)
 
-    def _braking_speed(self, distance: float) -> float:
-        """The speed (m/s) from which comfortable braking stops STOP_MARGIN_M short of
-        `distance` (m) ahead."""
-        if math.isinf(distance):
+    def _braking_speed(self, room: float, final_speed: float = 0.0) -> float:
+        """The speed (m/s) from which comfortable braking reaches `final_speed` (m/s)
+        within `room` (m)."""
+        if math.isinf(room):
             return math.inf
-        room = max(distance - STOP_MARGIN_M, 0.0)
-        return math.sqrt(2.0 * self.idm.comfortable_decel_mps2 * room)
+        return math.sqrt(final_speed**2 + 2.0 * self.idm.comfortable_decel_mps2 * max(room, 0.0))
+
+    def _leader(self, s: float, front: float, others: LaneOccupants) -> tuple[float, float]:
+        """Gap from the front bumper to the nearest road user ahead on the planned lanes
+        (m, inf if none) and that road user's speed along its lane (m/s)."""
+        offset = 0.0
+        for lane in self.path:
+            on = others.lane == lane
+            centre = offset + others.s[on]
+            ahead = centre > s
+            if np.any(ahead):
+                nearest = int(np.argmin(np.where(ahead, centre, np.inf)))
+                rear = centre[nearest] - others.half_length[on][nearest]
+                return max(rear - front, 0.0), max(float(others.speed[on][nearest]), 0.0)
+            offset += float(self.graph.length[lane])
+        return math.inf, 0.0
 
     def _dead_end_distance(self, front: float) -> float:
         graph, path = self.graph, self.path

@@ -16,6 +16,7 @@ import numpy as np
 from egosim.world.map import LaneMap
 from egosim.world.traffic.leaders import LaneOccupants
 from egosim.world.traffic.objects import ObjectTable, ObjectType
+from egosim.world.traffic.road_users import lane_occupants_of
 from egosim.world.vehicle import VehicleModel
 
 
@@ -120,18 +121,5 @@ class NpcGhosts:
         )
 
     def occupants(self, lane_map: LaneMap) -> LaneOccupants:
-        """The ghosts standing on a lane (within half their width of its edge)."""
-        table = self.table()
-        if len(table) == 0:
-            return LaneOccupants.empty()
-        projection = lane_map.project_many(table.positions[:, :2], table.headings)
-        on_lane = np.abs(projection.lateral) <= (projection.width + table.sizes[:, 1]) / 2.0
-        along = np.cos(table.headings - projection.heading) * np.hypot(
-            table.velocities[:, 0], table.velocities[:, 1]
-        )
-        return LaneOccupants(
-            projection.lane_index[on_lane],
-            projection.s[on_lane],
-            table.sizes[on_lane, 0] / 2.0,
-            along[on_lane],
-        )
+        """The ghosts standing on a lane."""
+        return lane_occupants_of(self.table(), lane_map)
