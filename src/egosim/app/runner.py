@@ -13,6 +13,7 @@ from ..bridge.context import BridgeContext
 from ..bridge.control_modes import drive_autopilots
 from ..bridge.core import Bridge
 from ..bridge.network import load_network_settings
+from ..bridge.releases import CANONICAL_PROFILE
 from ..bridge.replay_rows import advance_replay, replay_topics
 from ..bridge.sensor_rig import SensorRig
 from ..bridge.sync_mode import SyncSession
@@ -77,7 +78,8 @@ def run(options: RunOptions) -> int:
 
 
 def _run(options: RunOptions) -> int:
-    profile = get_profile(options.protocol)
+    # Messages are built in the newest release; peers of others get them converted.
+    profile = get_profile(CANONICAL_PROFILE)
     world = build_world(options)
     try:
         settings = load_network_settings(
@@ -116,7 +118,7 @@ def _run(options: RunOptions) -> int:
             publishes_clock=options.clock is not ClockMode.REAL,
             replay_topics=replay_topics(settings),
         )
-        bridge = Bridge(node, profile, settings, HANDLERS, context, inbox)
+        bridge = Bridge(node, settings, HANDLERS, context, inbox, options.protocol)
         context.open_row = bridge.open_row
         if recorder is not None:
             bridge.taps.append(recorder.tap())

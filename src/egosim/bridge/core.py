@@ -15,9 +15,11 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 from ..app.inbox import Inbox
-from ..msgs import MessageType, MsgsError, Profile
-from ..ros1 import Node, Publisher, Subscriber
+from ..msgs import MessageType, MsgsError, get_profile
+from ..ros1 import ConnectionRefusedByPeerError, Node, Publisher, Subscriber
+from ..ros1.types import TopicType
 from .network import NetworkSettings
+from .releases import CANONICAL_PROFILE, Release, canonical, convert, release_for_md5, releases_of
 from .table import Direction, Row
 
 log = logging.getLogger(__name__)
@@ -46,25 +48,34 @@ class Outlet:
 
     row: Row
     publisher: Publisher
-    message_type: MessageType
+    message_type: MessageType  # the canonical release's, which builders fill
+    releases: tuple[Release, ...]  # every release a subscriber may ask for, default first
     build: Builder
     period: float | None
     next_due: float = 0.0
     seq: int = 0
+
+    def variant(self, message: Any, md5sum: str) -> bytes:
+        """`message` serialized in the release a subscriber negotiated by `md5sum`."""
+        release = release_for_md5(self.releases, md5sum)
+        assert release is not None  # the negotiator accepted only these md5sums
+        return release.message_type.serialize(
+            convert(message, self.message_type, release.message_type)
+        )
 
 
 class Bridge:
     def __init__(
         self,
         node: Node,
-        profile: Profile,
         settings: NetworkSettings,
         handlers: Handlers,
         context: Any,
         inbox: Inbox,
+        default_release: str = CANONICAL_PROFILE,
     ) -> None:
         self.node = node
-        self.profile = profile
+        self.default_release = default_release
         self.settings = settings
         self.handlers = handlers
         self.context = context
@@ -128,7 +139,13 @@ class Bridge:
                 header.seq = outlet.seq
                 outlet.seq += 1
             data = outlet.message_type.serialize(message)
-            outlet.publisher.publish(data)
+            outlet.publisher.publish_variants(
+                lambda md5sum, message=message, data=data: (
+                    data
+                    if md5sum == outlet.message_type.md5sum
+                    else outlet.variant(message, md5sum)
+                )
+            )
             self._tap(outlet.row.name, outlet.message_type, data)
 
     def _tap(self, topic: str, message_type: MessageType, data: bytes) -> None:
@@ -136,29 +153,47 @@ class Bridge:
             tap(topic, message_type, data, self.context.stamp())
 
     def _advertise(self, row: Row, build: Builder) -> Outlet:
-        message_type = self.profile.message(row.type_name)
-        publisher = self.node.advertise(row.name, message_type)
+        releases = releases_of(row.type_name, self.default_release)
+        publisher = self.node.advertise(
+            row.name, releases[0].message_type, negotiate=negotiator(row.name, releases)
+        )
         period = 1.0 / row.rate_hz if row.rate_hz else None
-        outlet = Outlet(row, publisher, message_type, build, period)
+        outlet = Outlet(row, publisher, canonical(row.type_name), releases, build, period)
         self.outlets.append(outlet)
         return outlet
 
     def _subscribe(self, row: Row, handle: MessageHandler) -> Subscriber:
-        message_type = self.profile.message(row.type_name)
+        """Subscribe asking for any md5sum; decode each publisher's release by its md5sum."""
+        releases = releases_of(row.type_name, self.default_release)
+        message_type = canonical(row.type_name)
 
         def received(data: bytes, header: Any) -> None:
-            try:
-                message = message_type.deserialize(data)
-            except MsgsError as exc:
-                log.error("%s from %s: %s", row.name, header.get("callerid", "?"), exc)
+            caller = header.get("callerid", "?")
+            release = release_for_md5(releases, header.get("md5sum", ""))
+            if release is None:
+                log.error(
+                    "%s from %s: md5sum %s is no release of %s; message dropped",
+                    row.name,
+                    caller,
+                    header.get("md5sum"),
+                    row.type_name,
+                )
                 return
-            self._tap(row.name, message_type, data)
+            try:
+                message = convert(
+                    release.message_type.deserialize(data), release.message_type, message_type
+                )
+            except MsgsError as exc:
+                log.error("%s from %s: %s", row.name, caller, exc)
+                return
+            self._tap(row.name, release.message_type, data)
             self.inbox.post(lambda: handle(self.context, message))
 
-        return self.node.subscribe(row.name, message_type, received)
+        any_release = TopicType(row.type_name, "*", releases[0].message_type.definition)
+        return self.node.subscribe(row.name, any_release, received)
 
     def _serve(self, row: Row) -> None:
-        service_type = self.profile.service(row.type_name)
+        service_type = get_profile(CANONICAL_PROFILE).service(row.type_name)
         handle = self.handlers.services[row.key]
 
         def serve(data: bytes, header: Any) -> bytes:
@@ -167,3 +202,22 @@ class Bridge:
             return service_type.response.serialize(response)
 
         self.node.advertise_service(row.name, service_type, serve)
+
+
+def negotiator(topic: str, releases: tuple[Release, ...]) -> Callable[[Any], MessageType]:
+    """Picks the release a subscriber's md5sum asks for (`*`: the default one)."""
+
+    def negotiate(header: Any) -> MessageType:
+        wanted = header.get("md5sum", "*")
+        if wanted == "*":
+            return releases[0].message_type
+        release = release_for_md5(releases, wanted)
+        if release is None:
+            accepted = ", ".join(f"{r.message_type.md5sum} ({r.profile_name})" for r in releases)
+            raise ConnectionRefusedByPeerError(
+                f"{topic}: md5sum {wanted} is no morai_msgs release of "
+                f"{releases[0].message_type.name}; accepted: {accepted}"
+            )
+        return release.message_type
+
+    return negotiate

@@ -1,0 +1,110 @@
+"""Serving every morai_msgs release at once: which release a peer speaks, and how a
+message reads in another release.
+
+The bridge builds and handles every message in the newest release (26.r1, the
+superset). A peer compiled against another release is recognised by the md5sum in
+its connection header, and its messages are converted field by field: same-named
+fields are copied (recursively, through nested types), renamed fields follow
+RENAMED_FIELDS, moved fields follow MOVED_FIELDS, and a field the other side lacks
+is dropped on the way out and takes its ROS default on the way in.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from rosbags.typesys.base import Nodetype
+from rosbags.typesys.store import Typestore
+
+from ..msgs import PROFILES, MessageType, UnknownTypeError, get_profile
+from ..msgs.defaults import default_message
+from ..msgs.fulltext import BUILTIN_TIME_TYPES, element_desc
+
+CANONICAL_PROFILE = "26.r1"
+
+# type -> {field in 26.r1: the same field's name in older releases}
+RENAMED_FIELDS: dict[str, dict[str, str]] = {
+    "morai_msgs/CtrlCmd": {"front_steer": "steering"},
+    "morai_msgs/EgoVehicleStatus": {"front_steer_angle": "wheel_angle"},
+    "morai_msgs/SaveSensorData": {"custom_file_name": "custum_file_name"},
+}
+# type -> {field of an older release: dotted path of the same quantity in 26.r1}
+MOVED_FIELDS: dict[str, dict[str, str]] = {
+    "morai_msgs/GhostMessage": {"heading": "rotation.z"},  # 2021.08: yaw, deg
+}
+
+
+@dataclass(frozen=True)
+class Release:
+    """One release's view of one type."""
+
+    profile_name: str
+    message_type: MessageType
+
+
+def releases_of(type_name: str, default: str) -> tuple[Release, ...]:
+    """Every release that has `type_name`, `default` first."""
+    found = []
+    for name in (default, *(p for p in PROFILES if p != default)):
+        try:
+            found.append(Release(name, get_profile(name).message(type_name)))
+        except UnknownTypeError:
+            continue
+    return tuple(found)
+
+
+def release_for_md5(releases: tuple[Release, ...], md5sum: str) -> Release | None:
+    """The first release whose type has `md5sum` (the default wins when several share it)."""
+    return next((r for r in releases if r.message_type.md5sum == md5sum), None)
+
+
+def convert(message: Any, source: MessageType, target: MessageType) -> Any:
+    """`message`, of type `source`, as a message of `target` (same type, other release)."""
+    if source.md5sum == target.md5sum and source.name == target.name:
+        return message
+    return _convert(message, target.store, target.store_name)
+
+
+def _convert(message: Any, store: Typestore, store_name: str) -> Any:
+    ros_name = store_name.replace("/msg/", "/", 1)
+    renamed = RENAMED_FIELDS.get(ros_name, {})
+    aliases = {**renamed, **{old: new for new, old in renamed.items()}}
+    values = {}
+    for name, desc in store.fielddefs[store_name][1]:
+        source_name = name if hasattr(message, name) else aliases.get(name)
+        if source_name is not None and hasattr(message, source_name):
+            values[name] = _convert_value(getattr(message, source_name), desc, store)
+    result = default_message(store, store_name, **values)
+    for old_field, path in MOVED_FIELDS.get(ros_name, {}).items():
+        if hasattr(result, old_field) and not hasattr(message, old_field):
+            setattr(result, old_field, _get_path(message, path))
+        elif hasattr(message, old_field) and not hasattr(result, old_field):
+            _set_path(result, path, getattr(message, old_field))
+    return result
+
+
+def _convert_value(value: Any, desc: tuple[Any, Any], store: Typestore) -> Any:
+    nodetype, args = element_desc(desc)
+    if nodetype != Nodetype.NAME or args in BUILTIN_TIME_TYPES:
+        return value
+    if desc[0] == Nodetype.NAME:
+        return _convert(value, store, args)
+    return [_convert(item, store, args) for item in value]
+
+
+def _get_path(message: Any, path: str) -> Any:
+    for part in path.split("."):
+        message = getattr(message, part)
+    return message
+
+
+def _set_path(message: Any, path: str, value: Any) -> None:
+    *parents, last = path.split(".")
+    for part in parents:
+        message = getattr(message, part)
+    setattr(message, last, value)
+
+
+def canonical(type_name: str) -> MessageType:
+    return get_profile(CANONICAL_PROFILE).message(type_name)
