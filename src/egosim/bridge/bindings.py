@@ -5,8 +5,10 @@ from __future__ import annotations
 from . import (
     ego,
     events,
+    ghost,
     ground_vehicle,
     lights,
+    multi_ego,
     objects,
     replay_rows,
     scenarios,
@@ -38,6 +40,9 @@ HANDLERS = Handlers(
     },
     subscribers={
         "ctrl_cmd": ego.on_ctrl_cmd,
+        "ghost_ctrl_cmd": ghost.on_ghost_ctrl_cmd,
+        "npc_ghost": ghost.on_npc_ghost,
+        "multi_ego_setting": multi_ego.on_multi_ego_setting,
         "webot_cmd": ground_vehicle.on_webot_cmd,
         "gv_direct_cmd": ground_vehicle.on_gv_direct_cmd,
         "gv_state_cmd": ground_vehicle.on_gv_state_cmd,
