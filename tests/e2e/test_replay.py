@@ -156,8 +156,8 @@ def sim_proc(client: RospyDriver, **fields: Any) -> bool:
 def status_after(
     client: RospyDriver, after: float, accept: Callable[[dict[str, Any]], bool] = bool
 ) -> dict[str, Any]:
-    """The first MoraiSimProcStatus that reports a command later than `after` (s) and
-    that `accept`s, waiting generously."""
+    """The first MoraiSimProcStatus that reports a command later than `after` (s of sim
+    time; 0: any command) and that `accept`s, waiting generously."""
     since = 0
     for _ in range(600):
         received = client.messages(STATUS[0], since=since, count=1, timeout=60)
@@ -211,7 +211,7 @@ def test_replayed_trajectories_match_the_recording(
     for topic in (EGO, OBJECTS, STATUS):
         client.subscribe(*topic)
     client.messages(STATUS[0], count=1)
-    commanded = -1.0
+    commanded = 0.0
 
     for speed in (1, 4):
         for target in (TARGET_EGO, TARGET_NPC, TARGET_PEDESTRIAN):
@@ -282,7 +282,7 @@ def test_missing_corrupt_or_outside_bags_fail_to_load_and_the_simulation_goes_on
     client = rospy_client(player)
     client.subscribe(*STATUS)
     client.subscribe(*EGO)
-    commanded = -1.0
+    commanded = 0.0
     for name in ("missing.bag", "corrupt.bag", "notes.bag", "../outside.bag", "/etc/passwd"):
         loaded = sim_proc(
             client, sim_process_status=PLAY, replay_option=LOAD, rosbag_file_name=name
@@ -315,7 +315,7 @@ def test_replay_info_reports_the_recorded_inputs_and_objects(
         rosbag_file_name="short.bag",
         replay_speed=2,
     )
-    end = status_after(client, -1.0, at_end)
+    end = status_after(client, 0.0, at_end)
     commanded = end["latest_command_time"]
     infos = client.messages(REPLAY_INFO[0], count=0, timeout=0)
     # Nothing before the command: ReplayInfo is published during replay only.
@@ -381,4 +381,4 @@ def test_a_bag_recorded_by_rosbag_record_replays(
     assert bag.exists()
     recording = Recording.of(bag)
     assert recording.duration_s > 2.0
-    replay_and_compare(client, recording, 1, TARGET_EGO, after=-1.0, bag_name="rosbag.bag")
+    replay_and_compare(client, recording, 1, TARGET_EGO, after=0.0, bag_name="rosbag.bag")
