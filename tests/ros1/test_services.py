@@ -6,7 +6,7 @@ import struct
 
 import pytest
 
-from egosim.ros1 import ServiceError
+from egosim.ros1 import ConnectionRefusedByPeerError, ServiceError, ServiceType, TopicType
 from tests.ros1.helpers import PROFILE, raw_connect, read_frame
 
 EVENT_SRV = PROFILE.service("morai_msgs/MoraiEventCmdSrv")
@@ -100,3 +100,31 @@ def test_wire_format_of_ok_and_error_replies(embedded_master, make_node):
         sock.sendall(struct.pack("<I", 4) + b"fail")
         assert sock.recv(1) == b"\x00"
         assert read_frame(sock) == b"bad request"
+
+
+def test_negotiation_serves_each_client_its_service_type(embedded_master, make_node):
+    old = ServiceType(
+        "demo/Cmd", "1" * 32, TopicType("demo/CmdRequest", "a"), TopicType("demo/CmdResponse", "b")
+    )
+    new = ServiceType(
+        "demo/Cmd", "2" * 32, TopicType("demo/CmdRequest", "c"), TopicType("demo/CmdResponse", "d")
+    )
+
+    def negotiate(header):
+        for variant in (old, new):
+            if header["md5sum"] in (variant.md5sum, "*"):
+                return variant
+        raise ConnectionRefusedByPeerError(f"no release of demo/Cmd has md5 {header['md5sum']}")
+
+    node = make_node("sim", master_uri=embedded_master.uri)
+    node.advertise_service(
+        "/cmd",
+        new,
+        lambda request, header: header["md5sum"].encode()[:1] + request,
+        negotiate=negotiate,
+    )
+    assert node.service_proxy("/cmd", old).call(b"x") == b"1x"
+    assert node.service_proxy("/cmd", new).call(b"y") == b"2y"
+    _sock, header = raw_connect(node, {"callerid": "/x", "service": "/cmd", "md5sum": "3" * 32})
+    _sock.close()
+    assert header == {"error": f"no release of demo/Cmd has md5 {'3' * 32}"}

@@ -8,7 +8,7 @@ Public API::
          embedded_master="auto", limits=None, rosout_logger="egosim", env=None)
       .advertise(topic, msg_type, *, latch=False, queue_size=100, negotiate=None) -> Publisher
       .subscribe(topic, msg_type, callback, *, tcp_nodelay=False) -> Subscriber
-      .advertise_service(service, srv_type, handler) -> ServiceServer
+      .advertise_service(service, srv_type, handler, *, negotiate=None) -> ServiceServer
       .service_proxy(service, srv_type, *, persistent=False) -> ServiceProxy
       .get_param / set_param / has_param / delete_param / search_param / get_param_names
       .subscribe_param(key, callback), .resolve_name(name)
@@ -35,7 +35,7 @@ from .master import Master
 from .master_client import MasterClient
 from .node import Node
 from .publication import Negotiator, Publisher, Variants
-from .service import ServiceHandler, ServiceProxy, ServiceServer
+from .service import ServiceHandler, ServiceNegotiator, ServiceProxy, ServiceServer
 from .subscription import MessageCallback, Subscriber
 from .tcpros import Limits
 from .types import ANY_TYPE, MessageTypeInfo, ServiceType, ServiceTypeInfo, TopicType
@@ -62,6 +62,7 @@ __all__ = [
     "Ros1Error",
     "ServiceError",
     "ServiceHandler",
+    "ServiceNegotiator",
     "ServiceProxy",
     "ServiceServer",
     "ServiceType",

@@ -21,7 +21,7 @@ from .network import NetworkConfig, http_uri, rosrpc_uri
 from .publication import Negotiator, Publisher
 from .rosout import ROSOUT_TOPIC, RosoutHandler, log_type
 from .rpc import XmlRpcServer
-from .service import ServiceHandler, ServiceProxy, ServiceServer
+from .service import ServiceHandler, ServiceNegotiator, ServiceProxy, ServiceServer
 from .slave_api import SlaveApi
 from .subscription import MessageCallback, Subscriber
 from .tcpros import Limits
@@ -227,10 +227,17 @@ class Node:
 
     # --- services ---------------------------------------------------------------------------
     def advertise_service(
-        self, service: str, srv_type: ServiceTypeInfo, handler: ServiceHandler
+        self,
+        service: str,
+        srv_type: ServiceTypeInfo,
+        handler: ServiceHandler,
+        *,
+        negotiate: ServiceNegotiator | None = None,
     ) -> ServiceServer:
         """Provide ``service``; ``handler(request_bytes, client_header) -> response_bytes``
-        runs on the client's connection thread."""
+        runs on the client's connection thread. ``negotiate`` (optional) picks the type
+        served on each connection from the client's header; the master is told nothing of
+        types (services register by name)."""
         name = self.resolve_name(service)
         server = ServiceServer(
             name,
@@ -239,6 +246,7 @@ class Node:
             handler,
             limits=self.limits,
             on_close=self._release_service,
+            negotiate=negotiate,
         )
         with self._lock:
             self._check_running()

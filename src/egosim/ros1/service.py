@@ -37,6 +37,9 @@ _U32 = struct.Struct("<I")
 #: Gets the serialized request and the client's connection header, returns the serialized
 #: response; an exception becomes an ok=0 reply carrying its message.
 ServiceHandler = Callable[[bytes, Mapping[str, str]], bytes]
+#: Chooses the service type served on one connection from the client's header, or raises
+#: ConnectionRefusedByPeerError(reason); the handler sees the same header.
+ServiceNegotiator = Callable[[Mapping[str, str]], ServiceTypeInfo]
 
 
 class ServiceServer:
@@ -51,9 +54,11 @@ class ServiceServer:
         *,
         limits: Limits,
         on_close: Callable[[ServiceServer], None] | None = None,
+        negotiate: ServiceNegotiator | None = None,
     ) -> None:
         self.service = service
         self.srv_type = srv_type
+        self._negotiate = negotiate
         self.caller_id = caller_id
         self.limits = limits
         self._handler = handler
@@ -65,15 +70,25 @@ class ServiceServer:
         self.bytes_received = 0
         self.bytes_sent = 0
 
-    def _reply_header(self) -> dict[str, str]:
+    def _reply_header(self, served: ServiceTypeInfo) -> dict[str, str]:
         return {
             "callerid": self.caller_id,
             "service": self.service,
-            "type": self.srv_type.name,
-            "md5sum": self.srv_type.md5sum,
-            "request_type": self.srv_type.request.name,
-            "response_type": self.srv_type.response.name,
+            "type": served.name,
+            "md5sum": served.md5sum,
+            "request_type": served.request.name,
+            "response_type": served.response.name,
         }
+
+    def _choose_type(self, wanted: str, header: Mapping[str, str]) -> ServiceTypeInfo:
+        if self._negotiate is not None:
+            return self._negotiate(header)
+        if wanted not in (ANY_MD5, self.srv_type.md5sum):
+            raise ConnectionRefusedByPeerError(
+                f"request from [{header['callerid']}]: md5sums do not match: "
+                f"[{wanted}] vs. [{self.srv_type.md5sum}]"
+            )
+        return self.srv_type
 
     def serve(self, sock: socket.socket, header: Mapping[str, str], peer: str) -> None:
         """Answer a client's connection header, then its requests until it hangs up."""
@@ -81,15 +96,13 @@ class ServiceServer:
         if wanted is None or "callerid" not in header:
             write_header(sock, error_header("connection header lacks md5sum or callerid"))
             return
-        if wanted not in (ANY_MD5, self.srv_type.md5sum):
-            reason = (
-                f"request from [{header['callerid']}]: md5sums do not match: "
-                f"[{wanted}] vs. [{self.srv_type.md5sum}]"
-            )
-            log.warning("service %s refused %s: %s", self.service, peer, reason)
-            write_header(sock, error_header(reason))
+        try:
+            served = self._choose_type(wanted, header)
+        except ConnectionRefusedByPeerError as exc:
+            log.warning("service %s refused %s: %s", self.service, peer, exc.reason)
+            write_header(sock, error_header(exc.reason))
             return
-        write_header(sock, self._reply_header())
+        write_header(sock, self._reply_header(served))
         if header.get("probe") == "1":
             return
         with self._lock:
