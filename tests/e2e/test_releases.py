@@ -2,7 +2,13 @@
 
 from __future__ import annotations
 
+import socket
+import xmlrpc.client
+
 import pytest
+
+from egosim.msgs import get_profile
+from egosim.ros1.connection_header import read_header, write_header
 
 pytestmark = pytest.mark.ros
 
@@ -43,3 +49,41 @@ def test_three_releases_at_once_see_the_same_world(egosim, rospy_client) -> None
         assert by_stamp[0][stamp] == by_stamp[1][stamp] == by_stamp[2][stamp]
     objects = {r: c.next_message(OBJECTS[0])["num_of_npcs"] for r, c in clients.items()}
     assert set(objects.values()) == {8}
+
+
+@pytest.mark.parametrize("release", RELEASES)
+def test_services_answer_each_release_in_its_own(egosim, rospy_client, release) -> None:
+    client = rospy_client(egosim("--map", "straight"), profile=release)
+    reply = client.call(
+        "/Service_MoraiEventCmd",
+        "morai_msgs/MoraiEventCmdSrv",
+        {"request": {"option": 2, "gear": 2}},
+    )
+    assert reply["response"]["gear"] == 2
+    spec = client.call(
+        "/Service_MoraiMapSpec", "morai_msgs/MoraiMapSpecSrv", {"request": {"load_map_data": True}}
+    )
+    assert spec["response"]["utm_num"] == 52
+
+
+def test_unknown_md5_is_refused_naming_the_accepted_ones(egosim) -> None:
+    simulator = egosim("--map", "straight")
+    master = xmlrpc.client.ServerProxy(simulator.master_uri)
+    _, _, node_uri = master.lookupNode("/probe", "/egosim")
+    _, _, (_, host, port) = xmlrpc.client.ServerProxy(node_uri).requestTopic(
+        "/probe", "/Ego_topic", [["TCPROS"]]
+    )
+    with socket.create_connection((host, port), timeout=30) as sock:
+        write_header(
+            sock,
+            {
+                "callerid": "/probe",
+                "topic": "/Ego_topic",
+                "type": "morai_msgs/EgoVehicleStatus",
+                "md5sum": "0123456789abcdef0123456789abcdef",
+            },
+        )
+        reply = read_header(sock, 65536)
+    for release in RELEASES:
+        md5sum = get_profile(release).message("morai_msgs/EgoVehicleStatus").md5sum
+        assert f"{md5sum} ({release})" in reply["error"]

@@ -19,7 +19,17 @@ from ..msgs import MessageType, MsgsError, get_profile
 from ..ros1 import ConnectionRefusedByPeerError, Node, Publisher, Subscriber
 from ..ros1.types import TopicType
 from .network import NetworkSettings
-from .releases import CANONICAL_PROFILE, Release, canonical, convert, release_for_md5, releases_of
+from .releases import (
+    CANONICAL_PROFILE,
+    Release,
+    ServiceRelease,
+    canonical,
+    convert,
+    release_for_md5,
+    releases_of,
+    service_release_for_md5,
+    service_releases_of,
+)
 from .table import Direction, Row
 
 log = logging.getLogger(__name__)
@@ -193,15 +203,39 @@ class Bridge:
         return self.node.subscribe(row.name, any_release, received)
 
     def _serve(self, row: Row) -> None:
-        service_type = get_profile(CANONICAL_PROFILE).service(row.type_name)
+        """Serve the row to clients of any release, each answered in its own."""
+        releases = service_releases_of(row.type_name, self.default_release)
+        canonical_type = get_profile(CANONICAL_PROFILE).service(row.type_name)
         handle = self.handlers.services[row.key]
 
-        def serve(data: bytes, header: Any) -> bytes:
-            request = service_type.request.deserialize(data)
-            response = self.inbox.call(lambda: handle(self.context, request))
-            return service_type.response.serialize(response)
+        def release_of(header: Any) -> ServiceRelease:
+            release = service_release_for_md5(releases, header.get("md5sum", "*"))
+            if release is None:
+                accepted = ", ".join(
+                    f"{r.service_type.md5sum} ({r.profile_name})" for r in releases
+                )
+                raise ConnectionRefusedByPeerError(
+                    f"{row.name}: md5sum {header.get('md5sum')} is no morai_msgs release of "
+                    f"{row.type_name}; accepted: {accepted}"
+                )
+            return release
 
-        self.node.advertise_service(row.name, service_type, serve)
+        def serve(data: bytes, header: Any) -> bytes:
+            served = release_of(header).service_type
+            request = convert(
+                served.request.deserialize(data), served.request, canonical_type.request
+            )
+            response = self.inbox.call(lambda: handle(self.context, request))
+            return served.response.serialize(
+                convert(response, canonical_type.response, served.response)
+            )
+
+        self.node.advertise_service(
+            row.name,
+            releases[0].service_type,
+            serve,
+            negotiate=lambda header: release_of(header).service_type,
+        )
 
 
 def negotiator(topic: str, releases: tuple[Release, ...]) -> Callable[[Any], MessageType]:

@@ -17,7 +17,7 @@ from typing import Any
 from rosbags.typesys.base import Nodetype
 from rosbags.typesys.store import Typestore
 
-from ..msgs import PROFILES, MessageType, UnknownTypeError, get_profile
+from ..msgs import PROFILES, MessageType, ServiceType, UnknownTypeError, get_profile
 from ..msgs.defaults import default_message
 from ..msgs.fulltext import BUILTIN_TIME_TYPES, element_desc
 
@@ -33,6 +33,41 @@ RENAMED_FIELDS: dict[str, dict[str, str]] = {
 MOVED_FIELDS: dict[str, dict[str, str]] = {
     "morai_msgs/GhostMessage": {"heading": "rotation.z"},  # 2021.08: yaw, deg
 }
+
+
+# service type -> {release: its name there} where a release named it differently
+SERVICE_NAMES: dict[str, dict[str, str]] = {
+    "morai_msgs/MoraiSimProcSrv": {"2021.08": "morai_msgs/MoraiSimpProcSrv"},
+}
+
+
+@dataclass(frozen=True)
+class ServiceRelease:
+    """One release's view of one service type."""
+
+    profile_name: str
+    service_type: ServiceType
+
+
+def service_releases_of(type_name: str, default: str) -> tuple[ServiceRelease, ...]:
+    """Every release that has the service `type_name` (under its name there), default first."""
+    found = []
+    for name in (default, *(p for p in PROFILES if p != default)):
+        local_name = SERVICE_NAMES.get(type_name, {}).get(name, type_name)
+        try:
+            found.append(ServiceRelease(name, get_profile(name).service(local_name)))
+        except UnknownTypeError:
+            continue
+    return tuple(found)
+
+
+def service_release_for_md5(
+    releases: tuple[ServiceRelease, ...], md5sum: str
+) -> ServiceRelease | None:
+    """The release a client's md5sum asks for (`*`: the default, first one)."""
+    if md5sum == "*":
+        return releases[0]
+    return next((r for r in releases if r.service_type.md5sum == md5sum), None)
 
 
 @dataclass(frozen=True)
