@@ -1,0 +1,116 @@
+"""Synchronous-mode throughput: ticks per second of `egosim run --clock sync`, publishing.
+
+Starts the simulator (town map, default scenario, 100 Hz physics: 10 ms ticks) as a
+subprocess, subscribes to every published row (so every builder runs, the LiDAR
+included), starts sync mode and times WaitForTick calls of `--ticks-per-call` ticks
+each. Real-time factor = simulated seconds / wall seconds.
+
+Usage: .venv/bin/python benchmarks/sync_mode.py [--ticks 2000] [--ticks-per-call 1 100]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import socket
+import subprocess
+import sys
+import threading
+import time
+
+from egosim.bridge.network import default_network_settings
+from egosim.bridge.table import Direction
+from egosim.msgs import get_profile
+from egosim.ros1 import Node
+
+TICK_MS = 10
+USER = "benchmark"
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
+
+
+def start_simulator(master_uri: str) -> subprocess.Popen[str]:
+    env = dict(os.environ, ROS_MASTER_URI=master_uri, ROS_IP="127.0.0.1")
+    process = subprocess.Popen(
+        [sys.executable, "-m", "egosim", "run", "--clock", "sync", "--log-level", "WARNING"],
+        env=env,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    assert process.stdout is not None
+    for line in process.stdout:
+        if line.strip() == "egosim: ready":
+            return process
+    raise RuntimeError("egosim exited before it was ready")
+
+
+class Counter:
+    def __init__(self) -> None:
+        self.count = 0
+        self.lock = threading.Lock()
+
+    def __call__(self, data: bytes, header: object) -> None:
+        with self.lock:
+            self.count += 1
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--ticks", type=int, default=2000)
+    parser.add_argument("--ticks-per-call", type=int, nargs="+", default=[1, 100])
+    args = parser.parse_args()
+
+    profile = get_profile("26.r1")
+    master_uri = f"http://127.0.0.1:{free_port()}/"
+    simulator = start_simulator(master_uri)
+    try:
+        with Node("sync_benchmark", master_uri=master_uri, rosout_logger=None) as node:
+            counters = {}
+            for row in default_network_settings().enabled_rows():
+                if row.direction is Direction.PUBLISH:
+                    counters[row.name] = Counter()
+                    node.subscribe(row.name, profile.message(row.type_name), counters[row.name])
+            time.sleep(1.0)  # let every subscription connect before the clock starts
+            command = profile.service("morai_msgs/MoraiSyncModeCmdSrv")
+            tick = profile.service("morai_msgs/MoraiWaitForTickSrv")
+            start = command.request.new(
+                request=profile.message("morai_msgs/SyncModeCmd").new(
+                    user_id=USER, start_sync_mode=True, time_step=TICK_MS
+                )
+            )
+            reply = command.response.deserialize(
+                node.service_proxy("/SyncModeCmd", command).call(command.request.serialize(start))
+            )
+            frame = reply.response.frame
+            proxy = node.service_proxy("/SyncModeWaitForTick", tick, persistent=True)
+            print(f"town + default scenario, {TICK_MS} ms ticks, every published row subscribed")
+            for per_call in args.ticks_per_call:
+                calls = max(args.ticks // per_call, 1)
+                began = time.perf_counter()
+                for _ in range(calls):
+                    frame += per_call
+                    request = tick.request.new(
+                        request=profile.message("morai_msgs/WaitForTick").new(
+                            user_id=USER, frame=frame
+                        )
+                    )
+                    tick.response.deserialize(proxy.call(tick.request.serialize(request)))
+                wall = time.perf_counter() - began
+                ticks = calls * per_call
+                print(
+                    f"{per_call:4d} ticks per WaitForTick: {ticks / wall:7.0f} ticks/s, "
+                    f"{ticks * TICK_MS / 1000 / wall:5.1f}x real time"
+                )
+            received = ", ".join(f"{name} {c.count}" for name, c in sorted(counters.items()))
+            print(f"messages received: {received}")
+    finally:
+        simulator.terminate()
+        simulator.wait(10)
+
+
+if __name__ == "__main__":
+    main()
