@@ -211,13 +211,8 @@ class Bridge:
         def release_of(header: Any) -> ServiceRelease:
             release = service_release_for_md5(releases, header.get("md5sum", "*"))
             if release is None:
-                accepted = ", ".join(
-                    f"{r.service_type.md5sum} ({r.profile_name})" for r in releases
-                )
-                raise ConnectionRefusedByPeerError(
-                    f"{row.name}: md5sum {header.get('md5sum')} is no morai_msgs release of "
-                    f"{row.type_name}; accepted: {accepted}"
-                )
+                accepted = [(r.service_type.md5sum, r.profile_name) for r in releases]
+                raise refusal(row.name, row.type_name, header.get("md5sum"), accepted)
             return release
 
         def serve(data: bytes, header: Any) -> bytes:
@@ -247,11 +242,18 @@ def negotiator(topic: str, releases: tuple[Release, ...]) -> Callable[[Any], Mes
             return releases[0].message_type
         release = release_for_md5(releases, wanted)
         if release is None:
-            accepted = ", ".join(f"{r.message_type.md5sum} ({r.profile_name})" for r in releases)
-            raise ConnectionRefusedByPeerError(
-                f"{topic}: md5sum {wanted} is no morai_msgs release of "
-                f"{releases[0].message_type.name}; accepted: {accepted}"
-            )
+            accepted = [(r.message_type.md5sum, r.profile_name) for r in releases]
+            raise refusal(topic, releases[0].message_type.name, wanted, accepted)
         return release.message_type
 
     return negotiate
+
+
+def refusal(
+    name: str, type_name: str, md5sum: str | None, accepted: list[tuple[str, str]]
+) -> ConnectionRefusedByPeerError:
+    """The error a peer asking for an unknown release gets: what egosim would accept."""
+    choices = ", ".join(f"{md5} ({release})" for md5, release in accepted)
+    return ConnectionRefusedByPeerError(
+        f"{name}: md5sum {md5sum} is no morai_msgs release of {type_name}; accepted: {choices}"
+    )
