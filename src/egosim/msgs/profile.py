@@ -132,6 +132,8 @@ class Profile:
 
     def message(self, name: str) -> MessageType:
         """The message type `pkg/Name` (also accepts rosbags' `pkg/msg/Name`)."""
+        if found := self._messages.get(name):  # the hot path: builders ask per message
+            return found
         ros_name = denormalize_msgtype(normalize_msgtype(name))
         if ros_name not in self._messages:
             store_name = normalize_msgtype(ros_name)
@@ -143,7 +145,8 @@ class Profile:
                 definition=fulltext.full_text(self.store, store_name, self._own_text),
                 store=self.store,
             )
-        return self._messages[ros_name]
+        self._messages[name] = self._messages[ros_name]
+        return self._messages[name]
 
     def service(self, name: str) -> ServiceType:
         """The service type `pkg/Name`."""
