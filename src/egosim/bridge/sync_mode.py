@@ -35,7 +35,7 @@ from .scenarios import ScenarioRequestError, load_requested_scenario
 
 log = logging.getLogger(__name__)
 
-MAX_TICKS_PER_REQUEST = 1000
+MAX_TICKS_PER_REQUEST = 500
 MAX_TIME_STEP_MS = 1000
 MAX_PENDING_ACTIONS = 10_000
 
