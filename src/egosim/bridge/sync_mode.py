@@ -139,7 +139,7 @@ def serve_wait_for_tick(context: BridgeContext, request: Any) -> Any:
         context.profile.message("morai_msgs/WaitForTickResponse").new(
             tick_status=ticked,
             pause_status=world.paused,
-            frame=session.frame if session is not None else 0,
+            frame=context.sync.frame if context.sync is not None else 0,
             vehicle_status=ego_vehicle_status(
                 context.profile,
                 context.header(),
