@@ -2,13 +2,10 @@
 
 from __future__ import annotations
 
-import socket
-import xmlrpc.client
-
 import pytest
 
 from egosim.msgs import get_profile
-from egosim.ros1.connection_header import read_header, write_header
+from tests.e2e.probe import handshake
 
 pytestmark = pytest.mark.ros
 
@@ -68,22 +65,12 @@ def test_services_answer_each_release_in_its_own(egosim, rospy_client, release) 
 
 def test_unknown_md5_is_refused_naming_the_accepted_ones(egosim) -> None:
     simulator = egosim("--map", "straight")
-    master = xmlrpc.client.ServerProxy(simulator.master_uri)
-    _, _, node_uri = master.lookupNode("/probe", "/egosim")
-    _, _, (_, host, port) = xmlrpc.client.ServerProxy(node_uri).requestTopic(
-        "/probe", "/Ego_topic", [["TCPROS"]]
+    reply = handshake(
+        simulator.master_uri,
+        "/Ego_topic",
+        "morai_msgs/EgoVehicleStatus",
+        "0123456789abcdef0123456789abcdef",
     )
-    with socket.create_connection((host, port), timeout=30) as sock:
-        write_header(
-            sock,
-            {
-                "callerid": "/probe",
-                "topic": "/Ego_topic",
-                "type": "morai_msgs/EgoVehicleStatus",
-                "md5sum": "0123456789abcdef0123456789abcdef",
-            },
-        )
-        reply = read_header(sock, 65536)
     for release in RELEASES:
         md5sum = get_profile(release).message("morai_msgs/EgoVehicleStatus").md5sum
         assert f"{md5sum} ({release})" in reply["error"]
