@@ -11,8 +11,8 @@ from egosim.bridge.messages import header
 from egosim.bridge.specs import map_spec, vehicle_spec
 from egosim.bridge.units import heading_deg
 from egosim.msgs import get_profile
-from egosim.world.map import build_builtin_map
 from egosim.world import World
+from egosim.world.map import build_builtin_map
 from egosim.world.vehicle import LongitudinalMode, Pose, vehicle_model
 
 PROFILE = get_profile("26.r1")
@@ -23,9 +23,7 @@ def test_ego_status_reports_angles_in_degrees_and_lane_quantities() -> None:
     pose = Pose(x=100.0, y=-1.0, yaw=0.0)
     world.egos[0].vehicle.teleport(pose, speed=10.0, front_steer=0.05)
     lane = world.ego_lane_state()
-    message = ego_vehicle_status(
-        PROFILE, header(PROFILE, 1.0, "map"), -1, world.ego_status(), lane
-    )
+    message = ego_vehicle_status(PROFILE, header(PROFILE, 1.0, "map"), -1, world.ego_status(), lane)
     assert message.heading == pytest.approx(0.0)
     assert message.front_steer_angle == pytest.approx(math.degrees(0.05))
     assert message.velocity.x == pytest.approx(10.0)
