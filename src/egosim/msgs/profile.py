@@ -53,10 +53,12 @@ class MessageType:
     md5sum: str
     definition: str
     store: Typestore = field(repr=False)
+    store_name: str = field(init=False, repr=False)
+    """The name in rosbags' store (`pkg/msg/Name`), worked out once: builders need it for
+    every message they make."""
 
-    @property
-    def store_name(self) -> str:
-        return normalize_msgtype(self.name)
+    def __post_init__(self) -> None:
+        self.store_name = normalize_msgtype(self.name)
 
     @property
     def fields(self) -> list[tuple[str, Any]]:
