@@ -74,3 +74,33 @@ def test_unknown_md5_is_refused_naming_the_accepted_ones(egosim) -> None:
     for release in RELEASES:
         md5sum = get_profile(release).message("morai_msgs/EgoVehicleStatus").md5sum
         assert f"{md5sum} ({release})" in reply["error"]
+
+
+@pytest.mark.parametrize("release", RELEASES)
+def test_sync_mode_for_each_release(egosim, rospy_client, release) -> None:
+    client = rospy_client(egosim("--map", "straight", "--clock", "sync"), profile=release)
+    start = {"user_id": "planner", "start_sync_mode": True}
+    if release != "2021.08":
+        start["time_step"] = 10
+    frame = client.call("/SyncModeCmd", "morai_msgs/MoraiSyncModeCmdSrv", {"request": start})[
+        "response"
+    ]["frame"]
+    command = {"longlCmdType": 1, "accel": 0.8, STEER_FIELD[release]: 0.05}
+    for k in range(1, 201):
+        tick = {"user_id": "planner", "frame": frame + k}
+        if release == "2021.08":
+            tick["command"] = command  # 2021.08 sends the command with the tick
+        else:
+            client.call(
+                "/SyncModeCtrlCmd",
+                "morai_msgs/MoraiSyncModeCtrlCmdSrv",
+                {"request": {"frame": frame + k, "command": command}},
+            )
+        reply = client.call(
+            "/SyncModeWaitForTick", "morai_msgs/MoraiWaitForTickSrv", {"request": tick}
+        )["response"]
+        assert reply["tick_status"] is True
+    status = reply["vehicle_status"]
+    assert reply["frame"] == frame + 200
+    assert status["velocity"]["x"] > 1.0
+    assert status[STEER_STATUS[release]] == pytest.approx(2.8648, abs=0.01)

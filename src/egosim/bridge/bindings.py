@@ -68,4 +68,7 @@ HANDLERS = Handlers(
         "sync_mode_remove_object": sync_objects.serve_remove_object,
         "sim_proc": replay_rows.serve_sim_proc,
     },
+    release_adapters={
+        ("sync_mode_wait_for_tick", "2021.08"): sync_mode.apply_tick_command,
+    },
 )

@@ -47,6 +47,9 @@ class Handlers:
     publishers: dict[str, Builder] = field(default_factory=dict)
     subscribers: dict[str, MessageHandler] = field(default_factory=dict)
     services: dict[str, RequestHandler] = field(default_factory=dict)
+    # (service row key, release) -> what to do with a request field that only that
+    # release has, before the row's handler answers (the request as the client sent it)
+    release_adapters: dict[tuple[str, str], MessageHandler] = field(default_factory=dict)
 
     def __contains__(self, key: str) -> bool:
         return key in self.publishers or key in self.subscribers or key in self.services
@@ -216,11 +219,18 @@ class Bridge:
             return release
 
         def serve(data: bytes, header: Any) -> bytes:
-            served = release_of(header).service_type
-            request = convert(
-                served.request.deserialize(data), served.request, canonical_type.request
-            )
-            response = self.inbox.call(lambda: handle(self.context, request))
+            release = release_of(header)
+            served = release.service_type
+            sent = served.request.deserialize(data)
+            request = convert(sent, served.request, canonical_type.request)
+            adapt = self.handlers.release_adapters.get((row.key, release.profile_name))
+
+            def answer() -> Any:
+                if adapt is not None:
+                    adapt(self.context, sent)
+                return handle(self.context, request)
+
+            response = self.inbox.call(answer)
             return served.response.serialize(
                 convert(response, canonical_type.response, served.response)
             )

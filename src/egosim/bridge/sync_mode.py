@@ -28,9 +28,11 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..msgs import get_profile
 from ..world.vehicle import Gear
 from .context import BridgeContext
 from .ego import ego_vehicle_status, on_ctrl_cmd
+from .releases import canonical, convert
 from .scenarios import ScenarioRequestError, load_requested_scenario
 
 log = logging.getLogger(__name__)
@@ -188,6 +190,21 @@ def serve_ctrl_cmd(context: BridgeContext, request: Any) -> Any:
 
     ok = at_frame(context, "/SyncModeCtrlCmd", int(request.request.frame), drive)
     return service_response(context, "MoraiSyncModeCtrlCmdSrv", result_message(context, ok))
+
+
+def apply_tick_command(context: BridgeContext, request: Any) -> None:
+    """Release 2021.08 sends the ego's CtrlCmd inside WaitForTick (later releases use
+    SyncModeCtrlCmd): it drives from the tick producing the requested frame on."""
+    sent = request.request.command
+    command = convert(
+        sent, get_profile("2021.08").message("morai_msgs/CtrlCmd"), canonical("morai_msgs/CtrlCmd")
+    )
+
+    def drive(context: BridgeContext) -> bool:
+        on_ctrl_cmd(context, command)
+        return True
+
+    at_frame(context, "/SyncModeWaitForTick", int(request.request.frame), drive)
 
 
 def serve_set_gear(context: BridgeContext, request: Any) -> Any:
