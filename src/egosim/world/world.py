@@ -260,16 +260,19 @@ class World:
 
     def object_list(self, ego_index: int = 0, size: int | None = None) -> ObjectList:
         """ObjectStatusList: counts of all spawned objects; the `size` (default
-        object_list_size) objects closest to the ego, split by kind, closest first."""
+        object_list_size) objects closest to the ego, split by kind, closest first. The
+        other egos count and appear among the vehicles."""
         npcs, pedestrians, obstacles = self._shown_tables()
-        others = ObjectTable.concatenate([npcs, pedestrians, obstacles])
+        egos = self._ego_table()
+        other_egos = egos.select(egos.unique_ids != self.egos[ego_index].unique_id)
+        others = ObjectTable.concatenate([other_egos, npcs, pedestrians, obstacles])
         status = self.ego_status(ego_index)
         centre = self.egos[ego_index].box_centre(status)
         return closest_objects(
             others,
             centre,
             self.object_list_size if size is None else size,
-            counts=(len(npcs), len(pedestrians), len(obstacles)),
+            counts=(len(other_egos) + len(npcs), len(pedestrians), len(obstacles)),
         )
 
     def place_npc_ghosts(self, placements: Sequence[GhostPlacement]) -> list[int]:

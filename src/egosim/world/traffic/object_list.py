@@ -26,20 +26,22 @@ def closest_objects(
     table: ObjectTable, centre: tuple[float, float], size: int, counts: tuple[int, int, int]
 ) -> ObjectList:
     """The `size` objects of `table` nearest `centre` (plane distance between centres,
-    ties in table order), split into NPCs, pedestrians and obstacles."""
+    ties in table order), split into vehicles (NPCs and other egos), pedestrians and
+    obstacles."""
     offset = table.positions[:, :2] - np.asarray(centre)
     distance = np.hypot(offset[:, 0], offset[:, 1])
     nearest = np.argsort(distance, kind="stable")[: max(size, 0)]
     records = [table.record(int(i)) for i in nearest]
 
-    def of(kind: ObjectType) -> tuple[ObjectState, ...]:
-        return tuple(r for r in records if r.object_type == kind)
+    def of(*kinds: ObjectType) -> tuple[ObjectState, ...]:
+        return tuple(r for r in records if r.object_type in kinds)
 
     return ObjectList(
         num_npcs=counts[0],
         num_pedestrians=counts[1],
         num_obstacles=counts[2],
-        npcs=of(ObjectType.NPC_VEHICLE),
+        # Other egos are vehicles on the road too; they keep their own type code (-1).
+        npcs=of(ObjectType.NPC_VEHICLE, ObjectType.EGO),
         pedestrians=of(ObjectType.PEDESTRIAN),
         obstacles=of(ObjectType.OBSTACLE),
     )

@@ -68,6 +68,20 @@ class ObjectTable:
             size=_vector(self.sizes[i]),
         )
 
+    def select(self, mask: npt.ArrayLike) -> ObjectTable:
+        """The rows where `mask` is true, in order."""
+        keep = np.asarray(mask, dtype=bool)
+        return ObjectTable(
+            self.unique_ids[keep],
+            self.object_types[keep],
+            tuple(name for name, kept in zip(self.names, keep, strict=True) if kept),
+            self.positions[keep],
+            self.headings[keep],
+            self.velocities[keep],
+            self.accelerations[keep],
+            self.sizes[keep],
+        )
+
     @classmethod
     def empty(cls) -> ObjectTable:
         return cls(
