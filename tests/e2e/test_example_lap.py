@@ -13,7 +13,8 @@ EXAMPLES = Path(__file__).parents[2] / "examples"
 
 
 def test_pure_pursuit_example_completes_a_lap(egosim, spawn_ros, built_msg_packages) -> None:
-    simulator = egosim("--scenario", str(EXAMPLES / "town_lap_scenario.yaml"), "--rtf", "4")
+    scenario = str(EXAMPLES / "town_lap_scenario.yaml")
+    simulator = egosim("--scenario", scenario, "--clock", "sim", "--rtf", "4")
     example = spawn_ros(
         ["python", str(EXAMPLES / "pure_pursuit_lap.py"), str(EXAMPLES / "town_block_lap.csv")],
         master_uri=simulator.master_uri,

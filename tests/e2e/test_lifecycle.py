@@ -91,6 +91,12 @@ def test_bad_file_is_a_one_line_startup_error(args: list[str], expected: str) ->
     assert "Traceback" not in result.stderr
 
 
+def test_rtf_needs_the_sim_clock() -> None:
+    result = run_expecting_failure(["--rtf", "4"], f"http://127.0.0.1:{free_port()}/")
+    assert result.returncode == 2
+    assert result.stderr.strip() == "egosim: --rtf needs --clock sim"
+
+
 def test_invalid_scenario_names_file_line_and_field(tmp_path: Path) -> None:
     scenario = tmp_path / "bad.yaml"
     scenario.write_text("map: town\nnpcs:\n  - model: 2016_Kia_Niro(HEV)\n    speed: fast\n")

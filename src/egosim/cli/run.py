@@ -46,7 +46,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         type=non_negative_float,
         default=1.0,
         metavar="FACTOR",
-        help="real-time factor (0: as fast as possible)",
+        help="real-time factor with --clock sim (0: as fast as possible)",
     )
     parser.add_argument(
         "--duration",
@@ -71,6 +71,10 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.rtf != 1.0 and args.clock != ClockMode.SIM.value:
+        # Wall-clock stamps on a world running at another pace would lie to every client.
+        print("egosim: --rtf needs --clock sim", file=sys.stderr)
+        return 2
     logging.basicConfig(
         level=args.log_level,
         stream=sys.stderr,
