@@ -11,69 +11,89 @@ from typing import Any
 
 import yaml
 
-PathKey = tuple[str | int, ...]
+FieldPath = tuple[str | int, ...]
 
 
-class YamlFileError(ValueError):
-    """A YAML file is malformed or holds a value it may not hold."""
-
-    def __init__(self, label: str, line: int | None, path: PathKey, problem: str) -> None:
-        self.label, self.line, self.path, self.problem = label, line, path, problem
-        where = label if line is None else f"{label}:{line}"
-        field_name = format_path(path)
-        super().__init__(f"{where}: {field_name + ': ' if field_name else ''}{problem}")
-
-
-def format_path(path: PathKey) -> str:
+def field_name(path: FieldPath) -> str:
+    """`npcs[2].start.lane` for ("npcs", 2, "start", "lane")."""
     text = ""
     for part in path:
-        text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else part)
+        text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else str(part))
     return text
 
 
-@dataclass
+class YamlFileError(ValueError):
+    """A YAML file that cannot be used, located by file label, line and field."""
+
+    def __init__(self, label: str, line: int | None, field: str, message: str) -> None:
+        self.label = label
+        self.line = line
+        self.field = field
+        self.message = message
+        where = label if line is None else f"{label}:{line}"
+        super().__init__(f"{where}: {field + ': ' if field else ''}{message}")
+
+
+@dataclass(frozen=True)
 class YamlDocument:
-    """Plain data parsed from YAML, plus the line of every mapping key and list item."""
+    """Plain data parsed from YAML, plus where each field sits in the file (1-based lines)."""
 
     label: str
     data: Any
-    lines: dict[PathKey, int] = field(default_factory=dict)
+    lines: dict[FieldPath, int] = field(default_factory=dict)
+    error_type: type[YamlFileError] = YamlFileError
 
-    def error(self, path: PathKey, problem: str) -> YamlFileError:
+    def line_of(self, path: FieldPath) -> int | None:
+        """Line of the deepest located field on `path` (the field itself if it exists)."""
+        for end in range(len(path), -1, -1):
+            line = self.lines.get(tuple(path[:end]))
+            if line is not None:
+                return line
+        return None
+
+    def error(self, path: FieldPath, message: str) -> YamlFileError:
         """An error pointing at `path`, or at its nearest parent that has a line."""
-        for cut in range(len(path), -1, -1):
-            if path[:cut] in self.lines:
-                return YamlFileError(self.label, self.lines[path[:cut]], path, problem)
-        return YamlFileError(self.label, None, path, problem)
+        return self.error_type(self.label, self.line_of(path), field_name(path), message)
 
 
-def parse_yaml(text: str, label: str) -> YamlDocument:
-    """Parse one YAML document (safe loader); syntax errors become YamlFileError."""
+def parse_yaml(
+    text: str, label: str, error_type: type[YamlFileError] = YamlFileError
+) -> YamlDocument:
+    """Parse one YAML document (safe subset) keeping each key's and item's line.
+
+    Syntax errors, repeated keys and values YAML cannot build raise `error_type`.
+    """
     try:
-        loader = yaml.SafeLoader(text)
+        root = yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.MarkedYAMLError as error:
+        mark = error.problem_mark or error.context_mark
+        line = None if mark is None else mark.line + 1
+        raise error_type(label, line, "", f"not valid YAML: {error.problem}") from None
+    except yaml.YAMLError as error:
+        raise error_type(label, None, "", f"not valid YAML: {error}") from None
+    lines: dict[FieldPath, int] = {}
+    if root is None:
+        return YamlDocument(label, None, lines, error_type)
+    constructor = yaml.SafeLoader("")
+
+    def convert(node: yaml.Node, path: FieldPath) -> Any:
+        lines[path] = node.start_mark.line + 1
+        if isinstance(node, yaml.MappingNode):
+            result: dict[Any, Any] = {}
+            for key_node, value_node in node.value:
+                key = constructor.construct_object(key_node, deep=True)
+                key_line = key_node.start_mark.line + 1
+                if key in result:
+                    raise error_type(label, key_line, field_name((*path, key)), "appears twice")
+                result[key] = convert(value_node, (*path, key))
+                lines[(*path, key)] = key_line
+            return result
+        if isinstance(node, yaml.SequenceNode):
+            return [convert(item, (*path, k)) for k, item in enumerate(node.value)]
         try:
-            node = loader.get_single_node()
-            data = loader.construct_document(node) if node is not None else None
-        finally:
-            loader.dispose()
-    except yaml.MarkedYAMLError as exc:
-        line = exc.problem_mark.line + 1 if exc.problem_mark else None
-        raise YamlFileError(label, line, (), f"invalid YAML: {exc.problem}") from exc
-    except yaml.YAMLError as exc:
-        raise YamlFileError(label, None, (), f"invalid YAML: {exc}") from exc
-    document = YamlDocument(label, data)
-    if node is not None:
-        _record_lines(node, (), document.lines)
-    return document
+            return constructor.construct_object(node, deep=True)
+        except yaml.YAMLError as error:
+            line = node.start_mark.line + 1
+            raise error_type(label, line, field_name(path), f"bad value: {error}") from None
 
-
-def _record_lines(node: yaml.Node, path: PathKey, lines: dict[PathKey, int]) -> None:
-    lines.setdefault(path, node.start_mark.line + 1)
-    if isinstance(node, yaml.MappingNode):
-        for key_node, value_node in node.value:
-            child = (*path, str(key_node.value))
-            lines[child] = key_node.start_mark.line + 1
-            _record_lines(value_node, child, lines)
-    elif isinstance(node, yaml.SequenceNode):
-        for index, item in enumerate(node.value):
-            _record_lines(item, (*path, index), lines)
+    return YamlDocument(label, convert(root, ()), lines, error_type)

@@ -96,7 +96,7 @@ def test_errors_name_file_line_and_field(text: str, line: int, field: str) -> No
 
 
 def test_syntax_error_names_the_line() -> None:
-    with pytest.raises(YamlFileError, match=r"^net\.yaml:2: invalid YAML"):
+    with pytest.raises(YamlFileError, match=r"^net\.yaml:2: not valid YAML"):
         parse_network_settings("rows:\n  a: b: c\n", "net.yaml")
 
 

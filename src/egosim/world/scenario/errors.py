@@ -2,14 +2,8 @@
 
 from __future__ import annotations
 
+from egosim.yamltext import YamlFileError
 
-class ScenarioError(ValueError):
+
+class ScenarioError(YamlFileError):
     """A scenario that cannot be used, located by file label, line and field."""
-
-    def __init__(self, label: str, line: int | None, field: str, message: str) -> None:
-        self.label = label
-        self.line = line
-        self.field = field
-        self.message = message
-        where = label if line is None else f"{label}:{line}"
-        super().__init__(f"{where}: {field or '(top level)'}: {message}")

@@ -6,8 +6,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from egosim.world.scenario.errors import ScenarioError
-from egosim.world.scenario.source import FieldPath, ScenarioSource
 from egosim.world.signals import IntersectionProgram, PhaseTiming
+from egosim.yamltext import FieldPath, YamlDocument
 
 
 @dataclass(frozen=True)
@@ -97,7 +97,9 @@ class Scenario:
     signals: SignalsSpec = field(default_factory=SignalsSpec)
     network: dict[str, Any] | None = None
     """The file's network settings, handed to the simulator as they are."""
-    source: ScenarioSource = field(default_factory=lambda: ScenarioSource("<scenario>", None))
+    source: YamlDocument = field(
+        default_factory=lambda: YamlDocument("<scenario>", None, error_type=ScenarioError)
+    )
 
     def error(self, path: FieldPath, message: str) -> ScenarioError:
         """An error naming this scenario's file, the line of `path` and the field."""

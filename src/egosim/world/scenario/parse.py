@@ -11,6 +11,7 @@ from typing import Any
 
 import jsonschema
 
+from egosim.world.scenario.errors import ScenarioError
 from egosim.world.scenario.model import (
     EgoSpec,
     LaneStart,
@@ -22,10 +23,10 @@ from egosim.world.scenario.model import (
     SignalsSpec,
     Start,
 )
-from egosim.world.scenario.source import FieldPath, ScenarioSource, read_yaml
 from egosim.world.signals import IntersectionProgram, PhaseTiming
 from egosim.world.traffic.catalogue import DEFAULT_OBSTACLE_MODEL, DEFAULT_PEDESTRIAN_MODEL
 from egosim.world.vehicle import DEFAULT_EGO_MODEL
+from egosim.yamltext import FieldPath, YamlDocument, parse_yaml
 
 DEFAULT_NPC_MODEL = DEFAULT_EGO_MODEL
 DEFAULT_WALK_SPEED_MPS = 1.3
@@ -42,14 +43,14 @@ def scenario_schema() -> dict[str, Any]:
 def parse_scenario(document: str | Mapping[str, Any], label: str = "<scenario>") -> Scenario:
     """A Scenario from YAML text (or already-parsed data); `label` names it in errors."""
     if isinstance(document, str):
-        source = read_yaml(document, label)
+        source = parse_yaml(document, label, ScenarioError)
     else:
-        source = ScenarioSource(label, document)
+        source = YamlDocument(label, document, error_type=ScenarioError)
     _validate(source)
     return _build(source)
 
 
-def _validate(source: ScenarioSource) -> None:
+def _validate(source: YamlDocument) -> None:
     validator = jsonschema.Draft202012Validator(scenario_schema())
     error = jsonschema.exceptions.best_match(validator.iter_errors(source.data))
     if error is None:
@@ -64,7 +65,7 @@ def _validate(source: ScenarioSource) -> None:
     raise source.error(path, error.message)
 
 
-def _build(source: ScenarioSource) -> Scenario:
+def _build(source: YamlDocument) -> Scenario:
     data = source.data
     ego = data.get("ego")
     return Scenario(
@@ -153,7 +154,7 @@ def _timing(data: Mapping[str, Any], base: PhaseTiming) -> PhaseTiming:
     return PhaseTiming(**{**{n: getattr(base, n) for n in _TIMING_FIELDS}, **values})
 
 
-def _signals(source: ScenarioSource, data: Mapping[str, Any]) -> SignalsSpec:
+def _signals(source: YamlDocument, data: Mapping[str, Any]) -> SignalsSpec:
     default = _timing(data.get("default", {}), PhaseTiming())
     programs: dict[int, IntersectionProgram] = {}
     paths: dict[int, FieldPath] = {}

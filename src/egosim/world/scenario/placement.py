@@ -12,7 +12,6 @@ import numpy as np
 
 from egosim.world.map import LaneMap
 from egosim.world.scenario.model import LaneStart, PoseStart, Scenario, Start
-from egosim.world.scenario.source import FieldPath
 from egosim.world.traffic.catalogue import OBSTACLE_MODELS, PEDESTRIAN_MODELS, BoxModel
 from egosim.world.traffic.npc_vehicles import NpcSpawn
 from egosim.world.traffic.obstacles import ObstacleSpawn
@@ -24,6 +23,7 @@ from egosim.world.traffic.pedestrians import (
 )
 from egosim.world.vehicle import EGO_MODELS, VEHICLE_CATALOGUE, EgoModel
 from egosim.world.vehicle import Pose as VehiclePose
+from egosim.yamltext import FieldPath
 
 ModelT = TypeVar("ModelT")
 
