@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from egosim.world.vehicle.body import VehicleBody
 from egosim.world.vehicle.errors import UnknownVehicleModelError
 
 GRAVITY = 9.80665
@@ -17,26 +18,9 @@ GRAVITY = 9.80665
 
 
 @dataclass(frozen=True)
-class VehicleModel:
-    """A vehicle's physical description; the centre of gravity (CG) is the body origin."""
+class VehicleModel(VehicleBody):
+    """A car's physical description; the centre of gravity (CG) is the body origin."""
 
-    name: str
-    length: float
-    """Overall length, m."""
-    width: float
-    """Overall width without mirrors, m."""
-    height: float
-    """Overall height, m."""
-    wheelbase: float
-    """Front axle to rear axle, m."""
-    front_overhang: float
-    """Front axle to front bumper, m."""
-    rear_overhang: float
-    """Rear axle to rear bumper, m."""
-    track_width: float
-    """Lateral distance between the left and right wheel centres, m."""
-    mass: float
-    """Mass in running order, kg."""
     yaw_inertia: float
     """Moment of inertia about the vertical axis through the CG, kg·m²."""
     cg_to_front_axle: float

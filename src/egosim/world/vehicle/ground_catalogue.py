@@ -8,29 +8,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from egosim.world.vehicle.body import VehicleBody
+
 
 @dataclass(frozen=True)
-class GroundVehicleModel:
+class GroundVehicleModel(VehicleBody):
     """A differential-drive (skid-steer) platform; the body origin is the middle of the axles."""
 
-    name: str
-    length: float
-    """Overall length, m."""
-    width: float
-    """Overall width, m."""
-    height: float
-    """Overall height, m."""
-    wheelbase: float
-    """First axle to last axle, m."""
-    front_overhang: float
-    """First axle to the front of the body, m."""
-    rear_overhang: float
-    """Last axle to the back of the body, m."""
-    track_width: float
-    """Lateral distance between the left and right wheel (or track) centres, m."""
     wheel_count: int
-    mass: float
-    """Mass in running order, kg."""
     wheel_radius: float
     """m."""
     max_track_speed: float
