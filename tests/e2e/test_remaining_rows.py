@@ -1,0 +1,78 @@
+"""Rows whose effect a client sees on another row: NPC-NPC collisions, /lamps,
+/SensorPosControl."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+pytestmark = pytest.mark.ros
+
+OBJECTS = ("/Object_topic", "morai_msgs/ObjectStatusList")
+NPC_GHOST = ("/NpcGhost_Topic", "morai_msgs/NpcGhostCmd")
+VEHICLE_COLLISIONS = ("/VehicleCollisionData", "morai_msgs/VehicleCollisionData")
+EVENT = ("/Service_MoraiEventCmd", "morai_msgs/MoraiEventCmdSrv")
+TF = ("/tf", "tf2_msgs/TFMessage")
+
+
+def test_npc_crash_is_one_vehicle_collision_with_both_vehicles(egosim, rospy_client) -> None:
+    client = rospy_client(egosim())
+    client.subscribe(*OBJECTS)
+    client.subscribe(*VEHICLE_COLLISIONS)
+    npc = client.next_message(OBJECTS[0])["npc_list"][0]
+    position = npc["position"]
+    ghost = {
+        "unique_id": 9000,
+        "name": "2016_Kia_Niro(HEV)",
+        "position": {"x": position["x"], "y": position["y"], "z": 0.0},
+        "rpy": {"x": 0.0, "y": 0.0, "z": npc["heading"]},
+    }
+    since = len(client.messages(VEHICLE_COLLISIONS[0], count=0, timeout=0))
+    client.publish(*NPC_GHOST, {"npc_list": [ghost]})
+    crashes = []
+    while not crashes:
+        received = client.messages(VEHICLE_COLLISIONS[0], since=since, count=1, timeout=30)
+        assert received, "no VehicleCollisionData"
+        since += len(received)
+        crashes = [c for m in received for c in m["collisions"]]
+    assert len(crashes) == 1
+    ids = {v["unique_id"] for v in crashes[0]["crashed_vehicles"]}
+    assert ids == {npc["unique_id"], 9000}
+    later = client.messages(VEHICLE_COLLISIONS[0], since=since, count=5)
+    assert all(not m["collisions"] for m in later)
+
+
+def test_lamps_topic_sets_the_ego_lamps(egosim, rospy_client) -> None:
+    client = rospy_client(egosim("--map", "straight"))
+    client.publish("/lamps", "morai_msgs/Lamps", {"turnSignal": 1, "emergencySignal": 1})
+    while True:
+        lamps = client.call(*EVENT, {"request": {"option": 0, "gear": -1}})["response"]["lamps"]
+        if lamps["turnSignal"] == 1:
+            break
+    assert lamps["emergencySignal"] == 1
+
+
+def test_sensor_pos_control_moves_the_lidar_mount(egosim, rospy_client) -> None:
+    client = rospy_client(egosim("--map", "straight"))
+    client.subscribe(*TF)
+    command = {
+        "sensor_index": [2],
+        "pose_x": [1.5],
+        "pose_y": [0.0],
+        "pose_z": [2.2],
+        "roll": [0.0],
+        "pitch": [0.0],
+        "yaw": [math.pi / 2],
+    }
+    client.publish("/SensorPosControl", "morai_msgs/SensorPosControl", command)
+    while True:
+        transforms = client.next_message(TF[0])["transforms"]
+        lidar = next(t for t in transforms if t["child_frame_id"] == "lidar")["transform"]
+        if lidar["translation"]["x"] == pytest.approx(1.5):
+            break
+    assert lidar["translation"]["z"] == pytest.approx(2.2)
+    assert (lidar["rotation"]["z"], lidar["rotation"]["w"]) == (
+        pytest.approx(math.sqrt(0.5)),
+        pytest.approx(math.sqrt(0.5)),
+    )
