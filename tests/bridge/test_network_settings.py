@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 
+from egosim.bridge.bindings import HANDLERS
 from egosim.bridge.network import default_network_settings, parse_network_settings
 from egosim.bridge.table import EGO_INPUT_ROWS, ROWS, Direction
 from egosim.cli import main
@@ -116,3 +117,13 @@ def test_topics_command_reports_a_bad_file(tmp_path, capsys: pytest.CaptureFixtu
     network.write_text("ego_input: 3\n")
     assert main(["topics", "--network", str(network)]) == 1
     assert "net.yaml:1: ego_input" in capsys.readouterr().err
+
+
+def test_every_row_of_the_table_is_served() -> None:
+    assert [row.key for row in ROWS if row.key not in HANDLERS] == []
+    kinds = {
+        Direction.PUBLISH: HANDLERS.publishers,
+        Direction.SUBSCRIBE: HANDLERS.subscribers,
+        Direction.SERVICE: HANDLERS.services,
+    }
+    assert all(row.key in kinds[row.direction] for row in ROWS)
