@@ -54,7 +54,6 @@ class Handlers:
     def __contains__(self, key: str) -> bool:
         return key in self.publishers or key in self.subscribers or key in self.services
 
-
 @dataclass
 class Outlet:
     """A publishing row: when it is next due and how many headers it has stamped."""
@@ -99,9 +98,6 @@ class Bridge:
     def open(self) -> None:
         """Advertise, subscribe and serve every enabled row."""
         for row in self.settings.enabled_rows():
-            if row.key not in self.handlers:
-                log.info("%s (%s) is not served", row.name, row.type_name)
-                continue
             if row.direction is Direction.PUBLISH:
                 self._advertise(row, self.handlers.publishers[row.key])
             elif row.direction is Direction.SUBSCRIBE:
