@@ -54,6 +54,7 @@ class Handlers:
     def __contains__(self, key: str) -> bool:
         return key in self.publishers or key in self.subscribers or key in self.services
 
+
 @dataclass
 class Outlet:
     """A publishing row: when it is next due and how many headers it has stamped."""
