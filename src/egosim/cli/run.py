@@ -37,8 +37,15 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         "one there when none answers. Extra ROS arguments (__name:=, __ns:=, from:=to) "
         "are accepted after the options.",
     )
-    parser.add_argument("--map", default="town", metavar="NAME|PATH")
-    parser.add_argument("--scenario", type=Path, metavar="PATH")
+    parser.add_argument(
+        "--map",
+        default="town",
+        metavar="NAME|PATH",
+        help="built-in map (town, straight, loop), MGeo folder or OpenDRIVE .xodr file",
+    )
+    parser.add_argument(
+        "--scenario", type=Path, metavar="PATH", help="scenario YAML (the town has a default)"
+    )
     parser.add_argument("--network", type=Path, metavar="PATH", help="network settings YAML")
     parser.add_argument("--clock", choices=[m.value for m in ClockMode], default="real")
     parser.add_argument(
@@ -54,8 +61,15 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         metavar="SECONDS",
         help="stop after this much simulated time",
     )
-    parser.add_argument("--record", type=Path, metavar="BAG")
-    parser.add_argument("--protocol", choices=PROFILES, default=DEFAULT_PROFILE)
+    parser.add_argument(
+        "--record", type=Path, metavar="BAG", help="write every topic and command to a bag"
+    )
+    parser.add_argument(
+        "--protocol",
+        choices=PROFILES,
+        default=DEFAULT_PROFILE,
+        help="morai_msgs release for peers that accept any (all are served)",
+    )
     parser.add_argument("--log-level", choices=LOG_LEVELS, default="INFO", type=str.upper)
     parser.add_argument(
         "--data-root",
@@ -66,7 +80,13 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         help="directory that scenario, bag and sensor-data names from the network resolve "
         "in (repeatable; default: the current directory)",
     )
-    parser.add_argument("--physics-rate", type=positive_float, default=100.0, metavar="HZ")
+    parser.add_argument(
+        "--physics-rate",
+        type=positive_float,
+        default=100.0,
+        metavar="HZ",
+        help="physics steps per simulated second (default 100)",
+    )
     parser.set_defaults(handler=run)
 
 
