@@ -1,4 +1,5 @@
-"""Time per Vehicle.step(dt) and per Vehicle.status(), for each longitudinal mode.
+"""Time per vehicle step(dt) and per status(): the car in each longitudinal mode, the
+skid-steer ground vehicle with each command kind.
 
 Usage: .venv/bin/python benchmarks/vehicle_step.py [--dt 0.01] [--steps 20000]
 """
@@ -8,26 +9,60 @@ from __future__ import annotations
 import argparse
 import statistics
 import time
+from collections.abc import Callable
+from typing import Any
 
-from egosim.world.vehicle import ControlCommand, LongitudinalMode, Pose, RoadSurface, Vehicle
+from egosim.world.vehicle import (
+    BodyVelocityCommand,
+    ControlCommand,
+    LongitudinalMode,
+    Pose,
+    RoadSurface,
+    SideEffortCommand,
+    SkidSteerVehicle,
+    Vehicle,
+)
 
-COMMANDS = {
-    "pedals": ControlCommand(accel=0.3, front_steer=0.05),
-    "velocity": ControlCommand(mode=LongitudinalMode.VELOCITY, velocity=15.0, front_steer=0.05),
-    "acceleration": ControlCommand(
-        mode=LongitudinalMode.ACCELERATION, acceleration=0.5, front_steer=0.05
-    ),
-}
+GROUND_MODEL = "UGV_6W_Skid_Steer"
 ROUNDS = 5
 
 
-def time_steps(command: ControlCommand, dt: float, steps: int) -> tuple[float, float]:
+def car() -> Vehicle:
+    vehicle = Vehicle.from_catalogue()
+    vehicle.teleport(Pose(), speed=10.0)
+    return vehicle
+
+
+def ground_vehicle() -> SkidSteerVehicle:
+    vehicle = SkidSteerVehicle.from_catalogue(GROUND_MODEL)
+    vehicle.teleport(Pose(), speed=1.0)
+    return vehicle
+
+
+CASES: dict[str, tuple[Callable[[], Any], Any]] = {
+    "car, pedals": (car, ControlCommand(accel=0.3, front_steer=0.05)),
+    "car, velocity": (
+        car,
+        ControlCommand(mode=LongitudinalMode.VELOCITY, velocity=15.0, front_steer=0.05),
+    ),
+    "car, acceleration": (
+        car,
+        ControlCommand(mode=LongitudinalMode.ACCELERATION, acceleration=0.5, front_steer=0.05),
+    ),
+    "skid-steer, side efforts": (
+        ground_vehicle,
+        SideEffortCommand(throttle=0.6, skid_steering=0.2),
+    ),
+    "skid-steer, body velocity": (ground_vehicle, BodyVelocityCommand(linear=2.0, angular=0.3)),
+}
+
+
+def time_steps(make: Callable[[], Any], command: Any, dt: float, steps: int) -> tuple[float, float]:
     """Median over ROUNDS of (µs per command+step, µs per status read)."""
     step_us, status_us = [], []
     surface = RoadSurface(z=0.0, pitch=-0.02)
     for _ in range(ROUNDS):
-        vehicle = Vehicle.from_catalogue()
-        vehicle.teleport(Pose(), speed=10.0)
+        vehicle = make()
         start = time.perf_counter()
         for _ in range(steps):
             vehicle.command(command)
@@ -46,9 +81,9 @@ def main() -> None:
     parser.add_argument("--steps", type=int, default=20000, help="steps per round")
     args = parser.parse_args()
     print(f"dt = {args.dt} s, {args.steps} steps x {ROUNDS} rounds (median)")
-    for name, command in COMMANDS.items():
-        step_us, status_us = time_steps(command, args.dt, args.steps)
-        print(f"{name:>12}: command+step {step_us:7.1f} µs   status {status_us:6.1f} µs")
+    for name, (make, command) in CASES.items():
+        step_us, status_us = time_steps(make, command, args.dt, args.steps)
+        print(f"{name:>25}: command+step {step_us:7.1f} µs   status {status_us:6.1f} µs")
 
 
 if __name__ == "__main__":
