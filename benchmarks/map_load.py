@@ -16,13 +16,12 @@ from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
+from grid_map import grid_map
 
 from egosim.maps import read_map
 from egosim.world.map import LaneMap
-from egosim.world.map.builtin_origin import BUILTIN_GEOREF
 from egosim.world.map.mgeo import build_mgeo_map
 from egosim.world.map.polyline import stations
-from egosim.world.map.road_network import JunctionSpec, RoadNetworkBuilder, RoadSpec
 
 GRID = 10
 SPACING_M = 150.0
@@ -33,24 +32,6 @@ SUB_TYPES = {
     2: ["red", "yellow", "left", "straight"],
     100: ["yellow"],
 }
-
-
-def grid_map(n: int, spacing: float) -> LaneMap:
-    builder = RoadNetworkBuilder(3.5)
-    for row in range(n):
-        for column in range(n):
-            builder.add_junction(
-                JunctionSpec(1 + row * n + column, (column * spacing, row * spacing), 14.0)
-            )
-    road_id = 0
-    for row in range(n):
-        for column in range(n - 1):
-            for a, b in (((column, row), (column + 1, row)), ((row, column), (row, column + 1))):
-                road_id += 1
-                reference = np.array([a, b], dtype=float) * spacing
-                ja, jb = (1 + p[1] * n + p[0] for p in (a, b))
-                builder.add_road(RoadSpec(road_id, reference, 2, 2, 50 / 3.6, ja, jb))
-    return builder.build("grid", BUILTIN_GEOREF)
 
 
 def resampled(points: np.ndarray) -> list[list[float]]:

@@ -8,32 +8,13 @@ from __future__ import annotations
 import timeit
 
 import numpy as np
+from grid_map import grid_map
 
 from egosim.world.map import LaneMap, build_builtin_map
-from egosim.world.map.builtin_origin import BUILTIN_GEOREF
-from egosim.world.map.road_network import JunctionSpec, RoadNetworkBuilder, RoadSpec
 
 SYNTHETIC_GRID = 16
 SYNTHETIC_SPACING_M = 120.0
 POINTS = 1000
-
-
-def synthetic_grid(n: int, spacing: float) -> LaneMap:
-    """An n x n grid of signalised four-way junctions, two lanes each way on every road."""
-    builder = RoadNetworkBuilder(3.5)
-    for row in range(n):
-        for column in range(n):
-            centre = (column * spacing, row * spacing)
-            builder.add_junction(JunctionSpec(1 + row * n + column, centre, 14.0))
-    road_id = 0
-    for row in range(n):
-        for column in range(n - 1):
-            for a, b in (((column, row), (column + 1, row)), ((row, column), (row, column + 1))):
-                road_id += 1
-                reference = np.array([a, b], dtype=float) * spacing
-                ja, jb = (1 + p[1] * n + p[0] for p in (a, b))
-                builder.add_road(RoadSpec(road_id, reference, 2, 2, 50 / 3.6, ja, jb))
-    return builder.build("synthetic", BUILTIN_GEOREF)
 
 
 def points_on_roads(lane_map: LaneMap, count: int, rng: np.random.Generator) -> tuple:
@@ -78,7 +59,7 @@ def measure(label: str, lane_map: LaneMap) -> None:
 def main() -> None:
     for name, build in (
         ("town", lambda: build_builtin_map("town")),
-        ("synthetic", lambda: synthetic_grid(SYNTHETIC_GRID, SYNTHETIC_SPACING_M)),
+        ("synthetic", lambda: grid_map(SYNTHETIC_GRID, SYNTHETIC_SPACING_M, name="synthetic")),
     ):
         seconds = min(timeit.repeat(build, number=1, repeat=2))
         print(f"{name:>10}: build {seconds * 1e3:.0f} ms")
