@@ -58,7 +58,13 @@ def recorded_ego(ego: EgoState) -> RecordedEgo:
     """EgoVehicleStatus's position is the vehicle's pose and its velocity body-frame."""
     x, y, z = ego.position
     return RecordedEgo(
-        Pose(x=x, y=y, z=z, yaw=ego.heading), ego.velocity[0], ego.front_steer, ego.rear_steer
+        Pose(x=x, y=y, z=z, yaw=ego.heading),
+        ego.velocity[0],
+        ego.front_steer,
+        ego.rear_steer,
+        acceleration=tuple(ego.acceleration),
+        accel_pedal=ego.accel_pedal,
+        brake_pedal=ego.brake_pedal,
     )
 
 

@@ -17,12 +17,17 @@ from egosim.world.vehicle import Pose
 
 @dataclass(frozen=True)
 class RecordedEgo:
-    """The main ego as recorded: pose, speed along its body x (m/s), wheel angles (rad)."""
+    """The main ego as recorded: pose, speed along its body x (m/s), wheel angles (rad),
+    and what placing a vehicle cannot reproduce: its body-frame acceleration (m/s²) and
+    the pedals (0..1) it had."""
 
     pose: Pose
     speed: float
     front_steer: float
     rear_steer: float
+    acceleration: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    accel_pedal: float = 0.0
+    brake_pedal: float = 0.0
 
 
 @dataclass(frozen=True, eq=False)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -181,7 +181,17 @@ class World:
         del self.egos[max(count, 1) :]
 
     def ego_status(self, index: int = 0) -> VehicleStatus:
-        return self.egos[index].vehicle.status()
+        """The ego's state; a replayed main ego reports its recorded acceleration and pedals."""
+        status = self.egos[index].vehicle.status()
+        recorded = self.recorded.ego
+        if index > 0 or recorded is None:
+            return status
+        return replace(
+            status,
+            acceleration=recorded.acceleration,
+            accel_pedal=recorded.accel_pedal,
+            brake_pedal=recorded.brake_pedal,
+        )
 
     def ego_lane_state(self, index: int = 0) -> EgoLaneState:
         pose = self.ego_status(index).pose
