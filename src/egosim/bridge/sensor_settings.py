@@ -102,33 +102,24 @@ def parse_sensor_settings(document: YamlDocument, data: Any) -> SensorSettings:
         raise document.error((*path, "seed"), "expected a non-negative integer")
     return SensorSettings(
         seed=seed,
-        gps=_gps(document, (*path, "gps"), data.get("gps")),
-        imu=_imu(document, (*path, "imu"), data.get("imu")),
+        gps=_point_sensor(document, (*path, "gps"), data.get("gps"), GpsSettings, GpsNoise),
+        imu=_point_sensor(document, (*path, "imu"), data.get("imu"), ImuSettings, ImuNoise),
         lidar=_lidar(document, (*path, "lidar"), data.get("lidar")),
     )
 
 
-def _gps(document: YamlDocument, path: Path, data: Any) -> GpsSettings:
-    defaults = GpsSettings()
+def _point_sensor(
+    document: YamlDocument, path: Path, data: Any, settings: type[T], noise: type
+) -> T:
+    """GPS or IMU settings: a frame id, a mount and a noise model, each defaulted."""
+    defaults = settings()
     if data is None:
         return defaults
     _check_keys(document, path, data, ("frame_id", "mount", "noise"))
-    return GpsSettings(
+    return settings(
         frame_id=_frame_id(document, path, data, defaults.frame_id),
         mount=_mount(document, (*path, "mount"), data.get("mount"), defaults.mount),
-        noise=_noise(document, (*path, "noise"), data.get("noise"), GpsNoise),
-    )
-
-
-def _imu(document: YamlDocument, path: Path, data: Any) -> ImuSettings:
-    defaults = ImuSettings()
-    if data is None:
-        return defaults
-    _check_keys(document, path, data, ("frame_id", "mount", "noise"))
-    return ImuSettings(
-        frame_id=_frame_id(document, path, data, defaults.frame_id),
-        mount=_mount(document, (*path, "mount"), data.get("mount"), defaults.mount),
-        noise=_noise(document, (*path, "noise"), data.get("noise"), ImuNoise),
+        noise=_noise(document, (*path, "noise"), data.get("noise"), noise),
     )
 
 
