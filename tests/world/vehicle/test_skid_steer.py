@@ -4,9 +4,9 @@ drive kinematics, curvature-preserving saturation, gears, timeout and validation
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
 
 import pytest
+from tests.world.vehicle.driving import STEP, drive
 
 from egosim.world.vehicle import (
     GROUND_VEHICLE_CATALOGUE,
@@ -17,25 +17,10 @@ from egosim.world.vehicle import (
     RoadSurface,
     SideEffortCommand,
     SkidSteerVehicle,
-    VehicleStatus,
 )
 
-STEP = 0.01
 ROBOT = "WeBOT_Indoor_Robot"
 UGV = "UGV_6W_Skid_Steer"
-
-
-def drive(
-    vehicle: SkidSteerVehicle,
-    command: SideEffortCommand | BodyVelocityCommand,
-    seconds: float,
-    surface: RoadSurface | None = None,
-) -> Iterator[VehicleStatus]:
-    """Send `command` every step for `seconds`, yielding the status after each step."""
-    for _ in range(round(seconds / STEP)):
-        vehicle.command(command)
-        vehicle.step(STEP, surface)
-        yield vehicle.status()
 
 
 def settle(vehicle: SkidSteerVehicle, command: SideEffortCommand | BodyVelocityCommand) -> None:
