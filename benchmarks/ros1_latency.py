@@ -16,7 +16,6 @@ import contextlib
 import json
 import os
 import signal
-import socket
 import statistics
 import subprocess
 import sys
@@ -27,6 +26,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from loopback import free_port
 
 from egosim.msgs import MessageType, get_profile
 from egosim.ros1 import Master, Node
@@ -50,12 +50,6 @@ class Result:
     median_ms: float
     p99_ms: float
     rate_hz: float
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
 
 
 def spawn(args: list[str], env: dict[str, str]) -> subprocess.Popen[str]:

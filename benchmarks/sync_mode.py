@@ -12,11 +12,12 @@ from __future__ import annotations
 
 import argparse
 import os
-import socket
 import subprocess
 import sys
 import threading
 import time
+
+from loopback import free_port
 
 from egosim.bridge.network import default_network_settings
 from egosim.bridge.table import Direction
@@ -25,12 +26,6 @@ from egosim.ros1 import Node
 
 TICK_MS = 10
 USER = "benchmark"
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
 
 
 def start_simulator(master_uri: str) -> subprocess.Popen[str]:
