@@ -106,13 +106,11 @@ def _run(options: RunOptions) -> int:
         node.on_shutdown(lambda reason: stop.set())
         inbox = Inbox()
         clock = HeaderClock(options.clock, world)
-        roots = options.data_roots or (Path.cwd(),)
         context = BridgeContext(
             profile,
             world,
             clock,
-            scenario_roots=roots,
-            data_roots=roots,
+            data_roots=options.data_roots or (Path.cwd(),),
             sensors=SensorRig(settings.sensors, world.map.georef),
             sync=SyncSession() if options.clock is ClockMode.SYNC else None,
             publishes_clock=options.clock is not ClockMode.REAL,

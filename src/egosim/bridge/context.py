@@ -49,8 +49,8 @@ class BridgeContext:
     world: World
     stamp: Callable[[], float]
     """The simulator's clock for headers (s): wall time, or sim time with --clock sim/sync."""
-    scenario_roots: tuple[Path, ...] = ()
     data_roots: tuple[Path, ...] = ()
+    """Where file names from the network (scenarios, bags, sensor data) resolve."""
     camera_index: int = 0
     """The ego /Ego_topic reports (MultiEgoSetting.camera_index)."""
     ego_settings: dict[int, EgoSettings] = field(default_factory=dict)

@@ -47,7 +47,7 @@ def load_options(request: Any) -> ScenarioLoadOptions:
 def load_requested_scenario(context: BridgeContext, request: Any) -> None:
     """Apply a ScenarioLoad request to the world, or raise ScenarioRequestError."""
     try:
-        path = scenario_path(request.file_name, context.scenario_roots)
+        path = scenario_path(request.file_name, context.data_roots)
         scenario = parse_scenario(path.read_text(encoding="utf-8"), str(path))
         report = context.world.load_scenario(scenario, load_options(request))
     except (PathOutsideRootsError, OSError, UnicodeDecodeError, ScenarioError) as error:
