@@ -31,7 +31,7 @@ from typing import Any
 from ..msgs import get_profile
 from ..world.vehicle import Gear
 from .context import BridgeContext
-from .ego import ego_vehicle_status, on_ctrl_cmd
+from .ego import ego_status_of, on_ctrl_cmd
 from .releases import canonical, convert
 from .scenarios import ScenarioRequestError, load_requested_scenario
 
@@ -142,13 +142,7 @@ def serve_wait_for_tick(context: BridgeContext, request: Any) -> Any:
             tick_status=ticked,
             pause_status=world.paused,
             frame=context.sync.frame if context.sync is not None else 0,
-            vehicle_status=ego_vehicle_status(
-                context.profile,
-                context.header(),
-                world.egos[0].unique_id,
-                world.ego_status(0),
-                world.ego_lane_state(0),
-            ),
+            vehicle_status=ego_status_of(context, 0),
             time=f"{world.sim_time:.6f}",
         ),
     )
