@@ -174,14 +174,19 @@ def at_frame(context: BridgeContext, service: str, frame: int, action: Action) -
     return True
 
 
-def serve_ctrl_cmd(context: BridgeContext, request: Any) -> Any:
-    """/SyncModeCtrlCmd: the main ego's CtrlCmd from the tick producing `frame` on."""
-    command = request.request.command
+def driving(command: Any) -> Action:
+    """The action that hands the main ego a (26.r1) CtrlCmd."""
 
     def drive(context: BridgeContext) -> bool:
         on_ctrl_cmd(context, command)
         return True
 
+    return drive
+
+
+def serve_ctrl_cmd(context: BridgeContext, request: Any) -> Any:
+    """/SyncModeCtrlCmd: the main ego's CtrlCmd from the tick producing `frame` on."""
+    drive = driving(request.request.command)
     ok = at_frame(context, "/SyncModeCtrlCmd", int(request.request.frame), drive)
     return service_response(context, "MoraiSyncModeCtrlCmdSrv", result_message(context, ok))
 
@@ -193,12 +198,7 @@ def apply_tick_command(context: BridgeContext, request: Any) -> None:
     command = convert(
         sent, get_profile("2021.08").message("morai_msgs/CtrlCmd"), canonical("morai_msgs/CtrlCmd")
     )
-
-    def drive(context: BridgeContext) -> bool:
-        on_ctrl_cmd(context, command)
-        return True
-
-    at_frame(context, "/SyncModeWaitForTick", int(request.request.frame), drive)
+    at_frame(context, "/SyncModeWaitForTick", int(request.request.frame), driving(command))
 
 
 def serve_set_gear(context: BridgeContext, request: Any) -> Any:
