@@ -87,6 +87,24 @@ def test_default_message_serializes(name: str) -> None:
     assert message_type.serialize(message_type.deserialize(data)) == data
 
 
+def mutable_parts(value: Any) -> list[Any]:
+    """`value` and every message, list and array inside it (strings and numbers excluded)."""
+    if isinstance(value, str | int | float | bool):
+        return []
+    if isinstance(value, np.ndarray):
+        return [value]
+    inner = value if isinstance(value, list) else vars(value).values()
+    return [value, *(part for item in inner for part in mutable_parts(item))]
+
+
+@pytest.mark.parametrize("name", every_message_type())
+def test_default_messages_share_no_mutable_value(name: str) -> None:
+    message_type = get_profile(PROFILE).message(name)
+    first, second = message_type.new(), message_type.new()
+    first_ids = {id(part) for part in mutable_parts(first)}
+    assert not first_ids & {id(part) for part in mutable_parts(second)}
+
+
 def test_new_rejects_unknown_fields() -> None:
     with pytest.raises(TypeError, match="steering"):
         get_profile(PROFILE).message("morai_msgs/CtrlCmd").new(steering=0.1)

@@ -1,7 +1,14 @@
-"""Default-valued messages: zeros, empty strings and empty arrays, as genpy builds them."""
+"""Default-valued messages: zeros, empty strings and empty arrays, as genpy builds them.
+
+Builders make tens of thousands of messages a second, so how to make each type's
+defaults is worked out once per type (a `DefaultsPlan`), not per message.
+"""
 
 from __future__ import annotations
 
+import functools
+from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -24,6 +31,9 @@ NUMPY_DTYPES = {
     "float64": np.float64,
 }
 
+Maker = Callable[[], Any]
+"""Makes a fresh default value of one field."""
+
 
 def default_base(typename: str) -> Any:
     if typename == "string":
@@ -35,29 +45,73 @@ def default_base(typename: str) -> Any:
     return 0
 
 
-def default_field(store: Typestore, desc: tuple[Any, Any]) -> Any:
+@dataclass(frozen=True)
+class DefaultsPlan:
+    """How to make one message type with every field at its default."""
+
+    store_name: str
+    message_class: type
+    field_names: frozenset[str]
+    constants: dict[str, Any]
+    """Defaults of the base-type fields: immutable, so every message may share them."""
+    makers: tuple[tuple[str, Maker], ...]
+    """The other fields (messages, lists, arrays): made afresh for each message, so no
+    two messages ever share a mutable default."""
+
+    def new(self, values: dict[str, Any]) -> Any:
+        """A message with `values` set and every other field at its default."""
+        if not values.keys() <= self.field_names:
+            unknown = sorted(set(values) - self.field_names)
+            raise TypeError(f"{self.store_name} has no field(s) {', '.join(unknown)}")
+        fields = {**self.constants, **values}
+        for name, make in self.makers:
+            if name not in values:
+                fields[name] = make()
+        return self.message_class(**fields)
+
+    def fresh(self) -> Any:
+        """A message with every field at its default."""
+        return self.message_class(**self.constants, **{name: make() for name, make in self.makers})
+
+
+@functools.cache
+def defaults_plan(store: Typestore, store_name: str) -> DefaultsPlan:
+    """The plan of `store_name`, worked out on first use (a store's types never change once
+    registered)."""
+    fields = store.fielddefs[store_name][1]
+    constants = {}
+    makers = []
+    for name, desc in fields:
+        nodetype, args = desc
+        if nodetype == Nodetype.BASE:
+            constants[name] = default_base(args[0])
+        else:
+            makers.append((name, field_maker(store, desc)))
+    return DefaultsPlan(
+        store_name=store_name,
+        message_class=store.types[store_name],
+        field_names=frozenset(name for name, _ in fields),
+        constants=constants,
+        makers=tuple(makers),
+    )
+
+
+def field_maker(store: Typestore, desc: tuple[Any, Any]) -> Maker:
     nodetype, args = desc
     if nodetype == Nodetype.BASE:
-        return default_base(args[0])
+        return functools.partial(default_base, args[0])
     if nodetype == Nodetype.NAME:
-        return default_message(store, args)
+        return defaults_plan(store, args).fresh
     (subtype, subargs), count = args
     is_numeric = subtype == Nodetype.BASE and subargs[0] != "string"
     if nodetype == Nodetype.SEQUENCE:
-        return np.zeros(0, NUMPY_DTYPES[subargs[0]]) if is_numeric else []
+        return functools.partial(np.zeros, 0, NUMPY_DTYPES[subargs[0]]) if is_numeric else list
     if is_numeric:
-        return np.zeros(count, NUMPY_DTYPES[subargs[0]])
-    return [default_field(store, (subtype, subargs)) for _ in range(count)]
+        return functools.partial(np.zeros, count, NUMPY_DTYPES[subargs[0]])
+    make_element = field_maker(store, (subtype, subargs))
+    return lambda: [make_element() for _ in range(count)]
 
 
 def default_message(store: Typestore, store_name: str, **values: Any) -> Any:
     """An instance of `store_name` with `values` set and every other field at its default."""
-    fields = store.fielddefs[store_name][1]
-    unknown = set(values) - {name for name, _ in fields}
-    if unknown:
-        raise TypeError(f"{store_name} has no field(s) {', '.join(sorted(unknown))}")
-    kwargs = {
-        name: values[name] if name in values else default_field(store, desc)
-        for name, desc in fields
-    }
-    return store.types[store_name](**kwargs)
+    return defaults_plan(store, store_name).new(values)

@@ -11,7 +11,7 @@ from rosbags.typesys.msg import denormalize_msgtype, normalize_msgtype
 from rosbags.typesys.store import Typestore
 
 from . import fulltext
-from .defaults import default_message
+from .defaults import DefaultsPlan, defaults_plan
 from .definitions import (
     DEFAULT_PROFILE,
     SERVICE_SEPARATOR,
@@ -56,9 +56,11 @@ class MessageType:
     store_name: str = field(init=False, repr=False)
     """The name in rosbags' store (`pkg/msg/Name`), worked out once: builders need it for
     every message they make."""
+    defaults: DefaultsPlan = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         self.store_name = normalize_msgtype(self.name)
+        self.defaults = defaults_plan(self.store, self.store_name)
 
     @property
     def fields(self) -> list[tuple[str, Any]]:
@@ -67,7 +69,7 @@ class MessageType:
 
     def new(self, **values: Any) -> Any:
         """A message with `values` set and every other field at its ROS default."""
-        return default_message(self.store, self.store_name, **values)
+        return self.defaults.new(values)
 
     def serialize(self, message: Any) -> bytes:
         try:
