@@ -12,6 +12,7 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
+import numpy.typing as npt
 
 from egosim.world.collision import (
     ContactTracker,
@@ -20,7 +21,7 @@ from egosim.world.collision import (
     VehicleCollision,
     touching_pairs,
 )
-from egosim.world.map import LaneMap
+from egosim.world.map import LaneMap, LaneProjections
 from egosim.world.recorded_scene import RecordedScene
 from egosim.world.scenario import Scenario, ScenarioLoadOptions, ScenarioLoadReport
 from egosim.world.scenario.placement import (
@@ -40,6 +41,7 @@ from egosim.world.signals import (
     governing_light_id,
 )
 from egosim.world.traffic import (
+    CrosswalkLights,
     LaneGraph,
     LaneOccupants,
     LightsView,
@@ -51,7 +53,6 @@ from egosim.world.traffic import (
     StaticObstacles,
     closest_objects,
     crossed_lights,
-    walk_signals,
 )
 from egosim.world.traffic.catalogue import OBSTACLE_MODELS
 from egosim.world.traffic.ghosts import GhostPlacement, NpcGhosts
@@ -76,6 +77,8 @@ PEDESTRIAN_LANE_MARGIN_M = 1.0
 PEDESTRIAN_HALF_DEPTH_M = 0.5
 # Length of lane over which the grade under an ego is measured, m.
 GRADE_BASE_M = 1.0
+
+FloatArray = npt.NDArray[np.float64]
 
 
 class UnknownObjectModelError(ValueError):
@@ -133,7 +136,7 @@ class World:
         self.paused = False
         self.signals = TrafficSignals(lane_map)
         self._graph = LaneGraph(lane_map, self.signals.light_ids)
-        self._crossed_lights = crossed_lights(lane_map, self._light_positions())
+        self._crosswalk_lights = CrosswalkLights(crossed_lights(lane_map, self._light_positions()))
         self.npcs = NpcFleet(self._graph, np.random.default_rng(0))
         self.npc_ghosts = NpcGhosts()
         self.pedestrians = PedestrianCrowd()
@@ -154,6 +157,7 @@ class World:
         self.recorded = RecordedScene()
         """What a replay shows instead of simulating (nothing by default); see show_recorded."""
         self._footprints = self._current_footprints()
+        self._ego_lane_cache: tuple[tuple[Pose, ...], LaneProjections] | None = None
         if scenario is not None:
             self.load_scenario(scenario)
 
@@ -194,8 +198,7 @@ class World:
         )
 
     def ego_lane_state(self, index: int = 0) -> EgoLaneState:
-        pose = self.ego_status(index).pose
-        projection = self.map.project(pose.x, pose.y, pose.yaw)
+        projection = self._ego_lanes()[index]
         return EgoLaneState(
             lane_id=projection.lane_id,
             s=projection.s,
@@ -204,6 +207,19 @@ class World:
             distance_right=projection.distance_right,
             cross_track_error=-projection.lateral,
         )
+
+    def _ego_lanes(self) -> LaneProjections:
+        """Where each ego's reference point lies on its lane (its yaw as the hint).
+
+        Kept while no ego moves: the step, the ego status and the light lookup all ask,
+        and each projection costs as much as stepping a vehicle.
+        """
+        poses = tuple(ego.vehicle.status().pose for ego in self.egos)
+        known = self._ego_lane_cache
+        if known is None or known[0] != poses:
+            projection = self.map.project_many([(p.x, p.y) for p in poses], [p.yaw for p in poses])
+            known = self._ego_lane_cache = (poses, projection)
+        return known[1]
 
     def ego_traffic_light(self, index: int = 0) -> LightState | None:
         """GetTrafficLightStatus: the light governing the lane ahead of the ego, else the
@@ -363,32 +379,29 @@ class World:
             if index > 0 or recorded.ego is None:
                 ego.vehicle.step(dt, surfaces[index])
         lights = LightsView.of(self.signals.aspects(), self.signals.light_types)
+        egos, walkers = self._lane_users()
         others = LaneOccupants.concatenate(
-            [
-                self._ego_occupants(),
-                self.npc_ghosts.occupants(self.map),
-                self._pedestrian_occupants(),
-                self._obstacle_occupants,
-            ]
+            [egos, self.npc_ghosts.occupants(self.map), walkers, self._obstacle_occupants]
         )
         if recorded.npcs is None:
             self.npcs.step(dt, lights, others)
         if recorded.pedestrians is None:
             stops_traffic = (lights.aspects == RED) | (lights.aspects == OFF) | lights.flashing
-            self.pedestrians.step(dt, walk_signals(self._crossed_lights, stops_traffic))
+            self.pedestrians.step(dt, self._crosswalk_lights.walk_signals(stops_traffic))
         self.sim_time += dt
         self._collide()
 
     def _road_surfaces(self) -> list[RoadSurface]:
         """The road under each ego: the height of its lane there, and the pitch the
         lane's grade gives a vehicle facing the ego's way (roll: none)."""
-        poses = [ego.vehicle.status().pose for ego in self.egos]
-        yaws = np.array([p.yaw for p in poses])
-        projection = self.map.project_many([(p.x, p.y) for p in poses], yaws)
-        lanes = projection.lane_index
-        below = self.map.poses_at(lanes, projection.s - GRADE_BASE_M / 2.0)
-        above = self.map.poses_at(lanes, projection.s + GRADE_BASE_M / 2.0)
-        here = self.map.poses_at(lanes, projection.s)
+        projection = self._ego_lanes()
+        n = len(projection)
+        yaws = np.array([ego.vehicle.status().pose.yaw for ego in self.egos])
+        stations = np.concatenate(
+            (projection.s, projection.s - GRADE_BASE_M / 2.0, projection.s + GRADE_BASE_M / 2.0)
+        )
+        poses = self.map.poses_at(np.tile(projection.lane_index, 3), stations)
+        here, below, above = poses[:n], poses[n : 2 * n], poses[2 * n :]
         run = np.maximum(np.hypot(*(above[:, :2] - below[:, :2]).T), 1e-9)
         grade = (above[:, 2] - below[:, 2]) / run * np.cos(yaws - projection.heading)
         return [
@@ -396,37 +409,58 @@ class World:
             for z, g in zip(here[:, 2], grade, strict=True)
         ]
 
-    def _ego_occupants(self) -> LaneOccupants:
+    def _lane_users(self) -> tuple[LaneOccupants, LaneOccupants]:
+        """The egos and the pedestrians in lanes, for the drivers behind them.
+
+        One projection serves both, and keeps the egos' reference points for the next
+        step's road surfaces and for the ego status (see _ego_lanes).
+        """
         statuses = [ego.vehicle.status() for ego in self.egos]
-        centres = np.array([ego.box_centre(s) for ego, s in zip(self.egos, statuses, strict=True)])
+        n = len(statuses)
+        references = [(s.pose.x, s.pose.y) for s in statuses]
+        centres = [ego.box_centre(s) for ego, s in zip(self.egos, statuses, strict=True)]
         yaws = np.array([s.pose.yaw for s in statuses])
-        projection = self.map.project_many(centres, yaws)
+        walkers = self._walkers_on_road()
+        projection = self.map.project_many(
+            np.concatenate((np.array(references + centres), walkers)).reshape(-1, 2),
+            np.concatenate((yaws, yaws, np.full(len(walkers), np.nan))),
+        )
+        self._ego_lane_cache = (tuple(s.pose for s in statuses), projection.part(0, n))
+        return (
+            self._ego_occupants(statuses, projection.part(n, 2 * n)),
+            self._pedestrian_occupants(projection.part(2 * n, len(projection))),
+        )
+
+    def _ego_occupants(
+        self, statuses: list[VehicleStatus], centres: LaneProjections
+    ) -> LaneOccupants:
+        yaws = np.array([s.pose.yaw for s in statuses])
         widths = np.array([ego.vehicle.model.width for ego in self.egos])
-        on_lane = np.abs(projection.lateral) <= (projection.width + widths) / 2.0
+        on_lane = np.abs(centres.lateral) <= (centres.width + widths) / 2.0
         lengths = np.array([ego.vehicle.model.length for ego in self.egos])
-        along = np.cos(yaws - projection.heading) * np.array([s.velocity[0] for s in statuses])
+        along = np.cos(yaws - centres.heading) * np.array([s.velocity[0] for s in statuses])
         return LaneOccupants(
-            projection.lane_index[on_lane],
-            projection.s[on_lane],
+            centres.lane_index[on_lane],
+            centres.s[on_lane],
             lengths[on_lane] / 2.0,
             along[on_lane],
         )
 
-    def _pedestrian_occupants(self) -> LaneOccupants:
+    def _walkers_on_road(self) -> FloatArray:
+        """(N, 2) positions of the pedestrians who may stand in a lane."""
         recorded = self.recorded.pedestrians
         if recorded is None:
             # Sidewalk walkers never leave the kerb: only the others can be in a lane.
-            walkers = self.pedestrians.position[self.pedestrians.on_road]
-        else:
-            walkers = recorded.positions[:, :2]
-        if len(walkers) == 0:
-            return LaneOccupants.empty()
-        projection = self.map.project_many(walkers)
-        near = np.abs(projection.lateral) <= projection.width / 2.0 + PEDESTRIAN_LANE_MARGIN_M
+            return self.pedestrians.position[self.pedestrians.on_road]
+        return recorded.positions[:, :2]
+
+    @staticmethod
+    def _pedestrian_occupants(walkers: LaneProjections) -> LaneOccupants:
+        near = np.abs(walkers.lateral) <= walkers.width / 2.0 + PEDESTRIAN_LANE_MARGIN_M
         count = int(np.count_nonzero(near))
         return LaneOccupants(
-            projection.lane_index[near],
-            projection.s[near],
+            walkers.lane_index[near],
+            walkers.s[near],
             np.full(count, PEDESTRIAN_HALF_DEPTH_M),
             np.zeros(count),
         )

@@ -211,7 +211,8 @@ class LaneMap:
     def project_many(
         self, xy: npt.ArrayLike, headings: npt.ArrayLike | None = None
     ) -> LaneProjections:
-        """`project` for an (N, 2) array of points (and optional (N,) heading hints)."""
+        """`project` for an (N, 2) array of points (and optional (N,) heading hints, NaN
+        where a point has none)."""
         points = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
         hint = None if headings is None else np.asarray(headings, dtype=np.float64).reshape(-1)
         return self._segments.project(points, hint)

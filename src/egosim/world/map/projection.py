@@ -54,6 +54,19 @@ class LaneProjections:
     def __len__(self) -> int:
         return len(self.lane_index)
 
+    def part(self, start: int, stop: int) -> LaneProjections:
+        """The projections of points start..stop-1."""
+        return LaneProjections(
+            self.lane_ids,
+            self.lane_index[start:stop],
+            self.s[start:stop],
+            self.lateral[start:stop],
+            self.heading[start:stop],
+            self.distance_left[start:stop],
+            self.distance_right[start:stop],
+            self.width[start:stop],
+        )
+
     def __getitem__(self, i: int) -> LaneProjection:
         return LaneProjection(
             lane_id=self.lane_ids[int(self.lane_index[i])],
@@ -89,7 +102,8 @@ class SegmentTable:
         self.grid = SegmentGrid(self.start, self.start + self.delta, GRID_CELL_M)
 
     def project(self, xy: FloatArray, headings: FloatArray | None) -> LaneProjections:
-        """Best lane for each point: least distance + heading error (see module constants)."""
+        """Best lane for each point: least distance + heading error (see module constants);
+        a NaN heading hint means none for that point."""
         n = len(xy)
         best_seg = np.zeros(n, dtype=np.int64)
         best_t = np.zeros(n)
@@ -126,27 +140,26 @@ class SegmentTable:
         if point.size == 0:
             return found, seg_best, t_best, cost_best
         rel = xy[point] - self.start[seg]
-        t = np.clip(np.einsum("ij,ij->i", rel, self.delta[seg]) / self.length_sq[seg], 0.0, 1.0)
-        gap = rel - t[:, None] * self.delta[seg]
+        delta = self.delta[seg]
+        t = np.clip(np.einsum("ij,ij->i", rel, delta) / self.length_sq[seg], 0.0, 1.0)
+        gap = rel - t[:, None] * delta
         cost = np.hypot(gap[:, 0], gap[:, 1])
         if hint is not None:
             error = np.abs(
                 np.remainder(self.heading[seg] - hint[point] + math.pi, math.tau) - math.pi
             )
-            cost += HEADING_WEIGHT_M_PER_RAD * error + np.where(
+            cost += np.nan_to_num(HEADING_WEIGHT_M_PER_RAD * error) + np.where(
                 error > math.pi / 2, WRONG_WAY_PENALTY_M, 0.0
             )
-        # The first pair reaching each point's minimum wins; pairs are grouped by point.
-        group_start = _group_starts(point)
+        # Pairs come grouped by point; a stable sort by cost within each group puts each
+        # point's cheapest pair (the first of equals) at the group's start.
+        group_start = np.flatnonzero(np.concatenate(([True], point[1:] != point[:-1])))
+        first = np.lexsort((cost, point))[group_start]
         points = point[group_start]
-        group_min = np.minimum.reduceat(cost, group_start)
-        sizes = np.diff(group_start, append=len(point))
-        is_min = np.flatnonzero(cost == np.repeat(group_min, sizes))
-        first = is_min[_group_starts(point[is_min])]
         found[points] = True
         seg_best[points] = seg[first]
         t_best[points] = t[first]
-        cost_best[points] = group_min
+        cost_best[points] = cost[first]
         return found, seg_best, t_best, cost_best
 
     def _describe(self, xy: FloatArray, seg: IntArray, t: FloatArray) -> LaneProjections:
@@ -166,8 +179,3 @@ class SegmentTable:
             distance_right=width / 2.0 + lateral,
             width=width,
         )
-
-
-def _group_starts(sorted_keys: IntArray) -> IntArray:
-    """Index of the first element of each run of equal keys."""
-    return np.flatnonzero(np.concatenate(([True], sorted_keys[1:] != sorted_keys[:-1])))

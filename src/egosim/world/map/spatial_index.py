@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 
 import numpy as np
 import numpy.typing as npt
@@ -13,6 +12,8 @@ IntArray = npt.NDArray[np.int64]
 
 # Keeps the grid's offset table small on very large maps.
 MAX_CELLS = 4_000_000
+# Bounds the memory of the per-cell neighbourhoods kept for repeated queries.
+MAX_REMEMBERED_CELLS = 100_000
 
 
 class SegmentGrid:
@@ -47,6 +48,7 @@ class SegmentGrid:
         self.offsets: IntArray = np.concatenate(
             ([0], np.cumsum(np.bincount(keys, minlength=n_cells)))
         )
+        self._near: dict[tuple[int, int, int], IntArray] = {}
 
     def _cell_of(self, xy: FloatArray) -> IntArray:
         return np.floor((xy - self.origin) / self.cell_size).astype(np.int64)
@@ -59,25 +61,33 @@ class SegmentGrid:
     def candidates(self, xy: FloatArray, ring: int) -> tuple[IntArray, IntArray]:
         """(point index, segment index) pairs for the cells within `ring` of each point.
 
-        Pairs are grouped by point in ascending order; a segment may repeat.
+        Pairs are grouped by point in ascending order; no segment repeats for a point.
         """
-        dx, dy = _ring_offsets(ring)
-        cells = self._cell_of(xy)
-        ix = cells[:, :1] + dx
-        iy = cells[:, 1:] + dy
-        inside = (ix >= 0) & (ix < self.shape[0]) & (iy >= 0) & (iy < self.shape[1])
-        keys = np.where(inside, ix * self.shape[1] + iy, 0)
-        first = self.offsets[keys]
-        counts = np.where(inside, self.offsets[keys + 1] - first, 0).ravel()
-        total = int(counts.sum())
-        point = np.repeat(np.repeat(np.arange(len(xy)), dx.size), counts)
-        local = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
-        return point, self.segments[np.repeat(first.ravel(), counts) + local]
+        cells = self._cell_of(xy).tolist()
+        near = [self._near_cell(ix, iy, ring) for ix, iy in cells]
+        counts = [len(segments) for segments in near]
+        point = np.repeat(np.arange(len(cells)), counts)
+        return point, np.concatenate(near) if near else np.empty(0, np.int64)
 
+    def _near_cell(self, ix: int, iy: int, ring: int) -> IntArray:
+        """The segments filed within `ring` cells of cell (ix, iy), each once.
 
-@lru_cache(maxsize=32)
-def _ring_offsets(ring: int) -> tuple[IntArray, IntArray]:
-    """Cell offsets (dx, dy) of the (2 ring + 1)^2 square around a cell."""
-    steps = np.arange(-ring, ring + 1)
-    dx, dy = np.meshgrid(steps, steps, indexing="ij")
-    return dx.ravel(), dy.ravel()
+        Kept per cell: agents move little between steps, so they ask for the same cells
+        again and again.
+        """
+        key = (ix, iy, ring)
+        segments = self._near.get(key)
+        if segments is None:
+            if len(self._near) >= MAX_REMEMBERED_CELLS:
+                self._near.clear()
+            x = np.arange(max(ix - ring, 0), min(ix + ring + 1, int(self.shape[0])))
+            y = np.arange(max(iy - ring, 0), min(iy + ring + 1, int(self.shape[1])))
+            keys = (x[:, None] * self.shape[1] + y).ravel()
+            segments = np.unique(
+                np.concatenate(
+                    [self.segments[self.offsets[k] : self.offsets[k + 1]] for k in keys]
+                    or [np.empty(0, np.int64)]
+                )
+            )
+            self._near[key] = segments
+        return segments

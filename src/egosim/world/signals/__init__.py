@@ -5,13 +5,15 @@ Public API:
     IntersectionController, IntersectionStatus        one intersection's program runner
     Phase, PhaseTiming, build_program                 phase programs
     governing_light_id, nearest_light_id              the light a vehicle looks at
-    RED, YELLOW, GREEN, GREEN_LEFT, OFF, TYPE_*, can_show   aspects and head types
+    RED, YELLOW, GREEN, GREEN_LEFT, OFF, TYPE_*, can_show,
+        LEFT_ARROW_TYPES, has_left_arrow   aspects and head types
     SignalError and subclasses
 """
 
 from egosim.world.signals.aspects import (
     GREEN,
     GREEN_LEFT,
+    LEFT_ARROW_TYPES,
     OFF,
     RED,
     TYPE_FLASHING_YELLOW,
@@ -37,6 +39,7 @@ from egosim.world.signals.system import IntersectionProgram, LightState, Traffic
 __all__ = [
     "GREEN",
     "GREEN_LEFT",
+    "LEFT_ARROW_TYPES",
     "OFF",
     "RED",
     "TYPE_FLASHING_YELLOW",

@@ -30,8 +30,12 @@ LAMPS_BY_TYPE: dict[int, int] = {
 }
 
 
+LEFT_ARROW_TYPES = tuple(t for t, lamps in LAMPS_BY_TYPE.items() if lamps & GREEN_LEFT)
+"""Head types with a left-arrow lamp."""
+
+
 def has_left_arrow(light_type: int) -> bool:
-    return bool(LAMPS_BY_TYPE.get(light_type, 0) & GREEN_LEFT)
+    return light_type in LEFT_ARROW_TYPES
 
 
 def can_show(light_type: int, aspect: int) -> bool:

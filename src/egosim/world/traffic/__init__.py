@@ -25,13 +25,13 @@ from egosim.world.traffic.object_list import ObjectList, closest_objects
 from egosim.world.traffic.objects import ObjectState, ObjectTable, ObjectType
 from egosim.world.traffic.obstacles import ObstacleSpawn, StaticObstacles
 from egosim.world.traffic.pedestrians import (
+    CrosswalkLights,
     PedestrianCrowd,
     PedestrianSpawn,
     WalkPath,
     crossed_lights,
     crosswalk_path,
     sidewalk_path,
-    walk_signals,
 )
 from egosim.world.traffic.signal_rules import LightsView, signal_permissions
 
@@ -41,6 +41,7 @@ __all__ = [
     "OBSTACLE_MODELS",
     "PEDESTRIAN_MODELS",
     "BoxModel",
+    "CrosswalkLights",
     "IntelligentDriverModel",
     "LaneGraph",
     "LaneOccupants",
@@ -62,5 +63,4 @@ __all__ = [
     "leaders_ahead",
     "sidewalk_path",
     "signal_permissions",
-    "walk_signals",
 ]

@@ -209,15 +209,27 @@ class PedestrianCrowd:
         )
 
 
-def walk_signals(crossed_lights: Sequence[tuple[int, ...]], stops_traffic: BoolArray) -> BoolArray:
-    """Per crosswalk: True when every light of the road it crosses holds traffic back.
+class CrosswalkLights:
+    """The lights each crosswalk waits for (see crossed_lights), as one padded table so
+    that every crosswalk's walk signal is worked out at once."""
 
-    stops_traffic[l] says light l lets nothing enter now (a plain red); a crosswalk over
-    an unsignalised road is always open.
-    """
-    return np.array(
-        [all(stops_traffic[k] for k in lights) for lights in crossed_lights], dtype=bool
-    ).reshape(-1)
+    def __init__(self, crossed: Sequence[tuple[int, ...]]) -> None:
+        width = max((len(lights) for lights in crossed), default=0)
+        self._lights = np.zeros((len(crossed), width), np.int64)
+        self._used = np.zeros((len(crossed), width), bool)
+        for k, lights in enumerate(crossed):
+            self._lights[k, : len(lights)] = lights
+            self._used[k, : len(lights)] = True
+
+    def walk_signals(self, stops_traffic: BoolArray) -> BoolArray:
+        """Per crosswalk: True when every light of the road it crosses holds traffic back.
+
+        stops_traffic[l] says light l lets nothing enter now (a plain red); a crosswalk
+        over an unsignalised road is always open.
+        """
+        if self._lights.size == 0:
+            return np.ones(len(self._lights), bool)
+        return np.all(stops_traffic[self._lights] | ~self._used, axis=1)
 
 
 CROSSWALK_SAMPLE_STEP_M = 0.5

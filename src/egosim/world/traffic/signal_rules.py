@@ -7,7 +7,13 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from egosim.world.signals import GREEN, GREEN_LEFT, TYPE_FLASHING_YELLOW, YELLOW, has_left_arrow
+from egosim.world.signals import (
+    GREEN,
+    GREEN_LEFT,
+    LEFT_ARROW_TYPES,
+    TYPE_FLASHING_YELLOW,
+    YELLOW,
+)
 from egosim.world.traffic.lane_graph import TURN_LEFT
 
 BoolArray = npt.NDArray[np.bool_]
@@ -27,7 +33,7 @@ class LightsView:
         return cls(
             aspects,
             light_types == TYPE_FLASHING_YELLOW,
-            np.array([has_left_arrow(int(t)) for t in light_types], dtype=bool),
+            np.isin(light_types, LEFT_ARROW_TYPES),
         )
 
 

@@ -100,6 +100,9 @@ class Vehicle:
         self._acceleration_tracker = AccelerationTracker(model)
         self._speed_controller = SpeedController(model, self._acceleration_tracker)
         self._pedals = Pedals(accel=0.0, brake=0.0)
+        # Readers ask for the status many times per step; it changes only when the
+        # vehicle is stepped, teleported or shifted.
+        self._status: VehicleStatus | None = None
         self.teleport(pose or Pose())
 
     @classmethod
@@ -115,6 +118,7 @@ class Vehicle:
 
     def set_gear(self, gear: Gear) -> None:
         self.gear = gear
+        self._status = None
 
     def teleport(
         self, pose: Pose, speed: float = 0.0, front_steer: float = 0.0, rear_steer: float = 0.0
@@ -133,12 +137,14 @@ class Vehicle:
         )
         state.vx_rate = state.vy_rate = state.yaw_acceleration = 0.0
         self._acceleration_tracker.reset()
+        self._status = None
 
     def step(self, dt: float, surface: RoadSurface | None = None) -> None:
         """Advance dt seconds; surface, when given, is the road under the vehicle now."""
         if not dt > 0.0:
             raise ValueError(f"step needs a positive dt, got {dt}")
         state = self._state
+        self._status = None
         if surface is not None:
             state.z, state.pitch, state.roll = surface.z, surface.pitch, surface.roll
         substeps = math.ceil(dt / self.max_substep)
@@ -167,6 +173,11 @@ class Vehicle:
 
     def status(self) -> VehicleStatus:
         """The vehicle's state after the last step."""
+        if self._status is None:
+            self._status = self._current_status()
+        return self._status
+
+    def _current_status(self) -> VehicleStatus:
         state = self._state
         return VehicleStatus(
             pose=Pose(state.x, state.y, state.z, state.roll, state.pitch, state.yaw),
