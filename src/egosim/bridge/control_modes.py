@@ -33,7 +33,7 @@ def drive_autopilots(context: BridgeContext) -> None:
         del context.autopilots[unique_id]
     if not auto:
         return
-    lights = LightsView.of(world.signals.aspects(), world.signals.light_types)
+    lights = LightsView.of(world.signals)
     objects = world.objects()
     for ego in auto:
         autopilot = context.autopilots.get(ego.unique_id)

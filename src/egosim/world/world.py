@@ -378,7 +378,7 @@ class World:
             # A replayed main ego holds the recorded pose show_recorded gave it.
             if index > 0 or recorded.ego is None:
                 ego.vehicle.step(dt, surfaces[index])
-        lights = LightsView.of(self.signals.aspects(), self.signals.light_types)
+        lights = LightsView.of(self.signals)
         egos, walkers = self._lane_users()
         others = LaneOccupants.concatenate(
             [egos, self.npc_ghosts.occupants(self.map), walkers, self._obstacle_occupants]
@@ -501,6 +501,9 @@ class World:
         before = self._footprints if len(self._footprints.headings) == len(table) else now
         self._footprints = now
         pairs = touching_pairs(before, now)
+        if len(pairs) == 0:
+            self._contacts.begin([])
+            return
         types = table.object_types
         kinds = types[pairs] if len(pairs) else np.empty((0, 2), np.int64)
         ego_pair = np.any(kinds == ObjectType.EGO, axis=1)

@@ -20,7 +20,7 @@ def _drive(world: World, autopilot: LaneAutopilot, seconds: float) -> list[tuple
     ego = world.egos[0]
     trace = []
     for _ in range(round(seconds / world.physics_step_s)):
-        lights = LightsView.of(world.signals.aspects(), world.signals.light_types)
+        lights = LightsView.of(world.signals)
         others = lane_occupants_of(world.objects(), world.map, but=ego.unique_id)
         command = autopilot.command(ego.vehicle.model, ego.vehicle.status(), lights, others)
         ego.vehicle.command(command)

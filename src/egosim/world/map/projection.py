@@ -21,8 +21,8 @@ HEADING_WEIGHT_M_PER_RAD = 2.0
 WRONG_WAY_PENALTY_M = 50.0
 # Bounds the memory of the exhaustive search for points far from every lane.
 EXHAUSTIVE_PAIRS_PER_CHUNK = 1_000_000
-# Grid cell edge; a point on a road finds its lane in the 3 x 3 cells around it.
-GRID_CELL_M = 4.0
+# Grid cell edge; a point on a road or its kerb finds its lane in the 3 x 3 cells around it.
+GRID_CELL_M = 6.0
 
 
 @dataclass(frozen=True)

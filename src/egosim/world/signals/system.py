@@ -9,7 +9,7 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.world.map import LaneMap
-from egosim.world.signals.aspects import OFF, can_show
+from egosim.world.signals.aspects import LEFT_ARROW_TYPES, OFF, TYPE_FLASHING_YELLOW, can_show
 from egosim.world.signals.controller import IntersectionController, IntersectionStatus
 from egosim.world.signals.errors import (
     UnknownIntersectionError,
@@ -59,6 +59,10 @@ class TrafficSignals:
         self.light_types = np.array(
             [lane_map.traffic_lights[i].light_type for i in self.light_ids], dtype=np.int64
         )
+        self.flashing_heads = self.light_types == TYPE_FLASHING_YELLOW
+        """Per light: its head only flashes yellow."""
+        self.arrow_heads = np.isin(self.light_types, LEFT_ARROW_TYPES)
+        """Per light: its head has a left-arrow lamp."""
         self.controllers: dict[int, IntersectionController] = {}
         self._overrides: dict[str, int] = {}
         self._aspects = np.full(len(self.light_ids), OFF, dtype=np.int64)
@@ -93,9 +97,14 @@ class TrafficSignals:
         self._refresh()
 
     def step(self, dt: float) -> None:
+        # Phases last seconds: most steps change no aspect and need no refresh.
+        changed = False
         for controller in self.controllers.values():
+            phase = controller.phase_index
             controller.step(dt)
-        self._refresh()
+            changed |= controller.phase_index != phase
+        if changed:
+            self._refresh()
 
     def _refresh(self) -> None:
         for controller in self.controllers.values():

@@ -7,13 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from egosim.world.signals import (
-    GREEN,
-    GREEN_LEFT,
-    LEFT_ARROW_TYPES,
-    TYPE_FLASHING_YELLOW,
-    YELLOW,
-)
+from egosim.world.signals import GREEN, GREEN_LEFT, YELLOW, TrafficSignals
 from egosim.world.traffic.lane_graph import TURN_LEFT
 
 BoolArray = npt.NDArray[np.bool_]
@@ -29,12 +23,8 @@ class LightsView:
     arrow_head: BoolArray
 
     @classmethod
-    def of(cls, aspects: IntArray, light_types: IntArray) -> LightsView:
-        return cls(
-            aspects,
-            light_types == TYPE_FLASHING_YELLOW,
-            np.isin(light_types, LEFT_ARROW_TYPES),
-        )
+    def of(cls, signals: TrafficSignals) -> LightsView:
+        return cls(signals.aspects(), signals.flashing_heads, signals.arrow_heads)
 
 
 def signal_permissions(
