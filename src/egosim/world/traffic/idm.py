@@ -38,9 +38,8 @@ class IntelligentDriverModel:
     ) -> FloatArray:
         """m/s² for speeds v, v0 (m/s), gaps (m; inf for a free road) and dv (m/s)."""
         free = 1.0 - (v / v0) ** self.delta
-        with np.errstate(divide="ignore"):
-            interaction = (self.desired_gap(v, dv) / np.maximum(gap, 1e-3)) ** 2
-        interaction = np.where(np.isinf(gap), 0.0, interaction)
+        # A free road's infinite gap divides to exactly 0: no interaction.
+        interaction = (self.desired_gap(v, dv) / np.maximum(gap, 1e-3)) ** 2
         accel = self.max_accel_mps2 * (free - interaction)
         return np.clip(accel, -self.max_decel_mps2, self.max_accel_mps2)
 

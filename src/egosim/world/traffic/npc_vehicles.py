@@ -200,12 +200,9 @@ class NpcFleet:
 
         v0 = self._desired_speed()
         accel = self.idm.acceleration(self.speed, v0, gap, closing)
-        stop_gap = np.minimum.reduce(
-            [
-                self._stop_line_gap(lights, half),
-                self._dead_end_gap(half),
-                self._junction_gap(occupants, half),
-            ]
+        stop_gap = np.minimum(
+            np.minimum(self._stop_line_gap(lights, half), self._dead_end_gap(half)),
+            self._junction_gap(occupants, half),
         )
         accel = np.minimum(accel, self.idm.acceleration(self.speed, v0, stop_gap, self.speed))
         accel[frozen] = 0.0
