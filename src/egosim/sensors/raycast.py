@@ -74,12 +74,12 @@ class RayHits:
 
 def cast_ground(origin: FloatArray, directions: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Distance along unit `directions` to the plane z = 0 (inf if not reached), and |cos|."""
-    down = -directions[:, 2]
+    rise = directions[:, 2]
     distance = np.full(len(directions), np.inf)
     if origin[2] > 0.0:
-        reaching = down > 0.0
-        distance[reaching] = origin[2] / down[reaching]
-    return distance, np.abs(down)
+        # Only falling beams reach the plane; -height / rise is height / -rise to the bit.
+        np.divide(-origin[2], rise, out=distance, where=rise < 0.0)
+    return distance, np.abs(rise)
 
 
 def cast_rays(
@@ -90,15 +90,17 @@ def cast_rays(
     exclude_index: int | None = None,
 ) -> RayHits:
     """Nearest of ground and box hits for rays from `origin` along unit `directions`."""
-    ground_distance, ground_cos = cast_ground(origin, directions)
+    distance, cos_incidence = cast_ground(origin, directions)
     box_distance, box_cos = cast_boxes(origin, directions, boxes, max_range, exclude_index)
-    box_first = box_distance < ground_distance
-    distance = np.where(box_first, box_distance, ground_distance)
-    surface = np.where(box_first, Surface.OBJECT, Surface.GROUND).astype(np.int8)
-    cos_incidence = np.where(box_first, box_cos, ground_cos)
+    surface = np.full(len(directions), Surface.GROUND, dtype=np.int8)
+    # Few beams meet a box: update those rather than choosing between whole arrays.
+    box_first = np.flatnonzero(box_distance < distance)
+    distance[box_first] = box_distance[box_first]
+    cos_incidence[box_first] = box_cos[box_first]
+    surface[box_first] = Surface.OBJECT
     missed = np.isinf(distance)
-    surface[missed] = Surface.NONE
-    cos_incidence[missed] = 0.0
+    np.copyto(surface, Surface.NONE, where=missed)
+    np.copyto(cos_incidence, 0.0, where=missed)
     return RayHits(distance, surface, cos_incidence)
 
 
@@ -155,8 +157,38 @@ def _pairs_in_sector(
     A ray whose horizontal projection misses the footprint's circumscribed
     circle misses the box, so this never drops a hit. A vertical ray can only
     hit a box whose circle contains the origin; those boxes take every ray.
+
+    A rising ray misses every box whose top is not above the origin (the slab test
+    puts that box's top face behind it), so such boxes only take the other rays;
+    with the sensor above the traffic, that halves the work. Each ray's pairs keep
+    the order of its boxes.
     """
-    bearing = np.arctan2(directions[:, 1], directions[:, 0])
+    rising = directions[:, 2] > 0.0
+    # The top face's offset exactly as _slab_entry computes it.
+    top_above = 0.5 * boxes.sizes[candidates, 2] - (origin[2] - boxes.centres[candidates, 2]) > 0.0
+    ray_index, box_index = _sector_pairs(
+        origin, directions, np.flatnonzero(~rising), boxes, candidates
+    )
+    if not top_above.any():
+        return ray_index, box_index
+    rising_ray_index, rising_box_index = _sector_pairs(
+        origin, directions, np.flatnonzero(rising), boxes, candidates[top_above]
+    )
+    return (
+        np.concatenate([ray_index, rising_ray_index]),
+        np.concatenate([box_index, rising_box_index]),
+    )
+
+
+def _sector_pairs(
+    origin: FloatArray,
+    directions: FloatArray,
+    rays: IndexArray,
+    boxes: ObstacleBoxes,
+    candidates: IndexArray,
+) -> tuple[IndexArray, IndexArray]:
+    """_pairs_in_sector among `rays` and `candidates`."""
+    bearing = np.arctan2(directions[rays, 1], directions[rays, 0])
     by_bearing = np.argsort(bearing, kind="stable")
     sorted_bearing = bearing[by_bearing]
 
@@ -188,7 +220,7 @@ def _pairs_in_sector(
     box_index = np.repeat(interval_box, counts)
     interval_start = np.repeat(first - (np.cumsum(counts) - counts), counts)
     sorted_position = interval_start + np.arange(counts.sum())
-    return by_bearing[sorted_position], box_index
+    return rays[by_bearing[sorted_position]], box_index
 
 
 def _in_bounding_cone(
