@@ -151,15 +151,17 @@ class SegmentTable:
             cost += np.nan_to_num(HEADING_WEIGHT_M_PER_RAD * error) + np.where(
                 error > math.pi / 2, WRONG_WAY_PENALTY_M, 0.0
             )
-        # Pairs come grouped by point; a stable sort by cost within each group puts each
-        # point's cheapest pair (the first of equals) at the group's start.
-        group_start = np.flatnonzero(np.concatenate(([True], point[1:] != point[:-1])))
-        first = np.lexsort((cost, point))[group_start]
+        # The first pair reaching each point's minimum wins; pairs are grouped by point.
+        group_start = _group_starts(point)
         points = point[group_start]
+        group_min = np.minimum.reduceat(cost, group_start)
+        sizes = np.diff(group_start, append=len(point))
+        is_min = np.flatnonzero(cost == np.repeat(group_min, sizes))
+        first = is_min[_group_starts(point[is_min])]
         found[points] = True
         seg_best[points] = seg[first]
         t_best[points] = t[first]
-        cost_best[points] = cost[first]
+        cost_best[points] = group_min
         return found, seg_best, t_best, cost_best
 
     def _describe(self, xy: FloatArray, seg: IntArray, t: FloatArray) -> LaneProjections:
@@ -179,3 +181,8 @@ class SegmentTable:
             distance_right=width / 2.0 + lateral,
             width=width,
         )
+
+
+def _group_starts(sorted_keys: IntArray) -> IntArray:
+    """Index of the first element of each run of equal keys."""
+    return np.flatnonzero(np.concatenate(([True], sorted_keys[1:] != sorted_keys[:-1])))
