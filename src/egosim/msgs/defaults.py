@@ -63,6 +63,8 @@ class DefaultsPlan:
         if not values.keys() <= self.field_names:
             unknown = sorted(set(values) - self.field_names)
             raise TypeError(f"{self.store_name} has no field(s) {', '.join(unknown)}")
+        if len(values) == len(self.field_names):  # every field given: no default to make
+            return self.message_class(**values)
         fields = {**self.constants, **values}
         for name, make in self.makers:
             if name not in values:
