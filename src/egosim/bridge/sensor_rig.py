@@ -78,6 +78,7 @@ class SensorRig:
         self.imu = ImuModel(settings.imu.mount, settings.imu.noise)
         self.lidar = LidarModel(settings.lidar.config)
         self.frame_ids = (settings.gps.frame_id, settings.imu.frame_id, settings.lidar.frame_id)
+        self._sensor_transforms = self._base_link_to_sensors()
 
     def mounts(self) -> tuple[MountPose, ...]:
         return (self.gps.mount, self.imu.mount, self.lidar.config.mount)
@@ -92,6 +93,14 @@ class SensorRig:
             self.lidar = LidarModel(replace(self.lidar.config, mount=mount))
         else:
             raise IndexError(f"no sensor {index} (0 GPS, 1 IMU, 2 LiDAR)")
+        self._sensor_transforms = self._base_link_to_sensors()
+
+    def _base_link_to_sensors(self) -> tuple[Transform, ...]:
+        """Worked out when a mount is set, not for every /tf message (mounts rarely move)."""
+        return tuple(
+            base_link_to_sensor(mount, frame_id)
+            for mount, frame_id in zip(self.mounts(), self.frame_ids, strict=True)
+        )
 
     def gps_fix(self, world: World) -> GpsFix:
         return self.gps.measure(base_link_pose(world.ego_status(MAIN_EGO)), self._gps_rng)
@@ -107,13 +116,7 @@ class SensorRig:
     def transforms(self, world: World) -> list[Transform]:
         """map -> base_link of the main ego, then base_link -> each sensor."""
         pose = base_link_pose(world.ego_status(MAIN_EGO))
-        return [
-            map_to_base_link(pose),
-            *(
-                base_link_to_sensor(mount, frame_id)
-                for mount, frame_id in zip(self.mounts(), self.frame_ids, strict=True)
-            ),
-        ]
+        return [map_to_base_link(pose), *self._sensor_transforms]
 
 
 def finite_mount(values: tuple[float, ...]) -> MountPose | None:

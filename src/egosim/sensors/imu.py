@@ -12,6 +12,7 @@ The mount rotation then turns every body vector into the sensor's axes.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -137,12 +138,17 @@ class ImuModel:
     mount: MountPose = field(default_factory=MountPose)
     noise: ImuNoise = field(default_factory=ImuNoise)
 
+    @functools.cached_property
+    def _sensor_to_body(self) -> Matrix3:
+        """The mount's rotation, worked out once rather than for every reading."""
+        return self.mount.rotation
+
     def measure(
         self, kinematics: EgoKinematics, rng: np.random.Generator | None = None
     ) -> ImuReading:
         """One reading; `rng` is required only when noise std is configured."""
         body_to_map = rotation_matrix(kinematics.roll, kinematics.pitch, kinematics.yaw)
-        sensor_to_body = self.mount.rotation
+        sensor_to_body = self._sensor_to_body
         omega = _floats(kinematics.angular_velocity)
         mount = self.mount
         lever = (float(mount.x), float(mount.y), float(mount.z))

@@ -7,6 +7,8 @@ Quaternions are (x, y, z, w), as in geometry_msgs/Quaternion.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import numpy.typing as npt
 
@@ -16,9 +18,11 @@ Quaternion = tuple[float, float, float, float]
 
 def rotation_matrix(roll: float, pitch: float, yaw: float) -> Matrix3:
     """Rz(yaw) @ Ry(pitch) @ Rx(roll): child-frame vectors into the parent frame."""
-    cr, sr = np.cos(roll), np.sin(roll)
-    cp, sp = np.cos(pitch), np.sin(pitch)
-    cy, sy = np.cos(yaw), np.sin(yaw)
+    # numpy's sines and cosines, then the products on plain floats: the same IEEE
+    # operations as on numpy scalars, without their per-operation overhead.
+    cr, sr = float(np.cos(roll)), float(np.sin(roll))
+    cp, sp = float(np.cos(pitch)), float(np.sin(pitch))
+    cy, sy = float(np.cos(yaw)), float(np.sin(yaw))
     return np.array(
         [
             [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
@@ -30,45 +34,46 @@ def rotation_matrix(roll: float, pitch: float, yaw: float) -> Matrix3:
 
 def quaternion_from_matrix(rotation: Matrix3) -> Quaternion:
     """Unit quaternion (x, y, z, w) with w >= 0 of a proper rotation matrix."""
-    m = rotation
+    m = rotation.tolist()  # plain floats: the arithmetic below is the same, only cheaper
     # Branch on the largest diagonal term so the square root never nears zero.
-    trace = m[0, 0] + m[1, 1] + m[2, 2]
+    trace = m[0][0] + m[1][1] + m[2][2]
     if trace > 0.0:
-        s = 2.0 * np.sqrt(1.0 + trace)
+        s = 2.0 * math.sqrt(1.0 + trace)
         q = (
-            (m[2, 1] - m[1, 2]) / s,
-            (m[0, 2] - m[2, 0]) / s,
-            (m[1, 0] - m[0, 1]) / s,
+            (m[2][1] - m[1][2]) / s,
+            (m[0][2] - m[2][0]) / s,
+            (m[1][0] - m[0][1]) / s,
             0.25 * s,
         )
-    elif m[0, 0] > m[1, 1] and m[0, 0] > m[2, 2]:
-        s = 2.0 * np.sqrt(1.0 + m[0, 0] - m[1, 1] - m[2, 2])
+    elif m[0][0] > m[1][1] and m[0][0] > m[2][2]:
+        s = 2.0 * math.sqrt(1.0 + m[0][0] - m[1][1] - m[2][2])
         q = (
             0.25 * s,
-            (m[0, 1] + m[1, 0]) / s,
-            (m[0, 2] + m[2, 0]) / s,
-            (m[2, 1] - m[1, 2]) / s,
+            (m[0][1] + m[1][0]) / s,
+            (m[0][2] + m[2][0]) / s,
+            (m[2][1] - m[1][2]) / s,
         )
-    elif m[1, 1] > m[2, 2]:
-        s = 2.0 * np.sqrt(1.0 + m[1, 1] - m[0, 0] - m[2, 2])
+    elif m[1][1] > m[2][2]:
+        s = 2.0 * math.sqrt(1.0 + m[1][1] - m[0][0] - m[2][2])
         q = (
-            (m[0, 1] + m[1, 0]) / s,
+            (m[0][1] + m[1][0]) / s,
             0.25 * s,
-            (m[1, 2] + m[2, 1]) / s,
-            (m[0, 2] - m[2, 0]) / s,
+            (m[1][2] + m[2][1]) / s,
+            (m[0][2] - m[2][0]) / s,
         )
     else:
-        s = 2.0 * np.sqrt(1.0 + m[2, 2] - m[0, 0] - m[1, 1])
+        s = 2.0 * math.sqrt(1.0 + m[2][2] - m[0][0] - m[1][1])
         q = (
-            (m[0, 2] + m[2, 0]) / s,
-            (m[1, 2] + m[2, 1]) / s,
+            (m[0][2] + m[2][0]) / s,
+            (m[1][2] + m[2][1]) / s,
             0.25 * s,
-            (m[1, 0] - m[0, 1]) / s,
+            (m[1][0] - m[0][1]) / s,
         )
     sign = -1.0 if q[3] < 0.0 else 1.0
-    norm = float(np.sqrt(sum(c * c for c in q)))
-    x, y, z, w = (float(sign * c / norm) for c in q)
-    return (x, y, z, w)
+    x, y, z, w = q
+    # Added left to right, not by sum(): Python 3.12's sum() compensates float rounding.
+    norm = math.sqrt(x * x + y * y + z * z + w * w)
+    return (sign * x / norm, sign * y / norm, sign * z / norm, sign * w / norm)
 
 
 def quaternion_from_euler(roll: float, pitch: float, yaw: float) -> Quaternion:
