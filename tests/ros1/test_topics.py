@@ -166,3 +166,20 @@ def test_negotiation_serves_each_subscriber_its_variant(embedded_master, make_no
     assert read_frame(sock_late) == b"o"
     for sock in (sock_old, sock_old2, sock_new, sock_bad, sock_late):
         sock.close()
+
+
+def test_a_burst_arrives_whole_in_order_and_latches_its_last(embedded_master, make_node):
+    node = make_node("pub", master_uri=embedded_master.uri)
+    pub = node.advertise("/status", STRING, latch=True)
+    sock, _ = raw_subscribe(node, "/status", STRING.md5sum, STRING.name)
+    with sock:
+        wait_until(lambda: pub.num_subscribers == 1)
+        burst = [f"intersection {k}" for k in range(32)]
+        pub.publish_many([string_bytes(text) for text in burst])
+        assert [string_text(read_frame(sock)) for _ in burst] == burst
+    assert pub.messages_published == len(burst)
+    late = make_node("late", master_uri=embedded_master.uri)
+    received: list[str] = []
+    late.subscribe("/status", STRING, lambda data, header: received.append(string_text(data)))
+    wait_until(lambda: received)
+    assert received == ["intersection 31"]

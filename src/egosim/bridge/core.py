@@ -143,13 +143,14 @@ class Bridge:
         built = outlet.build(self.context)
         if built is None:
             return
+        variants = []
         for message in built if isinstance(built, list | tuple) else (built,):
             header = getattr(message, "header", None)
             if header is not None:
                 header.seq = outlet.seq
                 outlet.seq += 1
             data = outlet.message_type.serialize(message)
-            outlet.publisher.publish_variants(
+            variants.append(
                 lambda md5sum, message=message, data=data: (
                     data
                     if md5sum == outlet.message_type.md5sum
@@ -157,6 +158,8 @@ class Bridge:
                 )
             )
             self._tap(outlet.row.name, outlet.message_type, data)
+        # A row's messages of one step (e.g. every intersection's status) go out together.
+        outlet.publisher.publish_many(variants)
 
     def _tap(self, topic: str, message_type: MessageType, data: bytes) -> None:
         for tap in self.taps:
