@@ -31,7 +31,7 @@ def closest_objects(
     offset = table.positions[:, :2] - np.asarray(centre)
     distance = np.hypot(offset[:, 0], offset[:, 1])
     nearest = np.argsort(distance, kind="stable")[: max(size, 0)]
-    records = [table.record(int(i)) for i in nearest]
+    records = table.records(nearest)
 
     def of(*kinds: ObjectType) -> tuple[ObjectState, ...]:
         return tuple(r for r in records if r.object_type in kinds)

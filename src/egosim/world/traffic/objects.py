@@ -57,16 +57,37 @@ class ObjectTable:
         return len(self.unique_ids)
 
     def record(self, i: int) -> ObjectState:
-        return ObjectState(
-            unique_id=int(self.unique_ids[i]),
-            object_type=ObjectType(int(self.object_types[i])),
-            name=self.names[i],
-            position=_vector(self.positions[i]),
-            heading=float(self.headings[i]),
-            velocity=_vector(self.velocities[i]),
-            acceleration=_vector(self.accelerations[i]),
-            size=_vector(self.sizes[i]),
+        return self.records([i])[0]
+
+    def records(self, rows: Sequence[int] | IntArray) -> list[ObjectState]:
+        """ObjectState of each row, in the order given."""
+        rows = np.asarray(rows, dtype=np.int64)
+        # Whole columns to Python floats at once: per-element conversion costs more than
+        # the rest of an object list.
+        columns = zip(
+            self.unique_ids[rows].tolist(),
+            self.object_types[rows].tolist(),
+            rows.tolist(),
+            self.positions[rows].tolist(),
+            self.headings[rows].tolist(),
+            self.velocities[rows].tolist(),
+            self.accelerations[rows].tolist(),
+            self.sizes[rows].tolist(),
+            strict=True,
         )
+        return [
+            ObjectState(
+                unique_id=unique_id,
+                object_type=ObjectType(object_type),
+                name=self.names[row],
+                position=tuple(position),
+                heading=heading,
+                velocity=tuple(velocity),
+                acceleration=tuple(acceleration),
+                size=tuple(size),
+            )
+            for unique_id, object_type, row, position, heading, velocity, acceleration, size in columns
+        ]
 
     def select(self, mask: npt.ArrayLike) -> ObjectTable:
         """The rows where `mask` is true, in order."""
@@ -109,7 +130,3 @@ class ObjectTable:
             np.concatenate([t.accelerations for t in tables]),
             np.concatenate([t.sizes for t in tables]),
         )
-
-
-def _vector(row: FloatArray) -> Vector3:
-    return float(row[0]), float(row[1]), float(row[2])
