@@ -2,10 +2,11 @@
 
 Starts the simulator (town map, default scenario, 100 Hz physics: 10 ms ticks) as a
 subprocess, subscribes to every published row (so every builder runs, the LiDAR
-included), starts sync mode and times WaitForTick calls of `--ticks-per-call` ticks
-each. Real-time factor = simulated seconds / wall seconds.
+included) or to the `--topics` named, starts sync mode and times WaitForTick calls of
+`--ticks-per-call` ticks each. Real-time factor = simulated seconds / wall seconds.
 
 Usage: .venv/bin/python benchmarks/sync_mode.py [--ticks 2000] [--ticks-per-call 1 100]
+       [--topics /Ego_topic /Object_topic ...]
 """
 
 from __future__ import annotations
@@ -57,6 +58,9 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--ticks", type=int, default=2000)
     parser.add_argument("--ticks-per-call", type=int, nargs="+", default=[1, 100])
+    parser.add_argument(
+        "--topics", nargs="*", help="subscribe to these rows only (default: every one)"
+    )
     args = parser.parse_args()
 
     profile = get_profile("26.r1")
@@ -66,7 +70,8 @@ def main() -> None:
         with Node("sync_benchmark", master_uri=master_uri, rosout_logger=None) as node:
             counters = {}
             for row in default_network_settings().enabled_rows():
-                if row.direction is Direction.PUBLISH:
+                wanted = args.topics is None or row.name in args.topics
+                if row.direction is Direction.PUBLISH and wanted:
                     counters[row.name] = Counter()
                     node.subscribe(row.name, profile.message(row.type_name), counters[row.name])
             time.sleep(1.0)  # let every subscription connect before the clock starts
@@ -82,7 +87,8 @@ def main() -> None:
             )
             frame = reply.response.frame
             proxy = node.service_proxy("/SyncModeWaitForTick", tick, persistent=True)
-            print(f"town + default scenario, {TICK_MS} ms ticks, every published row subscribed")
+            subscribed = "every published row" if args.topics is None else " ".join(counters)
+            print(f"town + default scenario, {TICK_MS} ms ticks, subscribed: {subscribed}")
             for per_call in args.ticks_per_call:
                 calls = max(args.ticks // per_call, 1)
                 began = time.perf_counter()
