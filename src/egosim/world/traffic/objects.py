@@ -77,16 +77,16 @@ class ObjectTable:
         )
         return [
             ObjectState(
-                unique_id=unique_id,
-                object_type=ObjectType(object_type),
+                unique_id=uid,
+                object_type=ObjectType(kind),
                 name=self.names[row],
                 position=tuple(position),
                 heading=heading,
                 velocity=tuple(velocity),
-                acceleration=tuple(acceleration),
+                acceleration=tuple(accel),
                 size=tuple(size),
             )
-            for unique_id, object_type, row, position, heading, velocity, acceleration, size in columns
+            for uid, kind, row, position, heading, velocity, accel, size in columns
         ]
 
     def select(self, mask: npt.ArrayLike) -> ObjectTable:
