@@ -20,7 +20,6 @@ from ..sensors import (
     LidarModel,
     MountPose,
     ObstacleBoxes,
-    Pose,
     Transform,
     base_link_to_sensor,
     map_to_base_link,
@@ -32,11 +31,6 @@ from .sensor_settings import SENSOR_KINDS, SensorSettings
 
 GPS_INDEX, IMU_INDEX, LIDAR_INDEX = (SENSOR_KINDS.index(kind) for kind in ("gps", "imu", "lidar"))
 MAIN_EGO = 0
-
-
-def base_link_pose(status: VehicleStatus) -> Pose:
-    pose = status.pose
-    return Pose(x=pose.x, y=pose.y, z=pose.z, roll=pose.roll, pitch=pose.pitch, yaw=pose.yaw)
 
 
 def ego_kinematics(status: VehicleStatus) -> EgoKinematics:
@@ -103,19 +97,19 @@ class SensorRig:
         )
 
     def gps_fix(self, world: World) -> GpsFix:
-        return self.gps.measure(base_link_pose(world.ego_status(MAIN_EGO)), self._gps_rng)
+        return self.gps.measure(world.ego_status(MAIN_EGO).pose, self._gps_rng)
 
     def imu_reading(self, world: World) -> ImuReading:
         return self.imu.measure(ego_kinematics(world.ego_status(MAIN_EGO)), self._imu_rng)
 
     def scan(self, world: World) -> np.ndarray:
         """LiDAR points (M, 4) in the sensor frame; the main ego (object 0) is not seen."""
-        pose = base_link_pose(world.ego_status(MAIN_EGO))
+        pose = world.ego_status(MAIN_EGO).pose
         return self.lidar.scan(pose, obstacle_boxes(world), exclude_index=MAIN_EGO)
 
     def transforms(self, world: World) -> list[Transform]:
         """map -> base_link of the main ego, then base_link -> each sensor."""
-        pose = base_link_pose(world.ego_status(MAIN_EGO))
+        pose = world.ego_status(MAIN_EGO).pose
         return [map_to_base_link(pose), *self._sensor_transforms]
 
 

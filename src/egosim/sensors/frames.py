@@ -2,7 +2,8 @@
 
 The map frame is ENU (x east, y north, z up). base_link is the vehicle body
 frame (x forward, y left, z up). A sensor frame is placed on base_link by a
-MountPose. The transforms are the ones a tf2_msgs/TFMessage carries: the child
+MountPose. A vehicle's pose is the world's (its base_link in the map). The
+transforms are the ones a tf2_msgs/TFMessage carries: the child
 frame's origin and orientation expressed in the parent frame.
 """
 
@@ -14,39 +15,23 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.sensors.rotation import Matrix3, Quaternion, quaternion_from_matrix, rotation_matrix
+from egosim.world.vehicle import Pose
 
 Vector3 = npt.NDArray[np.float64]
 
 
 @dataclass(frozen=True)
-class RigidPose:
-    """Position (m) and REP 103 roll/pitch/yaw (rad) of a frame in its parent."""
-
-    x: float = 0.0
-    y: float = 0.0
-    z: float = 0.0
-    roll: float = 0.0
-    pitch: float = 0.0
-    yaw: float = 0.0
-
-    @property
-    def translation(self) -> Vector3:
-        return np.array([self.x, self.y, self.z], dtype=np.float64)
-
-    @property
-    def rotation(self) -> Matrix3:
-        """Rotation taking vectors of this frame into the parent frame."""
-        return rotation_matrix(self.roll, self.pitch, self.yaw)
-
-
-@dataclass(frozen=True)
-class Pose(RigidPose):
-    """The vehicle's base_link in the map (ENU) frame."""
-
-
-@dataclass(frozen=True)
-class MountPose(RigidPose):
+class MountPose(Pose):
     """A sensor frame relative to base_link (x forward, y left, z up)."""
+
+
+def translation_of(pose: Pose) -> Vector3:
+    return np.array([pose.x, pose.y, pose.z], dtype=np.float64)
+
+
+def rotation_of(pose: Pose) -> Matrix3:
+    """Rotation taking vectors of the posed frame into its parent frame."""
+    return rotation_matrix(pose.roll, pose.pitch, pose.yaw)
 
 
 @dataclass(frozen=True)
@@ -59,13 +44,13 @@ class Transform:
     rotation: Quaternion
 
 
-def transform_of(pose: RigidPose, parent_frame: str, child_frame: str) -> Transform:
+def transform_of(pose: Pose, parent_frame: str, child_frame: str) -> Transform:
     """The tf transform parent -> child for a child frame placed at `pose`."""
     return Transform(
         parent_frame=parent_frame,
         child_frame=child_frame,
         translation=(float(pose.x), float(pose.y), float(pose.z)),
-        rotation=quaternion_from_matrix(pose.rotation),
+        rotation=quaternion_from_matrix(rotation_of(pose)),
     )
 
 
@@ -83,6 +68,6 @@ def base_link_to_sensor(
 
 def sensor_in_map(vehicle_pose: Pose, mount: MountPose) -> tuple[Vector3, Matrix3]:
     """Origin (map, m) and rotation (sensor -> map) of a mounted sensor."""
-    vehicle_rotation = vehicle_pose.rotation
-    origin = vehicle_pose.translation + vehicle_rotation @ mount.translation
-    return origin, vehicle_rotation @ mount.rotation
+    vehicle_rotation = rotation_of(vehicle_pose)
+    origin = translation_of(vehicle_pose) + vehicle_rotation @ translation_of(mount)
+    return origin, vehicle_rotation @ rotation_of(mount)

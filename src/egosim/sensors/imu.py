@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from egosim.sensors.frames import MountPose
+from egosim.sensors.frames import MountPose, rotation_of
 from egosim.sensors.noise import gaussian, require_non_negative
 from egosim.sensors.rotation import Matrix3, Quaternion, quaternion_from_matrix, rotation_matrix
 
@@ -141,7 +141,7 @@ class ImuModel:
     @functools.cached_property
     def _sensor_to_body(self) -> Matrix3:
         """The mount's rotation, worked out once rather than for every reading."""
-        return self.mount.rotation
+        return rotation_of(self.mount)
 
     def measure(
         self, kinematics: EgoKinematics, rng: np.random.Generator | None = None

@@ -28,7 +28,10 @@ Vector3 = tuple[float, float, float]
 
 @dataclass(frozen=True)
 class Pose:
-    """Centre of gravity in the map (ENU, m) and REP 103 roll, pitch, yaw (rad, yaw 0 = east)."""
+    """A frame's position (m) and REP 103 roll, pitch, yaw (rad) in its parent frame.
+
+    A vehicle's pose is its centre of gravity, its base_link, in the map (ENU, yaw 0 = east).
+    """
 
     x: float = 0.0
     y: float = 0.0
