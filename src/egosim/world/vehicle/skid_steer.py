@@ -18,7 +18,7 @@ import math
 from typing import Any
 
 from egosim.world.vehicle.catalogue import GRAVITY
-from egosim.world.vehicle.control import DEFAULT_COMMAND_TIMEOUT, CommandVerdict
+from egosim.world.vehicle.control import DEFAULT_COMMAND_TIMEOUT
 from egosim.world.vehicle.gear import Gear
 from egosim.world.vehicle.ground_catalogue import GROUND_VEHICLE_CATALOGUE, GroundVehicleModel
 from egosim.world.vehicle.skid_steer_commands import (
@@ -26,6 +26,7 @@ from egosim.world.vehicle.skid_steer_commands import (
     SkidSteerCommand,
     SkidSteerGate,
 )
+from egosim.world.vehicle.stepping import GatedVehicle
 from egosim.world.vehicle.vehicle import DEFAULT_MAX_SUBSTEP, Pose, RoadSurface, VehicleStatus
 from egosim.world.vehicle.wheels import Wheels, WheelStatus
 
@@ -46,7 +47,7 @@ def side_speed_after(speed: float, target: float, model: GroundVehicleModel, dt:
     return 0.0 if target == 0.0 and abs(after) < STANDSTILL_SPEED else after
 
 
-class SkidSteerVehicle:
+class SkidSteerVehicle(GatedVehicle[SkidSteerCommand]):
     """One skid-steer vehicle of a ground vehicle model; advanced by step(dt)."""
 
     def __init__(
@@ -58,12 +59,8 @@ class SkidSteerVehicle:
         command_timeout: float = DEFAULT_COMMAND_TIMEOUT,
         max_substep: float = DEFAULT_MAX_SUBSTEP,
     ) -> None:
+        super().__init__(SkidSteerGate(command_timeout), gear, max_substep)
         self.model = model
-        self.gear = gear
-        self.sim_time = 0.0
-        """Seconds of simulation this vehicle has been stepped through."""
-        self.max_substep = max_substep
-        self._gate = SkidSteerGate(command_timeout)
         self._pose = Pose()
         self._left = self._right = 0.0
         self._speed_rate = 0.0
@@ -77,10 +74,6 @@ class SkidSteerVehicle:
     ) -> SkidSteerVehicle:
         """A vehicle of the ground vehicle model `name`; options as for the constructor."""
         return cls(GROUND_VEHICLE_CATALOGUE[name], pose, **options)
-
-    def command(self, command: SkidSteerCommand) -> CommandVerdict:
-        """Hand the vehicle a command, received now (at sim_time)."""
-        return self._gate.submit(command, self.sim_time)
 
     def set_gear(self, gear: Gear) -> None:
         """P and N leave the motors without drive (the sides are brought to rest); R and D
@@ -100,16 +93,12 @@ class SkidSteerVehicle:
 
     def step(self, dt: float, surface: RoadSurface | None = None) -> None:
         """Advance dt seconds; surface, when given, is the ground under the vehicle now."""
-        if not dt > 0.0:
-            raise ValueError(f"step needs a positive dt, got {dt}")
+        substeps = self._substeps(dt)
         pose = self._pose
         if surface is not None:
             pose = Pose(pose.x, pose.y, surface.z, surface.roll, surface.pitch, pose.yaw)
-        substeps = math.ceil(dt / self.max_substep)
-        substep = dt / substeps
-        for _ in range(substeps):
-            pose = self._advance(pose, self._gate.active_command(self.sim_time), substep)
-            self.sim_time += substep
+        for command, substep in substeps:
+            pose = self._advance(pose, command, substep)
         self._pose = pose
 
     def _advance(self, pose: Pose, command: SkidSteerCommand, dt: float) -> Pose:

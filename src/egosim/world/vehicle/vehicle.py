@@ -10,7 +10,6 @@ from egosim.world.vehicle.catalogue import DEFAULT_EGO_MODEL, VehicleModel, vehi
 from egosim.world.vehicle.control import (
     DEFAULT_COMMAND_TIMEOUT,
     CommandGate,
-    CommandVerdict,
     ControlCommand,
     LongitudinalMode,
 )
@@ -18,6 +17,7 @@ from egosim.world.vehicle.dynamics import ActuatorInputs, advance, kinematic_lat
 from egosim.world.vehicle.gear import Gear
 from egosim.world.vehicle.pedal_control import AccelerationTracker, Pedals, SpeedController
 from egosim.world.vehicle.state import VehicleState
+from egosim.world.vehicle.stepping import GatedVehicle
 from egosim.world.vehicle.wheels import Wheels, wheel_statuses
 
 DEFAULT_MAX_SUBSTEP = 0.005
@@ -81,7 +81,7 @@ class VehicleStatus:
     wheels: Wheels
 
 
-class Vehicle:
+class Vehicle(GatedVehicle[ControlCommand]):
     """One vehicle of a catalogue model; advanced by step(dt) on the road it is given."""
 
     def __init__(
@@ -93,13 +93,9 @@ class Vehicle:
         command_timeout: float = DEFAULT_COMMAND_TIMEOUT,
         max_substep: float = DEFAULT_MAX_SUBSTEP,
     ) -> None:
+        super().__init__(CommandGate(model, command_timeout), gear, max_substep)
         self.model = model
-        self.gear = gear
-        self.sim_time = 0.0
-        """Seconds of simulation this vehicle has been stepped through."""
-        self.max_substep = max_substep
         self._state = VehicleState()
-        self._gate = CommandGate(model, command_timeout)
         self._acceleration_tracker = AccelerationTracker(model)
         self._speed_controller = SpeedController(model, self._acceleration_tracker)
         self._pedals = Pedals(accel=0.0, brake=0.0)
@@ -114,10 +110,6 @@ class Vehicle:
     ) -> Vehicle:
         """A vehicle of the catalogue model `name`; options as for the constructor."""
         return cls(vehicle_model(name), pose, **options)
-
-    def command(self, command: ControlCommand) -> CommandVerdict:
-        """Hand the vehicle a control command, received now (at sim_time)."""
-        return self._gate.submit(command, self.sim_time)
 
     def set_gear(self, gear: Gear) -> None:
         self.gear = gear
@@ -144,16 +136,12 @@ class Vehicle:
 
     def step(self, dt: float, surface: RoadSurface | None = None) -> None:
         """Advance dt seconds; surface, when given, is the road under the vehicle now."""
-        if not dt > 0.0:
-            raise ValueError(f"step needs a positive dt, got {dt}")
+        substeps = self._substeps(dt)
         state = self._state
         self._status = None
         if surface is not None:
             state.z, state.pitch, state.roll = surface.z, surface.pitch, surface.roll
-        substeps = math.ceil(dt / self.max_substep)
-        substep = dt / substeps
-        for _ in range(substeps):
-            command = self._gate.active_command(self.sim_time)
+        for command, substep in substeps:
             self._pedals = self._pedals_for(command, substep)
             inputs = ActuatorInputs(
                 accel_pedal=self._pedals.accel,
@@ -163,7 +151,6 @@ class Vehicle:
                 gear=self.gear,
             )
             advance(self.model, state, inputs, substep)
-            self.sim_time += substep
 
     def _pedals_for(self, command: ControlCommand, dt: float) -> Pedals:
         if command.mode == LongitudinalMode.VELOCITY:
