@@ -183,3 +183,27 @@ def test_a_burst_arrives_whole_in_order_and_latches_its_last(embedded_master, ma
     late.subscribe("/status", STRING, lambda data, header: received.append(string_text(data)))
     wait_until(lambda: received)
     assert received == ["intersection 31"]
+
+
+def test_output_held_in_a_block_arrives_whole_and_in_order_after_it(embedded_master, make_node):
+    node = make_node("pub", master_uri=embedded_master.uri)
+    pub = node.advertise("/clock_like", STRING)
+    other = node.advertise("/status_like", STRING)
+    clock_sock, _ = raw_subscribe(node, "/clock_like", STRING.md5sum, STRING.name)
+    status_sock, _ = raw_subscribe(node, "/status_like", STRING.md5sum, STRING.name)
+    with clock_sock, status_sock:
+        wait_until(lambda: pub.num_subscribers == 1 and other.num_subscribers == 1)
+        with node.holding_output():
+            for frame in range(200):
+                pub.publish(string_bytes(f"frame {frame}"))
+                if frame % 10 == 0:
+                    other.publish_many([string_bytes(f"{frame}/{k}") for k in range(32)])
+        assert [string_text(read_frame(clock_sock)) for _ in range(200)] == [
+            f"frame {frame}" for frame in range(200)
+        ]
+        assert [string_text(read_frame(status_sock)) for _ in range(20 * 32)] == [
+            f"{frame}/{k}" for frame in range(0, 200, 10) for k in range(32)
+        ]
+        # Released: later messages go out on their own again.
+        pub.publish(string_bytes("after"))
+        assert string_text(read_frame(clock_sock)) == "after"

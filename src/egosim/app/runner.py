@@ -118,6 +118,7 @@ def _run(options: RunOptions) -> int:
         )
         bridge = Bridge(node, settings, HANDLERS, context, inbox, options.protocol)
         context.open_row = bridge.open_row
+        context.holding_output = node.holding_output
         if recorder is not None:
             bridge.taps.append(recorder.tap())
         try:

@@ -4,6 +4,7 @@ simulator-side state the protocol adds to the world (lamps, control modes, ...).
 from __future__ import annotations
 
 from collections.abc import Callable
+from contextlib import AbstractContextManager, nullcontext
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -74,6 +75,9 @@ class BridgeContext:
     open_row: Callable[[str, str, Callable[..., Any]], Callable[[], None] | None] | None = None
     """(row key, namespace, handler): open a topic row under a namespace at run time;
     returns what closes it, None if the row is disabled (set by the app: Bridge.open_row)."""
+    holding_output: Callable[[], AbstractContextManager[None]] = nullcontext
+    """A block whose topic output reaches subscribers as one burst when it ends (set by
+    the app: Node.holding_output); sync mode ticks a WaitForTick's frames inside one."""
     ego_rows: dict[int, list[Callable[[], None]]] = field(default_factory=dict)
     """What closes the namespaced topics of each additional ego, by unique id."""
     replay: ReplaySession = field(init=False)

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 from .connection_header import error_header, write_header
 from .errors import ConnectionRefusedByPeerError, NodeShutdownError
-from .tcpros import close_quietly, encode_frame, send_frame, set_nodelay
+from .tcpros import close_quietly, encode_frame, send_frame, set_cork, set_nodelay
 from .types import MessageTypeInfo
 
 log = logging.getLogger(__name__)
@@ -186,6 +186,7 @@ class Publisher:
         self._outboxes: tuple[_Outbox, ...] = ()
         self._latched: bytes | Variants | None = None
         self._closed = False
+        self._held = False
         self.messages_published = 0
 
     @property
@@ -219,6 +220,15 @@ class Publisher:
                     _variant(message, outbox.md5sum) for message in messages
                 ]
             outbox.put(payloads)
+
+    def hold_output(self, held: bool) -> None:
+        """While held, every connection packs what it is sent into full packets and sends
+        the rest when released (see Node.holding_output)."""
+        with self._lock:
+            self._held = held
+            outboxes = self._outboxes
+        for outbox in outboxes:
+            set_cork(outbox.sock, held)
 
     def _begin_publish(self, messages: Sequence[bytes | Variants]) -> tuple[_Outbox, ...]:
         """Count ``messages`` and latch the last; the connections they go to. A connection
@@ -267,6 +277,8 @@ class Publisher:
             if self._closed:
                 outbox.close()
                 return
+            if self._held:
+                set_cork(sock, True)
             if self._latched is not None:
                 outbox.put((_variant(self._latched, served.md5sum),))
             self._outboxes = (*self._outboxes, outbox)
