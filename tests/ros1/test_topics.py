@@ -36,11 +36,17 @@ def test_latched_message_goes_to_late_subscribers(embedded_master, make_node):
     pub = node.advertise("/map", STRING, latch=True)
     pub.publish(string_bytes("first"))
     pub.publish(string_bytes("latest"))
-    listener = make_node("late", master_uri=embedded_master.uri)
+    assert late_subscriber_gets(make_node("late", master_uri=embedded_master.uri), "/map") == [
+        "latest"
+    ]
+
+
+def late_subscriber_gets(listener, topic: str) -> list[str]:
+    """What a subscriber joining now receives first: the latched message, if any."""
     received: list[str] = []
-    listener.subscribe("/map", STRING, lambda data, header: received.append(string_text(data)))
+    listener.subscribe(topic, STRING, lambda data, header: received.append(string_text(data)))
     wait_until(lambda: received)
-    assert received == ["latest"]
+    return received
 
 
 def test_md5_mismatch_gets_an_error_header(embedded_master, make_node):
@@ -179,10 +185,7 @@ def test_a_burst_arrives_whole_in_order_and_latches_its_last(embedded_master, ma
         assert [string_text(read_frame(sock)) for _ in burst] == burst
     assert pub.messages_published == len(burst)
     late = make_node("late", master_uri=embedded_master.uri)
-    received: list[str] = []
-    late.subscribe("/status", STRING, lambda data, header: received.append(string_text(data)))
-    wait_until(lambda: received)
-    assert received == ["intersection 31"]
+    assert late_subscriber_gets(late, "/status") == ["intersection 31"]
 
 
 def test_output_held_in_a_block_arrives_whole_and_in_order_after_it(embedded_master, make_node):
