@@ -36,9 +36,8 @@ def test_latched_message_goes_to_late_subscribers(embedded_master, make_node):
     pub = node.advertise("/map", STRING, latch=True)
     pub.publish(string_bytes("first"))
     pub.publish(string_bytes("latest"))
-    assert late_subscriber_gets(make_node("late", master_uri=embedded_master.uri), "/map") == [
-        "latest"
-    ]
+    late = make_node("late", master_uri=embedded_master.uri)
+    assert late_subscriber_gets(late, "/map") == ["latest"]
 
 
 def late_subscriber_gets(listener, topic: str) -> list[str]:
