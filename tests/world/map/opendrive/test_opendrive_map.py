@@ -6,8 +6,10 @@ from pyproj import CRS, Transformer
 
 from egosim.sensors import GpsModel
 from egosim.sensors.frames import Pose
+from egosim.world import World
 from egosim.world.map import LaneMap, MapRecordError
 from egosim.world.map.opendrive import build_opendrive_map
+from egosim.world.scenario import parse_scenario
 
 JUNCTION_XODR = Path(__file__).parents[3] / "data" / "maps" / "junction.xodr"
 TM_CENTRAL = "+proj=tmerc +lat_0=37.5 +lon_0=127 +k=1 +x_0=200000 +y_0=500000 +ellps=GRS80"
@@ -183,6 +185,27 @@ def test_non_driving_lanes_shift_but_do_not_become_lanes():
     lane_map, _ = build(text)
     assert set(lane_map.lanes) == {"7_0_-2"}
     assert lane_map.lane("7_0_-2").centerline[0, 1] == pytest.approx(-1.5 * LANE_M)
+
+
+def test_sidewalk_lanes_become_walkways_along_their_centres():
+    sidewalk_width = 'a="2.0" b="0" c="0" d="0"'
+    text = single_road(f"<right>{lane(-1)}{lane(-2, sidewalk_width, 'sidewalk')}</right>")
+    lane_map, _ = build(text)
+    walkway = lane_map.sidewalks["7_0_-2"].points
+    assert walkway[0, :2] == pytest.approx((0.0, -LANE_M - 1.0))
+    assert walkway[-1, :2] == pytest.approx((100.0, -LANE_M - 1.0))
+    # On the road's elevation profile (2 m at s = 0, rising 1 %).
+    assert walkway[-1, 2] == pytest.approx(3.0)
+
+    scenario = {
+        "map": "test",
+        "ego": {"start": {"lane": "7_0_-1", "s": 5.0}},
+        "pedestrians": [{"sidewalk": "7_0_-2", "speed_mps": 1.0}],
+    }
+    world = World(lane_map, parse_scenario(scenario, "test scenario"))
+    for _ in range(1000):
+        world.step(0.01)
+    assert world.pedestrians.position[0] == pytest.approx((10.0, -LANE_M - 1.0))
 
 
 def test_missing_georeference_is_reported():

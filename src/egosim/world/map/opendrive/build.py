@@ -5,7 +5,7 @@ from __future__ import annotations
 from egosim.world.map.builtin_origin import BUILTIN_GEOREF
 from egosim.world.map.errors import MapGeometryError, MapRecordError
 from egosim.world.map.georef import GeoReference
-from egosim.world.map.lanes import Lane, LaneMap
+from egosim.world.map.lanes import Lane, LaneMap, Sidewalk
 from egosim.world.map.opendrive.document import SOURCE, Document, read_document
 from egosim.world.map.opendrive.road_lanes import LaneKey, RoadLane, road_lanes
 from egosim.world.map.opendrive.signals import build_signals
@@ -22,8 +22,11 @@ def build_opendrive_map(name: str, xml_text: str, notes: list[str]) -> LaneMap:
     document = read_document(xml_text)
     georef = read_georeference(document, notes)
     lanes: dict[LaneKey, RoadLane] = {}
+    sidewalks: list[Sidewalk] = []
     for road in document.roads.values():
-        lanes.update((lane.key, lane) for lane in road_lanes(road, notes))
+        road_drivable, road_sidewalks = road_lanes(road, notes)
+        lanes.update((lane.key, lane) for lane in road_drivable)
+        sidewalks.extend(road_sidewalks)
     successors, predecessors = lane_links(document, lanes)
     sides = neighbours(lanes)
     lights, intersections, stop_lines = build_signals(document, lanes, predecessors, notes)
@@ -51,7 +54,7 @@ def build_opendrive_map(name: str, xml_text: str, notes: list[str]) -> LaneMap:
         except MapGeometryError as error:
             raise MapRecordError(SOURCE, f"road id={lane.key.road!r}", str(error)) from None
     try:
-        return LaneMap(name, built, lights, intersections, (), (), georef)
+        return LaneMap(name, built, lights, intersections, (), sidewalks, georef)
     except MapGeometryError as error:
         raise MapRecordError(SOURCE, "lane graph", str(error)) from None
 

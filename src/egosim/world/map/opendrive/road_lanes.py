@@ -1,4 +1,5 @@
-"""The drivable lanes of one OpenDRIVE road: centrelines, widths, travel direction, speed.
+"""The lanes of one OpenDRIVE road: centrelines, widths, travel direction and speed of
+the drivable ones; sidewalk lanes as walkways along their centres.
 
 Lane borders stack outward from the reference line shifted by the road's laneOffset:
 right lanes (-1, -2, ...) towards -t, left lanes (1, 2, ...) towards +t, each as wide as its
@@ -13,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from egosim.world.map.lanes import Sidewalk
 from egosim.world.map.opendrive.document import LaneRecord, Road
 from egosim.world.map.opendrive.polynomials import evaluate as evaluate_cubics
 from egosim.world.map.opendrive.reference_line import reference_poses, sample_stations
@@ -20,6 +22,7 @@ from egosim.world.map.opendrive.reference_line import reference_poses, sample_st
 FloatArray = npt.NDArray[np.float64]
 
 DRIVABLE_LANE_TYPES = frozenset({"driving", "entry", "exit", "onRamp", "offRamp", "connectingRamp"})
+SIDEWALK_LANE_TYPE = "sidewalk"
 SAMPLE_STEP_M = 1.0
 DEFAULT_SPEED_LIMIT_MPS = 50.0 / 3.6
 # Lanes that open from or close to nothing keep this width where their polynomial reaches 0.
@@ -61,9 +64,11 @@ def travels_forward(road: Road, lane: int) -> bool:
     return (lane < 0) == (road.rule != "LHT")
 
 
-def road_lanes(road: Road, notes: list[str]) -> list[RoadLane]:
+def road_lanes(road: Road, notes: list[str]) -> tuple[list[RoadLane], list[Sidewalk]]:
+    """The road's drivable lanes, and its sidewalk lanes as walkways along their centres."""
     stations = sample_stations(road, SAMPLE_STEP_M)
     lanes = []
+    sidewalks = []
     for k, section in enumerate(road.sections):
         start, end = section_range(road, k)
         s = stations[(stations >= start - 1e-9) & (stations <= end + 1e-9)]
@@ -74,16 +79,21 @@ def road_lanes(road: Road, notes: list[str]) -> list[RoadLane]:
         centres, widths = _lateral_layout(road, section.lanes, s - start, s, notes)
         normal = np.column_stack((-np.sin(poses[:, 3]), np.cos(poses[:, 3])))
         for record in section.lanes:
-            if record.type not in DRIVABLE_LANE_TYPES or record.id not in centres:
+            walkway = record.type == SIDEWALK_LANE_TYPE
+            if not (walkway or record.type in DRIVABLE_LANE_TYPES) or record.id not in centres:
                 continue
             key = LaneKey(road.id, k, record.id)
             line = np.column_stack(
                 (poses[:, :2] + centres[record.id][:, None] * normal, poses[:, 2])
             )
+            if walkway:
+                if np.max(widths[record.id]) > 0.0:
+                    sidewalks.append(Sidewalk(lane_id(key), line))
+                continue
             lane = _oriented(road, key, record, s, line, widths[record.id], start)
             if lane is not None:
                 lanes.append(lane)
-    return lanes
+    return lanes, sidewalks
 
 
 def _lateral_layout(
