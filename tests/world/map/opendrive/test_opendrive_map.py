@@ -208,6 +208,59 @@ def test_sidewalk_lanes_become_walkways_along_their_centres():
     assert world.pedestrians.position[0] == pytest.approx((10.0, -LANE_M - 1.0))
 
 
+def two_way_road_with(objects: str) -> str:
+    """single_road with a 3.5 m lane each way and `objects` on the road."""
+    text = single_road(f"<left>{lane(1)}</left><right>{lane(-1)}</right>")
+    return text.replace("</lanes>", f"</lanes><objects>{objects}</objects>")
+
+
+@pytest.mark.parametrize(
+    "crosswalk",
+    [
+        # A box: 4 m along the road (u, hdg 0), 12 m across it.
+        '<object id="9" type="crosswalk" s="50" t="0" hdg="0" length="4" width="12"/>',
+        # The same box as an outline of road corners.
+        '<object id="9" type="crosswalk" s="50" t="0"><outline>'
+        '<cornerRoad s="48" t="-6" dz="0" height="0"/><cornerRoad s="52" t="-6" dz="0" height="0"/>'
+        '<cornerRoad s="52" t="6" dz="0" height="0"/><cornerRoad s="48" t="6" dz="0" height="0"/>'
+        "</outline></object>",
+        # And as local corners of an object turned a quarter turn.
+        '<object id="9" type="crosswalk" s="50" t="0" hdg="1.5707963267948966"><outline>'
+        '<cornerLocal u="-6" v="-2" z="0"/><cornerLocal u="6" v="-2" z="0"/>'
+        '<cornerLocal u="6" v="2" z="0"/><cornerLocal u="-6" v="2" z="0"/>'
+        "</outline></object>",
+    ],
+)
+def test_crosswalk_objects_cross_the_road_square(crosswalk):
+    lane_map, _ = build(two_way_road_with(crosswalk))
+    walk = lane_map.crosswalks["7_9"]
+    assert walk.start == pytest.approx((50.0, -6.0))
+    assert walk.end == pytest.approx((50.0, 6.0))
+    assert walk.width == pytest.approx(4.0)
+    assert walk.intersection_id is None
+
+
+def test_a_pedestrian_crosses_an_unsignalised_crosswalk_and_a_car_waits():
+    text = two_way_road_with(
+        '<object id="9" type="crosswalk" s="50" t="0" hdg="0" length="4" width="12"/>'
+    )
+    lane_map, _ = build(text)
+    scenario = {
+        "map": "test",
+        "ego": {"start": {"lane": "7_0_1", "s": 5.0}},
+        "npcs": [{"start": {"lane": "7_0_-1", "s": 20.0}, "speed_mps": 8.0}],
+        "pedestrians": [{"crosswalk": "7_9", "speed_mps": 1.0}],
+    }
+    world = World(lane_map, parse_scenario(scenario, "test scenario"))
+    for _ in range(600):
+        world.step(0.01)
+    # Six seconds at 1 m/s from the far kerb: in the middle of the road.
+    assert world.pedestrians.position[0] == pytest.approx((50.0, 0.0), abs=0.05)
+    front = world.npcs.s[0] + world.npcs.dims[0, 0] / 2.0
+    assert front < 48.0
+    assert world.npcs.speed[0] < 0.5
+
+
 def test_missing_georeference_is_reported():
     _, notes = build(single_road(f"<right>{lane(-1)}</right>"))
     assert any("no geoReference" in note for note in notes)

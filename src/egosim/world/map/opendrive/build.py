@@ -6,6 +6,7 @@ from egosim.world.map.builtin_origin import BUILTIN_GEOREF
 from egosim.world.map.errors import MapGeometryError, MapRecordError
 from egosim.world.map.georef import GeoReference
 from egosim.world.map.lanes import Lane, LaneMap, Sidewalk
+from egosim.world.map.opendrive.crosswalks import road_crosswalks
 from egosim.world.map.opendrive.document import SOURCE, Document, read_document
 from egosim.world.map.opendrive.road_lanes import LaneKey, RoadLane, road_lanes
 from egosim.world.map.opendrive.signals import build_signals
@@ -30,6 +31,11 @@ def build_opendrive_map(name: str, xml_text: str, notes: list[str]) -> LaneMap:
     successors, predecessors = lane_links(document, lanes)
     sides = neighbours(lanes)
     lights, intersections, stop_lines = build_signals(document, lanes, predecessors, notes)
+    crosswalks = [
+        crosswalk
+        for road in document.roads.values()
+        for crosswalk in road_crosswalks(road, list(intersections), notes)
+    ]
     for tag, count in document.unread.items():
         notes.append(f"{count} <{tag}> elements not read")
     built = []
@@ -54,7 +60,7 @@ def build_opendrive_map(name: str, xml_text: str, notes: list[str]) -> LaneMap:
         except MapGeometryError as error:
             raise MapRecordError(SOURCE, f"road id={lane.key.road!r}", str(error)) from None
     try:
-        return LaneMap(name, built, lights, intersections, (), sidewalks, georef)
+        return LaneMap(name, built, lights, intersections, crosswalks, sidewalks, georef)
     except MapGeometryError as error:
         raise MapRecordError(SOURCE, "lane graph", str(error)) from None
 

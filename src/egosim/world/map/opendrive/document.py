@@ -70,6 +70,25 @@ class SignalRecord:
 
 
 @dataclass(frozen=True)
+class CrosswalkRecord:
+    """An <object type="crosswalk">: its origin at (s, t) on the road and its outline."""
+
+    id: str
+    s: float
+    t: float
+    hdg: float
+    """Heading of the object's u axis relative to the reference line, rad."""
+    length: float
+    """Along u, m (0: not given)."""
+    width: float
+    """Along v, m (0: not given)."""
+    road_corners: tuple[tuple[float, float], ...]
+    """(s, t) of the outline's <cornerRoad> points."""
+    local_corners: tuple[tuple[float, float], ...]
+    """(u, v) of the outline's <cornerLocal> points, in the object's frame."""
+
+
+@dataclass(frozen=True)
 class Road:
     id: str
     length: float
@@ -86,6 +105,7 @@ class Road:
     signals: tuple[SignalRecord, ...]
     type_speeds: tuple[tuple[float, float], ...]
     """(s, m/s) of <type><speed>."""
+    crosswalks: tuple[CrosswalkRecord, ...] = ()
 
     @property
     def in_junction(self) -> bool:
@@ -267,6 +287,28 @@ def _road(road: _Element) -> Road:
             for t in road.children("type", "type")
             if (speed := t.child("speed", "speed")) is not None
         ),
+        crosswalks=tuple(
+            _crosswalk(o)
+            for o in road.children("objects/object", "object")
+            if o.element.get("type", "").strip().lower() == "crosswalk"
+        ),
+    )
+
+
+def _crosswalk(element: _Element) -> CrosswalkRecord:
+    element.label = f"{element.label} id={element.text('id')!r}"
+    outline = "outline", "outlines/outline"
+    road_corners = [c for o in outline for c in element.children(f"{o}/cornerRoad", "cornerRoad")]
+    local = [c for o in outline for c in element.children(f"{o}/cornerLocal", "cornerLocal")]
+    return CrosswalkRecord(
+        id=element.text("id"),
+        s=element.number("s"),
+        t=element.number("t", 0.0),
+        hdg=element.number("hdg", 0.0),
+        length=element.number("length", 0.0),
+        width=element.number("width", 0.0),
+        road_corners=tuple((c.number("s"), c.number("t")) for c in road_corners),
+        local_corners=tuple((c.number("u"), c.number("v")) for c in local),
     )
 
 
