@@ -34,7 +34,7 @@ def build_opendrive_map(name: str, xml_text: str, notes: list[str]) -> LaneMap:
     crosswalks = [
         crosswalk
         for road in document.roads.values()
-        for crosswalk in road_crosswalks(road, list(intersections), notes)
+        for crosswalk in road_crosswalks(road, intersections, notes)
     ]
     for tag, count in document.unread.items():
         notes.append(f"{count} <{tag}> elements not read")

@@ -13,7 +13,7 @@ import numpy.typing as npt
 
 from egosim.world.map.lanes import Crosswalk, IntersectionSite
 from egosim.world.map.opendrive.document import CrosswalkRecord, Road
-from egosim.world.map.opendrive.reference_line import reference_poses
+from egosim.world.map.opendrive.reference_line import lateral_points, reference_poses
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -28,11 +28,12 @@ def road_crosswalks(
 ) -> list[Crosswalk]:
     crosswalks = []
     for record in road.crosswalks:
-        outline = _outline(road, record)
+        origin = reference_poses(road, np.array([record.s]))
+        outline = _outline(road, record, origin)
         if outline is None:
             notes.append(f"road {road.id}: crosswalk {record.id} has no outline or size")
             continue
-        heading = reference_poses(road, np.array([record.s]))[0, 3]
+        heading = origin[0, 3]
         across = np.array([-np.sin(heading), np.cos(heading)])
         along = np.array([np.cos(heading), np.sin(heading)])
         centre = outline.mean(axis=0)
@@ -55,13 +56,12 @@ def road_crosswalks(
     return crosswalks
 
 
-def _outline(road: Road, record: CrosswalkRecord) -> FloatArray | None:
-    """(K, 2) outline points in the map frame."""
+def _outline(road: Road, record: CrosswalkRecord, origin: FloatArray) -> FloatArray | None:
+    """(K, 2) outline points in the map frame; `origin` is the reference-line pose (1, 4)
+    at the object's s."""
     if record.road_corners:
         s, t = np.array(record.road_corners).T
-        poses = reference_poses(road, s)
-        normal = np.column_stack((-np.sin(poses[:, 3]), np.cos(poses[:, 3])))
-        return poses[:, :2] + t[:, None] * normal
+        return lateral_points(reference_poses(road, s), t)
     if record.local_corners:
         uv = np.array(record.local_corners)
     elif record.length > 0.0 and record.width > 0.0:
@@ -69,12 +69,10 @@ def _outline(road: Road, record: CrosswalkRecord) -> FloatArray | None:
         uv = np.array([(-u, -v), (u, -v), (u, v), (-u, v)])
     else:
         return None
-    x, y, _, heading = reference_poses(road, np.array([record.s]))[0]
-    origin = np.array([x - record.t * np.sin(heading), y + record.t * np.cos(heading)])
-    yaw = heading + record.hdg
+    yaw = origin[0, 3] + record.hdg
     u_axis = np.array([np.cos(yaw), np.sin(yaw)])
     v_axis = np.array([-np.sin(yaw), np.cos(yaw)])
-    return origin + uv[:, :1] * u_axis + uv[:, 1:] * v_axis
+    return lateral_points(origin, record.t) + uv[:, :1] * u_axis + uv[:, 1:] * v_axis
 
 
 def _nearest_intersection(point: FloatArray, intersections: list[IntersectionSite]) -> int | None:

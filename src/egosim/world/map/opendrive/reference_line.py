@@ -36,6 +36,13 @@ def reference_poses(road: Road, s: FloatArray) -> FloatArray:
     return poses
 
 
+def lateral_points(poses: FloatArray, t: npt.ArrayLike) -> FloatArray:
+    """(N, 2) map points `t` metres left (+t) of reference-line poses (x, y, z, heading)."""
+    heading = poses[:, 3]
+    t = np.asarray(t, dtype=np.float64)
+    return np.column_stack((poses[:, 0] - t * np.sin(heading), poses[:, 1] + t * np.cos(heading)))
+
+
 def sample_stations(road: Road, step: float) -> FloatArray:
     """Stations every `step` metres, closer on curves (the heading turns at most
     MAX_TURN_RAD between stations), plus every geometry and lane-section boundary."""

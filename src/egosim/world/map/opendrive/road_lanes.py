@@ -17,7 +17,11 @@ import numpy.typing as npt
 from egosim.world.map.lanes import Sidewalk
 from egosim.world.map.opendrive.document import LaneRecord, Road
 from egosim.world.map.opendrive.polynomials import evaluate as evaluate_cubics
-from egosim.world.map.opendrive.reference_line import reference_poses, sample_stations
+from egosim.world.map.opendrive.reference_line import (
+    lateral_points,
+    reference_poses,
+    sample_stations,
+)
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -77,15 +81,12 @@ def road_lanes(road: Road, notes: list[str]) -> tuple[list[RoadLane], list[Sidew
             continue
         poses = reference_poses(road, s)
         centres, widths = _lateral_layout(road, section.lanes, s - start, s, notes)
-        normal = np.column_stack((-np.sin(poses[:, 3]), np.cos(poses[:, 3])))
         for record in section.lanes:
             walkway = record.type == SIDEWALK_LANE_TYPE
             if not (walkway or record.type in DRIVABLE_LANE_TYPES) or record.id not in centres:
                 continue
             key = LaneKey(road.id, k, record.id)
-            line = np.column_stack(
-                (poses[:, :2] + centres[record.id][:, None] * normal, poses[:, 2])
-            )
+            line = np.column_stack((lateral_points(poses, centres[record.id]), poses[:, 2]))
             if walkway:
                 if np.max(widths[record.id]) > 0.0:
                     sidewalks.append(Sidewalk(lane_id(key), line))

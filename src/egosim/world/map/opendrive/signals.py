@@ -21,7 +21,7 @@ from egosim.world.map.errors import MapRecordError
 from egosim.world.map.lanes import IntersectionSite, TrafficLightSite
 from egosim.world.map.opendrive.document import SOURCE, Document, Road, SignalRecord
 from egosim.world.map.opendrive.light_types import light_type_of
-from egosim.world.map.opendrive.reference_line import reference_poses
+from egosim.world.map.opendrive.reference_line import lateral_points, reference_poses
 from egosim.world.map.opendrive.road_lanes import LaneKey, RoadLane, section_range
 from egosim.world.map.polyline import stations
 
@@ -85,12 +85,10 @@ def _heads(document: Document, notes: list[str]) -> dict[str, _Head]:
                     "vehicle light, ignored"
                 )
                 continue
-            x, y, z, heading = reference_poses(road, np.array([signal.s]))[0]
-            position = (
-                float(x - signal.t * math.sin(heading)),
-                float(y + signal.t * math.cos(heading)),
-                float(z + signal.z_offset),
-            )
+            pose = reference_poses(road, np.array([signal.s]))
+            x, y = lateral_points(pose, signal.t)[0]
+            z, heading = pose[0, 2], pose[0, 3]
+            position = (float(x), float(y), float(z + signal.z_offset))
             # A head faces the traffic it governs.
             facing = heading if signal.orientation == "-" else heading + math.pi
             heads[signal.id] = _Head(
