@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from egosim.world import World
-from egosim.world.map import build_builtin_map
+from egosim.world.map import LaneMap, build_builtin_map
 from egosim.world.scenario import parse_scenario
 from egosim.world.vehicle import ControlCommand, LongitudinalMode
 
@@ -14,8 +14,10 @@ from egosim.world.vehicle import ControlCommand, LongitudinalMode
 EGO_OUT_OF_THE_WAY = {"start": {"lane": "R1_W_2", "s": 990.0}}
 
 
-def world_from(data: dict[str, Any], **options: Any) -> World:
-    lane_map = build_builtin_map(data["map"])
+def world_from(data: dict[str, Any], lane_map: LaneMap | None = None, **options: Any) -> World:
+    """The world of scenario `data` on `lane_map`, else on the built-in map it names."""
+    if lane_map is None:
+        lane_map = build_builtin_map(data["map"])
     return World(lane_map, parse_scenario(data, "test scenario"), **options)
 
 

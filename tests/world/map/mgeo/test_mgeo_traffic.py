@@ -2,10 +2,10 @@
 
 import pytest
 from tests.world.map.mgeo.sample_mgeo import mgeo_files
+from tests.world.traffic.scenes import run, world_from
 
 from egosim.world import World
 from egosim.world.map.mgeo import build_mgeo_map
-from egosim.world.scenario import parse_scenario
 from egosim.world.signals import GREEN, RED, YELLOW
 
 ROUTE = ["L_S_in", "C_SN", "L_N_out"]
@@ -18,12 +18,7 @@ def world_with_npc_on(lane: str, s: float) -> World:
         "ego": {"start": {"lane": "L_E_out", "s": 90.0}},
         "npcs": [{"start": {"lane": lane, "s": s}, "speed_mps": 10.0, "route": ROUTE}],
     }
-    return World(lane_map, parse_scenario(scenario, "test scenario"))
-
-
-def run(world: World, seconds: float) -> None:
-    for _ in range(round(seconds / world.physics_step_s)):
-        world.step()
+    return world_from(scenario, lane_map)
 
 
 def npc_lane(world: World) -> str:

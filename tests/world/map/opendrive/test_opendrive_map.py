@@ -3,13 +3,12 @@ from pathlib import Path
 
 import pytest
 from pyproj import CRS, Transformer
+from tests.world.traffic.scenes import run, world_from
 
 from egosim.sensors import GpsModel
 from egosim.sensors.frames import Pose
-from egosim.world import World
 from egosim.world.map import LaneMap, MapRecordError
 from egosim.world.map.opendrive import build_opendrive_map
-from egosim.world.scenario import parse_scenario
 
 JUNCTION_XODR = Path(__file__).parents[3] / "data" / "maps" / "junction.xodr"
 TM_CENTRAL = "+proj=tmerc +lat_0=37.5 +lon_0=127 +k=1 +x_0=200000 +y_0=500000 +ellps=GRS80"
@@ -202,9 +201,8 @@ def test_sidewalk_lanes_become_walkways_along_their_centres():
         "ego": {"start": {"lane": "7_0_-1", "s": 5.0}},
         "pedestrians": [{"sidewalk": "7_0_-2", "speed_mps": 1.0}],
     }
-    world = World(lane_map, parse_scenario(scenario, "test scenario"))
-    for _ in range(1000):
-        world.step(0.01)
+    world = world_from(scenario, lane_map)
+    run(world, 10.0)
     assert world.pedestrians.position[0] == pytest.approx((10.0, -LANE_M - 1.0))
 
 
@@ -251,9 +249,8 @@ def test_a_pedestrian_crosses_an_unsignalised_crosswalk_and_a_car_waits():
         "npcs": [{"start": {"lane": "7_0_-1", "s": 20.0}, "speed_mps": 8.0}],
         "pedestrians": [{"crosswalk": "7_9", "speed_mps": 1.0}],
     }
-    world = World(lane_map, parse_scenario(scenario, "test scenario"))
-    for _ in range(600):
-        world.step(0.01)
+    world = world_from(scenario, lane_map)
+    run(world, 6.0)
     # Six seconds at 1 m/s from the far kerb: in the middle of the road.
     assert world.pedestrians.position[0] == pytest.approx((50.0, 0.0), abs=0.05)
     front = world.npcs.s[0] + world.npcs.dims[0, 0] / 2.0

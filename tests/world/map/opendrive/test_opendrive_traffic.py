@@ -3,10 +3,10 @@
 from pathlib import Path
 
 import pytest
+from tests.world.traffic.scenes import run, world_from
 
 from egosim.world import World
 from egosim.world.map.opendrive import build_opendrive_map
-from egosim.world.scenario import parse_scenario
 from egosim.world.signals import GREEN, RED
 
 JUNCTION_XODR = Path(__file__).parents[3] / "data" / "maps" / "junction.xodr"
@@ -21,12 +21,7 @@ def world_with_npc() -> World:
         "ego": {"start": {"lane": "1_0_-1", "s": 90.0}},
         "npcs": [{"start": {"lane": "4_0_1", "s": 20.0}, "speed_mps": 10.0, "route": ROUTE}],
     }
-    return World(lane_map, parse_scenario(scenario, "test scenario"))
-
-
-def run(world: World, seconds: float) -> None:
-    for _ in range(round(seconds / world.physics_step_s)):
-        world.step()
+    return world_from(scenario, lane_map)
 
 
 def test_npc_waits_on_red_then_turns_along_its_route():
