@@ -225,16 +225,17 @@ class LaneMap:
     def poses_at(self, lane_indices: npt.ArrayLike, s: npt.ArrayLike) -> FloatArray:
         """(N, 4) array of x, y, z, heading for lane indices and stations (clamped)."""
         lanes = np.asarray(lane_indices, dtype=np.int64).reshape(-1)
-        station = np.clip(
-            np.asarray(s, dtype=np.float64).reshape(-1), 0.0, self.lane_lengths[lanes]
+        # minimum(maximum()) rather than np.clip: the same values, a fraction of the
+        # overhead on the few elements a step asks for.
+        station = np.minimum(
+            np.maximum(np.asarray(s, dtype=np.float64).reshape(-1), 0.0), self.lane_lengths[lanes]
         )
-        first = self._first_point[lanes]
         j = np.searchsorted(self._point_key, self._lane_key_base[lanes] + station, side="right") - 1
-        j = np.clip(j, first, self._last_segment[lanes])
+        j = np.minimum(np.maximum(j, self._first_point[lanes]), self._last_segment[lanes])
         span = self._point_station[j + 1] - self._point_station[j]
         t = ((station - self._point_station[j]) / span)[:, None]
         xyz = self._points[j] + t * (self._points[j + 1] - self._points[j])
-        return np.column_stack((xyz, self._point_heading[j]))
+        return np.concatenate((xyz, self._point_heading[j, None]), axis=1)
 
     def lookahead(
         self, lane_id: str, s: float, distance: float, route: Sequence[str] = ()

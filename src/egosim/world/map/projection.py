@@ -141,27 +141,27 @@ class SegmentTable:
             return found, seg_best, t_best, cost_best
         rel = xy[point] - self.start[seg]
         delta = self.delta[seg]
-        t = np.clip(np.einsum("ij,ij->i", rel, delta) / self.length_sq[seg], 0.0, 1.0)
+        along = np.einsum("ij,ij->i", rel, delta) / self.length_sq[seg]
+        t = np.minimum(np.maximum(along, 0.0), 1.0)
         gap = rel - t[:, None] * delta
         cost = np.hypot(gap[:, 0], gap[:, 1])
         if hint is not None:
             error = np.abs(
                 np.remainder(self.heading[seg] - hint[point] + math.pi, math.tau) - math.pi
             )
-            cost += np.nan_to_num(HEADING_WEIGHT_M_PER_RAD * error) + np.where(
+            # fmax turns the NaN error of a point without a hint into no cost.
+            cost += np.fmax(HEADING_WEIGHT_M_PER_RAD * error, 0.0) + np.where(
                 error > math.pi / 2, WRONG_WAY_PENALTY_M, 0.0
             )
-        # The first pair reaching each point's minimum wins; pairs are grouped by point.
-        group_start = _group_starts(point)
-        points = point[group_start]
-        group_min = np.minimum.reduceat(cost, group_start)
-        sizes = np.diff(group_start, append=len(point))
-        is_min = np.flatnonzero(cost == np.repeat(group_min, sizes))
-        first = is_min[_group_starts(point[is_min])]
+        # Pairs are grouped by point; a stable sort by (point, cost) puts each point's
+        # cheapest pair first, the earliest of equals first.
+        order = np.lexsort((cost, point))
+        first = order[_group_starts(point[order])]
+        points = point[first]
         found[points] = True
         seg_best[points] = seg[first]
         t_best[points] = t[first]
-        cost_best[points] = group_min
+        cost_best[points] = cost[first]
         return found, seg_best, t_best, cost_best
 
     def _describe(self, xy: FloatArray, seg: IntArray, t: FloatArray) -> LaneProjections:
