@@ -53,7 +53,26 @@ class SyncSession:
     user_id: str = ""
     frame: int = 0
     time_step_ms: int = 0
-    pending: dict[int, list[tuple[str, Action]]] = field(default_factory=dict)
+    _pending: dict[int, list[tuple[str, Action]]] = field(default_factory=dict)
+    _pending_count: int = 0
+
+    def schedule(self, frame: int, service: str, action: Action) -> bool:
+        """Keep `action` for the tick producing `frame`; False when too many wait."""
+        if self._pending_count >= MAX_PENDING_ACTIONS:
+            return False
+        self._pending.setdefault(frame, []).append((service, action))
+        self._pending_count += 1
+        return True
+
+    def due(self, frame: int) -> list[tuple[str, Action]]:
+        """The (service, action) pairs kept for `frame`, in arrival order, now taken."""
+        actions = self._pending.pop(frame, [])
+        self._pending_count -= len(actions)
+        return actions
+
+    def drop_pending(self) -> None:
+        self._pending.clear()
+        self._pending_count = 0
 
 
 def _session(context: BridgeContext, service: str) -> SyncSession | None:
@@ -98,7 +117,7 @@ def serve_sync_mode_cmd(context: BridgeContext, request: Any) -> Any:
             log.error("/SyncModeCmd: time_step %d ms is not 1..%d", step_ms, MAX_TIME_STEP_MS)
     else:
         session.active = False
-        session.pending.clear()
+        session.drop_pending()
         log.info("sync mode stopped at frame %d", session.frame)
     return service_response(
         context,
@@ -155,7 +174,7 @@ def serve_wait_for_tick(context: BridgeContext, request: Any) -> Any:
 
 def _tick(context: BridgeContext, session: SyncSession) -> None:
     frame = session.frame + 1
-    for name, action in session.pending.pop(frame, []):
+    for name, action in session.due(frame):
         if not action(context):
             log.error("%s for frame %d failed", name, frame)
     context.step(session.time_step_ms / 1000.0)
@@ -172,10 +191,9 @@ def at_frame(context: BridgeContext, service: str, frame: int, action: Action) -
         return False
     if frame == session.frame + 1:
         return action(context)
-    if sum(len(actions) for actions in session.pending.values()) >= MAX_PENDING_ACTIONS:
+    if not session.schedule(frame, service, action):
         log.error("%s: %d requests already wait for their frames", service, MAX_PENDING_ACTIONS)
         return False
-    session.pending.setdefault(frame, []).append((service, action))
     return True
 
 
