@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, fields
 
@@ -178,6 +179,13 @@ class LaneMap:
             ([0.0], np.cumsum(self.lane_lengths + _LANE_KEY_GAP_M)[:-1])
         )
         self._point_key = np.repeat(self._lane_key_base, counts) + self._point_station
+
+    def with_crosswalks(self, crosswalks: Iterable[Crosswalk]) -> LaneMap:
+        """This map with `crosswalks` added; lanes and their indexes are shared, not rebuilt
+        (a loader that squares crosswalks to the lanes needs the lanes built first)."""
+        result = copy.copy(self)
+        result.crosswalks = {**self.crosswalks, **{c.id: c for c in crosswalks}}
+        return result
 
     def _check_references(self) -> None:
         for lane in self.lanes.values():

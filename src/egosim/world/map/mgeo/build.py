@@ -8,6 +8,7 @@ from collections.abc import Mapping
 from egosim.world.map.errors import MapGeometryError, MapRecordError
 from egosim.world.map.georef import GeoReference
 from egosim.world.map.lanes import Lane, LaneMap
+from egosim.world.map.mgeo.crosswalks import SINGLECROSSWALK_SET, read_crosswalks
 from egosim.world.map.mgeo.intersections import build_intersections
 from egosim.world.map.mgeo.lights import read_light_heads
 from egosim.world.map.mgeo.links import LinkEnds, read_lanes
@@ -29,6 +30,7 @@ MGEO_FILES = (
     TRAFFIC_LIGHT_SET,
     SYNCED_TRAFFIC_LIGHT_SET,
     INTERSECTION_CONTROLLER_SET,
+    SINGLECROSSWALK_SET,
 )
 """The files the loader reads; a folder's other files are reported as ignored."""
 REQUIRED_FILES = (GLOBAL_INFO, LINK_SET)
@@ -59,9 +61,11 @@ def build_mgeo_map(name: str, files: Mapping[str, object], notes: list[str]) -> 
     )
     lanes = _with_stop_lines(lanes, ends, nodes, {i: t.id for t in lights for i in t.lane_ids})
     try:
-        return LaneMap(name, lanes.values(), lights, intersections, (), (), georef)
+        lane_map = LaneMap(name, lanes.values(), lights, intersections, (), (), georef)
     except MapGeometryError as error:
         raise MapRecordError(LINK_SET, "lane graph", str(error)) from None
+    crossings = _records(files, SINGLECROSSWALK_SET)
+    return lane_map.with_crosswalks(read_crosswalks(crossings, lane_map, notes))
 
 
 def read_georeference(data: object) -> GeoReference:
