@@ -3,10 +3,12 @@
 Starts the simulator (town map, default scenario, 100 Hz physics: 10 ms ticks) as a
 subprocess, subscribes to every published row (so every builder runs, the LiDAR
 included) or to the `--topics` named, starts sync mode and times WaitForTick calls of
-`--ticks-per-call` ticks each. Real-time factor = simulated seconds / wall seconds.
+`--ticks-per-call` ticks each; with `--ctrl-cmd`, each call is preceded by a
+SyncModeCtrlCmd for its first frame, as a driving client's loop does. Real-time factor =
+simulated seconds / wall seconds.
 
 Usage: .venv/bin/python benchmarks/sync_mode.py [--ticks 2000] [--ticks-per-call 1 100]
-       [--topics /Ego_topic /Object_topic ...]
+       [--topics /Ego_topic /Object_topic ...] [--ctrl-cmd]
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ from loopback import free_port
 
 from egosim.bridge.network import default_network_settings
 from egosim.bridge.table import Direction
-from egosim.msgs import get_profile
+from egosim.msgs import Profile, ServiceType, get_profile
 from egosim.ros1 import Node
 
 TICK_MS = 10
@@ -54,12 +56,22 @@ class Counter:
             self.count += 1
 
 
+def control_request(profile: Profile, control: ServiceType, frame: int) -> bytes:
+    """A SyncModeCtrlCmd holding 20 km/h from `frame` on."""
+    command = profile.message("morai_msgs/CtrlCmd").new(longlCmdType=2, velocity=20.0)
+    request = profile.message("morai_msgs/SyncModeCtrlCmd").new(frame=frame, command=command)
+    return control.request.serialize(control.request.new(request=request))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--ticks", type=int, default=2000)
     parser.add_argument("--ticks-per-call", type=int, nargs="+", default=[1, 100])
     parser.add_argument(
         "--topics", nargs="*", help="subscribe to these rows only (default: every one)"
+    )
+    parser.add_argument(
+        "--ctrl-cmd", action="store_true", help="send a SyncModeCtrlCmd before each call"
     )
     args = parser.parse_args()
 
@@ -87,12 +99,16 @@ def main() -> None:
             )
             frame = reply.response.frame
             proxy = node.service_proxy("/SyncModeWaitForTick", tick, persistent=True)
+            control = profile.service("morai_msgs/MoraiSyncModeCtrlCmdSrv")
+            control_proxy = node.service_proxy("/SyncModeCtrlCmd", control, persistent=True)
             subscribed = "every published row" if args.topics is None else " ".join(counters)
             print(f"town + default scenario, {TICK_MS} ms ticks, subscribed: {subscribed}")
             for per_call in args.ticks_per_call:
                 calls = max(args.ticks // per_call, 1)
                 began = time.perf_counter()
                 for _ in range(calls):
+                    if args.ctrl_cmd:
+                        control_proxy.call(control_request(profile, control, frame + 1))
                     frame += per_call
                     request = tick.request.new(
                         request=profile.message("morai_msgs/WaitForTick").new(
