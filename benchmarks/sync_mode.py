@@ -19,6 +19,8 @@ import subprocess
 import sys
 import threading
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 from loopback import free_port
 
@@ -56,6 +58,31 @@ class Counter:
             self.count += 1
 
 
+@contextmanager
+def simulator_client(name: str) -> Iterator[tuple[Node, subprocess.Popen[str]]]:
+    """`egosim run --clock sync` as a subprocess, and a node `name` on its master."""
+    master_uri = f"http://127.0.0.1:{free_port()}/"
+    simulator = start_simulator(master_uri)
+    try:
+        with Node(name, master_uri=master_uri, rosout_logger=None) as node:
+            yield node, simulator
+    finally:
+        simulator.terminate()
+        simulator.wait(10)
+
+
+def start_sync_mode(node: Node, profile: Profile) -> int:
+    """Start sync mode as USER with TICK_MS ticks; the current frame."""
+    command = profile.service("morai_msgs/MoraiSyncModeCmdSrv")
+    start = command.request.new(
+        request=profile.message("morai_msgs/SyncModeCmd").new(
+            user_id=USER, start_sync_mode=True, time_step=TICK_MS
+        )
+    )
+    call = node.service_proxy("/SyncModeCmd", command).call(command.request.serialize(start))
+    return int(command.response.deserialize(call).response.frame)
+
+
 def control_request(profile: Profile, control: ServiceType, frame: int) -> bytes:
     """A SyncModeCtrlCmd holding 20 km/h from `frame` on."""
     command = profile.message("morai_msgs/CtrlCmd").new(longlCmdType=2, velocity=20.0)
@@ -76,57 +103,40 @@ def main() -> None:
     args = parser.parse_args()
 
     profile = get_profile("26.r1")
-    master_uri = f"http://127.0.0.1:{free_port()}/"
-    simulator = start_simulator(master_uri)
-    try:
-        with Node("sync_benchmark", master_uri=master_uri, rosout_logger=None) as node:
-            counters = {}
-            for row in default_network_settings().enabled_rows():
-                wanted = args.topics is None or row.name in args.topics
-                if row.direction is Direction.PUBLISH and wanted:
-                    counters[row.name] = Counter()
-                    node.subscribe(row.name, profile.message(row.type_name), counters[row.name])
-            time.sleep(1.0)  # let every subscription connect before the clock starts
-            command = profile.service("morai_msgs/MoraiSyncModeCmdSrv")
-            tick = profile.service("morai_msgs/MoraiWaitForTickSrv")
-            start = command.request.new(
-                request=profile.message("morai_msgs/SyncModeCmd").new(
-                    user_id=USER, start_sync_mode=True, time_step=TICK_MS
+    with simulator_client("sync_benchmark") as (node, _):
+        counters = {}
+        for row in default_network_settings().enabled_rows():
+            wanted = args.topics is None or row.name in args.topics
+            if row.direction is Direction.PUBLISH and wanted:
+                counters[row.name] = Counter()
+                node.subscribe(row.name, profile.message(row.type_name), counters[row.name])
+        time.sleep(1.0)  # let every subscription connect before the clock starts
+        tick = profile.service("morai_msgs/MoraiWaitForTickSrv")
+        frame = start_sync_mode(node, profile)
+        proxy = node.service_proxy("/SyncModeWaitForTick", tick, persistent=True)
+        control = profile.service("morai_msgs/MoraiSyncModeCtrlCmdSrv")
+        control_proxy = node.service_proxy("/SyncModeCtrlCmd", control, persistent=True)
+        subscribed = "every published row" if args.topics is None else " ".join(counters)
+        print(f"town + default scenario, {TICK_MS} ms ticks, subscribed: {subscribed}")
+        for per_call in args.ticks_per_call:
+            calls = max(args.ticks // per_call, 1)
+            began = time.perf_counter()
+            for _ in range(calls):
+                if args.ctrl_cmd:
+                    control_proxy.call(control_request(profile, control, frame + 1))
+                frame += per_call
+                request = tick.request.new(
+                    request=profile.message("morai_msgs/WaitForTick").new(user_id=USER, frame=frame)
                 )
+                tick.response.deserialize(proxy.call(tick.request.serialize(request)))
+            wall = time.perf_counter() - began
+            ticks = calls * per_call
+            print(
+                f"{per_call:4d} ticks per WaitForTick: {ticks / wall:7.0f} ticks/s, "
+                f"{ticks * TICK_MS / 1000 / wall:5.1f}x real time"
             )
-            reply = command.response.deserialize(
-                node.service_proxy("/SyncModeCmd", command).call(command.request.serialize(start))
-            )
-            frame = reply.response.frame
-            proxy = node.service_proxy("/SyncModeWaitForTick", tick, persistent=True)
-            control = profile.service("morai_msgs/MoraiSyncModeCtrlCmdSrv")
-            control_proxy = node.service_proxy("/SyncModeCtrlCmd", control, persistent=True)
-            subscribed = "every published row" if args.topics is None else " ".join(counters)
-            print(f"town + default scenario, {TICK_MS} ms ticks, subscribed: {subscribed}")
-            for per_call in args.ticks_per_call:
-                calls = max(args.ticks // per_call, 1)
-                began = time.perf_counter()
-                for _ in range(calls):
-                    if args.ctrl_cmd:
-                        control_proxy.call(control_request(profile, control, frame + 1))
-                    frame += per_call
-                    request = tick.request.new(
-                        request=profile.message("morai_msgs/WaitForTick").new(
-                            user_id=USER, frame=frame
-                        )
-                    )
-                    tick.response.deserialize(proxy.call(tick.request.serialize(request)))
-                wall = time.perf_counter() - began
-                ticks = calls * per_call
-                print(
-                    f"{per_call:4d} ticks per WaitForTick: {ticks / wall:7.0f} ticks/s, "
-                    f"{ticks * TICK_MS / 1000 / wall:5.1f}x real time"
-                )
-            received = ", ".join(f"{name} {c.count}" for name, c in sorted(counters.items()))
-            print(f"messages received: {received}")
-    finally:
-        simulator.terminate()
-        simulator.wait(10)
+        received = ", ".join(f"{name} {c.count}" for name, c in sorted(counters.items()))
+        print(f"messages received: {received}")
 
 
 if __name__ == "__main__":

@@ -15,11 +15,9 @@ import os
 import time
 from pathlib import Path
 
-from loopback import free_port
-from sync_mode import TICK_MS, USER, control_request, start_simulator
+from sync_mode import control_request, simulator_client, start_sync_mode
 
 from egosim.msgs import get_profile
-from egosim.ros1 import Node
 
 
 def cpu_seconds(pid: int) -> tuple[float, float]:
@@ -35,40 +33,26 @@ def main() -> None:
     args = parser.parse_args()
 
     profile = get_profile("26.r1")
-    master_uri = f"http://127.0.0.1:{free_port()}/"
-    simulator = start_simulator(master_uri)
-    try:
-        with Node("sync_call_benchmark", master_uri=master_uri, rosout_logger=None) as node:
-            command = profile.service("morai_msgs/MoraiSyncModeCmdSrv")
-            start = command.request.new(
-                request=profile.message("morai_msgs/SyncModeCmd").new(
-                    user_id=USER, start_sync_mode=True, time_step=TICK_MS
-                )
-            )
-            reply = command.response.deserialize(
-                node.service_proxy("/SyncModeCmd", command).call(command.request.serialize(start))
-            )
-            control = profile.service("morai_msgs/MoraiSyncModeCtrlCmdSrv")
-            proxy = node.service_proxy("/SyncModeCtrlCmd", control, persistent=True)
-            request = control_request(profile, control, reply.response.frame + 1)
+    with simulator_client("sync_call_benchmark") as (node, simulator):
+        frame = start_sync_mode(node, profile)
+        control = profile.service("morai_msgs/MoraiSyncModeCtrlCmdSrv")
+        proxy = node.service_proxy("/SyncModeCtrlCmd", control, persistent=True)
+        request = control_request(profile, control, frame + 1)
+        proxy.call(request)
+        user_before, kernel_before = cpu_seconds(simulator.pid)
+        client_before = time.process_time()
+        began = time.perf_counter()
+        for _ in range(args.calls):
             proxy.call(request)
-            user_before, kernel_before = cpu_seconds(simulator.pid)
-            client_before = time.process_time()
-            began = time.perf_counter()
-            for _ in range(args.calls):
-                proxy.call(request)
-            wall = time.perf_counter() - began
-            client = time.process_time() - client_before
-            user_after, kernel_after = cpu_seconds(simulator.pid)
-        per_call = 1e6 / args.calls
-        print(
-            f"{args.calls} calls: {wall * per_call:.0f} us per call; CPU per call: client "
-            f"{client * per_call:.0f} us, simulator {(user_after - user_before) * per_call:.0f}"
-            f" us user + {(kernel_after - kernel_before) * per_call:.0f} us kernel"
-        )
-    finally:
-        simulator.terminate()
-        simulator.wait(10)
+        wall = time.perf_counter() - began
+        client = time.process_time() - client_before
+        user_after, kernel_after = cpu_seconds(simulator.pid)
+    per_call = 1e6 / args.calls
+    print(
+        f"{args.calls} calls: {wall * per_call:.0f} us per call; CPU per call: client "
+        f"{client * per_call:.0f} us, simulator {(user_after - user_before) * per_call:.0f}"
+        f" us user + {(kernel_after - kernel_before) * per_call:.0f} us kernel"
+    )
 
 
 if __name__ == "__main__":
