@@ -219,12 +219,14 @@ def test_a_recorded_object_moves_in_the_map_frame_and_reads_back_as_recorded() -
         heading=math.pi / 2,  # facing north
         velocity=(10.0, 0.0, 0.0),  # m/s forward, in its own frame
         acceleration=(0.0, 1.0, 0.0),  # m/s^2 to its left
-        size=(4.5, 1.8, 1.5),
+        size=(1.8, 4.5, 1.5),  # width, length, height, as ObjectStatus lists them
     )
     shown = world_object(recorded, ObjectType.NPC_VEHICLE)
     assert shown.velocity == pytest.approx((0.0, 10.0, 0.0))
     assert shown.acceleration == pytest.approx((-1.0, 0.0, 0.0))
+    assert shown.size == (4.5, 1.8, 1.5)  # the world keeps the length first
     status = object_status(PROFILE, shown)
+    assert (status.size.x, status.size.y, status.size.z) == (1.8, 4.5, 1.5)
     assert (status.velocity.x, status.velocity.y) == pytest.approx((36.0, 0.0))
     assert (status.acceleration.x, status.acceleration.y) == pytest.approx((0.0, 1.0))
     assert status.heading == pytest.approx(90.0)

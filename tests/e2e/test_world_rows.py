@@ -8,6 +8,8 @@ import math
 import pytest
 
 from egosim.world.map import build_builtin_map
+from egosim.world.traffic.catalogue import OBSTACLE_MODELS, PEDESTRIAN_MODELS
+from egosim.world.vehicle.catalogue import VEHICLE_CATALOGUE
 from tests.e2e import scenarios
 
 pytestmark = pytest.mark.ros
@@ -43,6 +45,14 @@ def test_object_list_counts_everything_and_orders_closest_first(egosim, rospy_cl
     assert {o["type"] for o in objects["pedestrian_list"]} == {0}
     assert {o["type"] for o in objects["obstacle_list"]} == {2}
     assert len({o["unique_id"] for o in listed}) == len(listed)
+    # The document lists ObjectStatus.size as (width, length, height).
+    models = {**VEHICLE_CATALOGUE, **PEDESTRIAN_MODELS, **OBSTACLE_MODELS}
+    for listed_object in listed:
+        model = models[listed_object["name"]]
+        size = listed_object["size"]
+        assert (size["x"], size["y"], size["z"]) == pytest.approx(
+            (model.width, model.length, model.height)
+        )
 
 
 def test_driving_into_an_obstacle_reports_one_collision(egosim, rospy_client) -> None:

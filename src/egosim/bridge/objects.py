@@ -16,7 +16,7 @@ from ..msgs import Profile
 from ..world.traffic import ObjectState
 from .context import BridgeContext
 from .messages import vector3
-from .units import heading_deg, kmh
+from .units import heading_deg, kmh, swap_length_width
 
 
 def to_object_frame(vector: Sequence[float], heading: float) -> tuple[float, float, float]:
@@ -35,7 +35,7 @@ def object_status(profile: Profile, state: ObjectState) -> Any:
         heading=heading_deg(state.heading),
         velocity=vector3(profile, [kmh(v) for v in velocity]),
         acceleration=vector3(profile, to_object_frame(state.acceleration, state.heading)),
-        size=vector3(profile, state.size),
+        size=vector3(profile, swap_length_width(state.size)),
         position=vector3(profile, state.position),
     )
 

@@ -19,6 +19,7 @@ from ..world.recorded_scene import RecordedEgo, RecordedScene
 from ..world.traffic import ObjectState, ObjectTable, ObjectType
 from ..world.vehicle import Pose
 from .objects import to_object_frame
+from .units import swap_length_width
 
 
 def world_object(recorded: RecordedObject, kind: ObjectType) -> ObjectState:
@@ -32,7 +33,7 @@ def world_object(recorded: RecordedObject, kind: ObjectType) -> ObjectState:
         heading=recorded.heading,
         velocity=to_object_frame(recorded.velocity, -recorded.heading),
         acceleration=to_object_frame(recorded.acceleration, -recorded.heading),
-        size=recorded.size,
+        size=swap_length_width(recorded.size),
     )
 
 

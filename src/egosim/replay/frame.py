@@ -37,7 +37,7 @@ class ObjectState:
     heading: float  # rad, in (-pi, pi]
     velocity: Vector  # m/s (the protocol sends km/h)
     acceleration: Vector  # m/s^2
-    size: Vector  # m, as the protocol lists it
+    size: Vector  # m, as ObjectStatus lists it: width, length, height
 
 
 @dataclass(frozen=True)
