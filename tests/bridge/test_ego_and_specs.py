@@ -13,6 +13,7 @@ from egosim.bridge.units import heading_deg
 from egosim.msgs import get_profile
 from egosim.world import World
 from egosim.world.map import build_builtin_map
+from egosim.world.map.georef import GeoReference
 from egosim.world.vehicle import LongitudinalMode, Pose, vehicle_model
 
 PROFILE = get_profile("26.r1")
@@ -79,3 +80,14 @@ def test_map_spec_of_the_town_is_utm_52n() -> None:
     assert spec.false_northing == 0.0
     assert (spec.utm_offset.x, spec.utm_offset.y) == (georef.origin_east, georef.origin_north)
     assert spec.ellipse == "WGS84"
+
+
+def test_map_spec_of_a_map_in_a_transverse_mercator_grid_is_tm() -> None:
+    # Korea 2000 / Central Belt 2010: TM, latitude of origin 38, central meridian 127.
+    georef = GeoReference.from_projection("EPSG:5186", (200_000.0, 500_000.0, 0.0))
+    spec = map_spec(PROFILE, georef)
+    assert spec.plane_coordinate_system == 1
+    assert spec.central_latitude == pytest.approx(38.0)
+    assert spec.central_meridian == pytest.approx(127.0)
+    assert spec.scale_factor == pytest.approx(1.0)
+    assert (spec.false_easting, spec.false_northing) == pytest.approx((200_000.0, 600_000.0))

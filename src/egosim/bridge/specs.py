@@ -15,13 +15,18 @@ from .units import deg
 
 log = logging.getLogger(__name__)
 
-UTM_PLANE_COORDINATE_SYSTEM = 0  # MapSpec.plane_coordinate_system: 0 UTM, 1 TM
+# MapSpec.plane_coordinate_system.
+UTM_PLANE_COORDINATE_SYSTEM = 0
+TM_PLANE_COORDINATE_SYSTEM = 1
 
 
 def map_spec(profile: Profile, georef: GeoReference) -> Any:
-    """morai_msgs/MapSpec: the UTM projection and local origin of the loaded map."""
+    """morai_msgs/MapSpec: the projection and local origin of the loaded map; a map drawn
+    in a grid other than UTM (such as Korea's EPSG:5186) is a TM one."""
     return profile.message("morai_msgs/MapSpec").new(
-        plane_coordinate_system=UTM_PLANE_COORDINATE_SYSTEM,
+        plane_coordinate_system=UTM_PLANE_COORDINATE_SYSTEM
+        if georef.projection is None
+        else TM_PLANE_COORDINATE_SYSTEM,
         utm_num=georef.utm_zone,
         utm_offset=vector3(profile, (georef.origin_east, georef.origin_north, georef.origin_up)),
         ellipse=georef.ellipsoid,
