@@ -20,6 +20,7 @@ from egosim.bridge.context import (
 from egosim.bridge.control_modes import drive_autopilots
 from egosim.bridge.ghost import on_ghost_ctrl_cmd, on_npc_ghost
 from egosim.bridge.multi_ego import on_multi_ego_setting
+from egosim.bridge.specs import vehicle_model_of
 from egosim.msgs import get_profile
 from egosim.world import World
 from egosim.world.map import build_builtin_map
@@ -218,3 +219,11 @@ def test_a_bad_multi_ego_setting_changes_nothing(message) -> None:
     assert len(context.world.egos) == 1
     assert context.camera_index == 0
     assert context.settings_of(context.world.egos[0].unique_id).ctrl_mode == CTRL_MODE_EXTERNAL
+
+
+def test_a_ghost_npc_has_the_vehicle_spec_of_its_model() -> None:
+    context = _context()
+    on_npc_ghost(context, _npc_ghost_cmd({"unique_id": 500, "position": (20.0, -1.75, 0.0)}))
+    model = vehicle_model_of(context.world, 500)
+    assert model is not None and model.name == MODEL
+    assert vehicle_model_of(context.world, 501) is None

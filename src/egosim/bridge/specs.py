@@ -5,9 +5,12 @@ from __future__ import annotations
 import logging
 from typing import Any
 
+import numpy as np
+
 from ..msgs import Profile
 from ..world import World
 from ..world.map.georef import GeoReference
+from ..world.traffic import ObjectType
 from ..world.vehicle import VEHICLE_CATALOGUE, VehicleModel
 from .context import BridgeContext
 from .messages import vector3
@@ -71,11 +74,14 @@ def serve_vehicle_spec(context: BridgeContext, request: Any) -> Any:
 
 
 def vehicle_model_of(world: World, unique_id: int) -> VehicleModel | None:
-    """The catalogue model of the ego or NPC vehicle `unique_id`, None for anything else."""
+    """The catalogue model of the vehicle `unique_id` in the scene: an ego, or an NPC as
+    shown (simulated, ghost or replayed); None for anything else or a model the catalogue
+    does not hold."""
     for ego in world.egos:
         if ego.unique_id == unique_id:
             return ego.vehicle.model
-    for npc_id, name in zip(world.npcs.unique_ids, world.npcs.names, strict=True):
-        if npc_id == unique_id:
-            return VEHICLE_CATALOGUE.get(name)
-    return None
+    shown = world.objects()
+    npcs = np.flatnonzero(
+        (shown.unique_ids == unique_id) & (shown.object_types == ObjectType.NPC_VEHICLE)
+    )
+    return VEHICLE_CATALOGUE.get(shown.names[int(npcs[0])]) if len(npcs) else None
