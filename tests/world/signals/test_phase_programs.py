@@ -8,6 +8,9 @@ from egosim.world.signals import (
     GREEN_LEFT,
     OFF,
     RED,
+    TYPE_RYG,
+    TYPE_RYG_LEFT,
+    TYPE_RYG_LEFT_GREEN,
     YELLOW,
     IntersectionProgram,
     PhaseTiming,
@@ -15,6 +18,7 @@ from egosim.world.signals import (
     UnknownPhaseError,
     can_show,
 )
+from egosim.world.signals.phases import build_program
 
 TOWN = build_builtin_map("town")
 TIMING = PhaseTiming(green_s=7.0, left_s=4.0, yellow_s=2.0, all_red_s=1.0, flash_s=0.5)
@@ -51,6 +55,43 @@ def test_protected_left_program_of_a_downtown_junction() -> None:
         (7.0, (RED, go, RED, go)),
         (2.0, (RED, YELLOW, RED, YELLOW)),
         (1.0, (RED,) * 4),
+    ]
+
+
+def test_an_approach_alone_goes_through_and_left_together_on_a_standard_junction() -> None:
+    # Junction 2 (not downtown): each approach with a left arrow is served alone.
+    controller = _signals().controller(2)
+    types = [TOWN.traffic_lights[i].light_type for i in controller.light_ids]
+    go_phases = [p for p in controller.program if p.name.endswith(" go")]
+    assert len(go_phases) == len(controller.light_ids)
+    for phase in go_phases:
+        lit = [(t, a) for t, a in zip(types, phase.aspects, strict=True) if a != RED]
+        assert lit in ([(TYPE_RYG_LEFT_GREEN, GREEN | GREEN_LEFT)], [(TYPE_RYG, GREEN)])
+
+
+def test_a_left_arrow_head_shows_only_its_arrow_and_waits_out_the_through_phase() -> None:
+    # One group: a left-turn head (R/Y/left arrow), a plain head, a four-lamp head.
+    types = {"L": TYPE_RYG_LEFT, "P": TYPE_RYG, "F": TYPE_RYG_LEFT_GREEN}
+    program = build_program(["L", "P", "F"], types, [("L", "P", "F")], TIMING)
+    assert [(p.duration_s, p.aspects) for p in program] == [
+        (4.0, (GREEN_LEFT, RED, RED | GREEN_LEFT)),
+        (2.0, (YELLOW, RED, YELLOW)),
+        (1.0, (RED,) * 3),
+        (7.0, (RED, GREEN, GREEN)),
+        (2.0, (RED, YELLOW, YELLOW)),
+        (1.0, (RED,) * 3),
+    ]
+    for phase in program:
+        for light_id, aspect in zip("LPF", phase.aspects, strict=True):
+            assert can_show(types[light_id], aspect)
+
+
+def test_a_left_arrow_head_alone_in_its_group_gets_the_left_phase_time() -> None:
+    program = build_program(["L"], {"L": TYPE_RYG_LEFT}, [("L",)], TIMING)
+    assert [(p.duration_s, p.aspects) for p in program] == [
+        (4.0, (GREEN_LEFT,)),
+        (2.0, (YELLOW,)),
+        (1.0, (RED,)),
     ]
 
 

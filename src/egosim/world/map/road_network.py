@@ -58,11 +58,13 @@ LIGHT_RYG = 0
 LIGHT_RYG_LEFT = 1
 LIGHT_RYG_LEFT_GREEN = 2
 LIGHT_FLASHING_YELLOW = 100
+LEFT_ARROW_LIGHTS = frozenset({LIGHT_RYG_LEFT, LIGHT_RYG_LEFT_GREEN})
 
 
 def standard_light_type(junction_id: int, arm: str, can_turn_left: bool) -> int:
-    """A left-arrow head where the approach may turn left, a plain R/Y/G head elsewhere."""
-    return LIGHT_RYG_LEFT if can_turn_left else LIGHT_RYG
+    """A four-lamp head (R/Y/left arrow/G) where the approach may turn left, a plain R/Y/G
+    head elsewhere."""
+    return LIGHT_RYG_LEFT_GREEN if can_turn_left else LIGHT_RYG
 
 
 @dataclass(frozen=True)
@@ -71,6 +73,10 @@ class JunctionSpec:
     center: tuple[float, float]
     radius: float
     """Distance from the centre at which road lanes end and connectors begin, m."""
+    protected_lefts: bool = False
+    """Opposite approaches go together and their left turns get a phase of their own;
+    else an approach with a left arrow goes alone, its through and left movements
+    together."""
 
 
 @dataclass(frozen=True)
@@ -183,13 +189,16 @@ class RoadNetworkBuilder:
                     rule = light_type(junction.id, arm.label, can_turn_left)
                     junction_lights.append(self._add_light(junction, arm, rule))
                 crosswalks.append(self._crosswalk(junction, arm))
+            arrow_lights = {
+                light.id for light in junction_lights if light.light_type in LEFT_ARROW_LIGHTS
+            }
             lights.extend(junction_lights)
             intersections.append(
                 IntersectionSite(
                     id=junction.id,
                     center=junction.center,
                     light_ids=tuple(light.id for light in junction_lights),
-                    approach_groups=_approach_groups(junction.id, arms),
+                    approach_groups=_approach_groups(junction, arms, arrow_lights),
                 )
             )
         return LaneMap(
@@ -336,8 +345,12 @@ def _arm_angle(arm: _Arm) -> float:
     return _angle(arm.direction) % math.tau
 
 
-def _approach_groups(junction_id: int, arms: list[_Arm]) -> tuple[tuple[str, ...], ...]:
-    """Lights of opposite arms (within 30°) share a group; others stand alone."""
+def _approach_groups(
+    junction: JunctionSpec, arms: list[_Arm], arrow_lights: set[str]
+) -> tuple[tuple[str, ...], ...]:
+    """Lights of opposite arms (within 30°) share a group, others stand alone; without
+    protected lefts, a pair with a left arrow splits into its two lights, each served alone
+    (so neither's left turn meets the other's traffic)."""
     signalled = [arm for arm in arms if arm.incoming]
     groups: list[tuple[str, ...]] = []
     used: set[str] = set()
@@ -353,5 +366,9 @@ def _approach_groups(junction_id: int, arms: list[_Arm]) -> tuple[tuple[str, ...
         ]
         group = [arm, *partners[:1]]
         used.update(a.label for a in group)
-        groups.append(tuple(f"TL{junction_id}_{a.label}" for a in group))
+        lights = tuple(f"TL{junction.id}_{a.label}" for a in group)
+        if junction.protected_lefts or not arrow_lights.intersection(lights):
+            groups.append(lights)
+        else:
+            groups.extend((light,) for light in lights)
     return tuple(groups)

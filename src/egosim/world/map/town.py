@@ -18,7 +18,6 @@ from egosim.world.map.lanes import LaneMap, Sidewalk
 from egosim.world.map.polyline import arc, between, stations
 from egosim.world.map.road_network import (
     LIGHT_FLASHING_YELLOW,
-    LIGHT_RYG_LEFT_GREEN,
     JunctionSpec,
     RoadNetworkBuilder,
     RoadSpec,
@@ -36,7 +35,7 @@ RING_SPEED_MPS = 60.0 / 3.6
 JUNCTION_RADIUS_M = 14.0
 # Sidewalks run this far from the grid line: 7 m of carriageway plus a 3 m verge.
 SIDEWALK_INSET_M = 10.0
-# Downtown junctions get protected-left heads (R/Y/G-left/G); one ring junction flashes.
+# Downtown junctions give left turns a phase of their own; one ring junction flashes.
 CENTRAL_JUNCTIONS = frozenset({6, 7, 10, 11})
 FLASHING_JUNCTION = 17
 
@@ -50,8 +49,14 @@ def build_town() -> LaneMap:
     lines = GRID_LINES_M
     for row, y in enumerate(lines):
         for column, x in enumerate(lines):
+            number = grid_junction_id(row, column)
             builder.add_junction(
-                JunctionSpec(grid_junction_id(row, column), (x, y), JUNCTION_RADIUS_M)
+                JunctionSpec(
+                    number,
+                    (x, y),
+                    JUNCTION_RADIUS_M,
+                    protected_lefts=number in CENTRAL_JUNCTIONS,
+                )
             )
     ring_centres = _ring_junction_centres()
     for k, centre in enumerate(ring_centres):
@@ -100,8 +105,6 @@ def build_town() -> LaneMap:
 def _light_type(junction_id: int, arm: str, can_turn_left: bool) -> int:
     if junction_id == FLASHING_JUNCTION:
         return LIGHT_FLASHING_YELLOW
-    if can_turn_left and junction_id in CENTRAL_JUNCTIONS:
-        return LIGHT_RYG_LEFT_GREEN
     return standard_light_type(junction_id, arm, can_turn_left)
 
 

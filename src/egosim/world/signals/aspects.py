@@ -16,15 +16,15 @@ OFF = -1
 TYPE_RYG = 0
 """Red / yellow / green."""
 TYPE_RYG_LEFT = 1
-"""Red / yellow / green with left arrow: the arrow is lit together with the green."""
+"""Red / yellow / left arrow: a head over left-turn lanes, with no round green."""
 TYPE_RYG_LEFT_GREEN = 2
-"""Red / yellow / left arrow / green: the arrow has its own phase, shown with the red."""
+"""Red / yellow / left arrow / green."""
 TYPE_FLASHING_YELLOW = 100
 """Yellow / yellow / yellow: flashes yellow, stops nobody."""
 
 LAMPS_BY_TYPE: dict[int, int] = {
     TYPE_RYG: RED | YELLOW | GREEN,
-    TYPE_RYG_LEFT: RED | YELLOW | GREEN | GREEN_LEFT,
+    TYPE_RYG_LEFT: RED | YELLOW | GREEN_LEFT,
     TYPE_RYG_LEFT_GREEN: RED | YELLOW | GREEN | GREEN_LEFT,
     TYPE_FLASHING_YELLOW: YELLOW,
 }
@@ -36,6 +36,15 @@ LEFT_ARROW_TYPES = tuple(t for t, lamps in LAMPS_BY_TYPE.items() if lamps & GREE
 
 def has_left_arrow(light_type: int) -> bool:
     return light_type in LEFT_ARROW_TYPES
+
+
+def has_green(light_type: int) -> bool:
+    return bool(LAMPS_BY_TYPE.get(light_type, 0) & GREEN)
+
+
+def go_lamps(light_type: int) -> int:
+    """The aspect letting every movement under a head go: its green and left arrow."""
+    return LAMPS_BY_TYPE.get(light_type, 0) & (GREEN | GREEN_LEFT)
 
 
 def can_show(light_type: int, aspect: int) -> bool:

@@ -16,8 +16,9 @@ from egosim.world.signals.aspects import (
     OFF,
     RED,
     TYPE_FLASHING_YELLOW,
-    TYPE_RYG_LEFT,
     YELLOW,
+    go_lamps,
+    has_green,
     has_left_arrow,
 )
 
@@ -27,9 +28,10 @@ class PhaseTiming:
     """Durations of the steps of a phase program, s."""
 
     green_s: float = 25.0
-    """Through (and, for type 1 heads, left) movement of one approach."""
+    """Through movement (with the left turn, for a head alone in its group)."""
     left_s: float = 10.0
-    """Protected left-arrow phase of type 2 heads."""
+    """Protected left-arrow phase of a group of several heads; a left-arrow-only head
+    alone in its group."""
     yellow_s: float = 3.0
     all_red_s: float = 2.0
     flash_s: float = 0.5
@@ -60,12 +62,12 @@ def build_program(
     """The fixed-time program for one intersection.
 
     Each approach group in turn gets:
-    - no arrow heads: green, yellow, all-red;
-    - any type 1 head (arrow lit with the green): each of its lights alone gets
-      green (| left arrow), yellow, all-red, so its left turn is protected from the
-      opposite approach;
-    - type 2 heads: a protected left phase (red | left arrow on the arrow heads), yellow,
-      all-red, then green for the whole group (left turns wait), yellow, all-red.
+    - one head alone: its go lamps (green, and the left arrow if it has one: nothing
+      opposes its turn while it alone goes), yellow, all-red;
+    - several heads, none with a left arrow: green, yellow, all-red;
+    - several heads, some with a left arrow: a protected left phase (the arrow, with the
+      red on heads that have one), yellow, all-red, then green for the heads that have
+      one (left turns wait), yellow, all-red.
     Flashing heads (type 100) show yellow in every phase; an intersection of flashing
     heads only has two phases, lit and dark, of `flash_s` each.
     """
@@ -93,15 +95,16 @@ def build_program(
         heads = [i for i in group if i not in flashing]
         if not heads:
             continue
-        types = [light_types[i] for i in heads]
-        if TYPE_RYG_LEFT in types:
-            for head in heads:
-                arrow = GREEN_LEFT if has_left_arrow(light_types[head]) else 0
-                program += serve(head, {head: GREEN | arrow})
-        elif any(has_left_arrow(t) for t in types):
-            arrows = {i: RED | GREEN_LEFT for i in heads if has_left_arrow(light_types[i])}
-            program += serve(f"{'+'.join(arrows)} left", arrows)
-            program += serve("+".join(heads), dict.fromkeys(heads, GREEN))
+        arrows = [i for i in heads if has_left_arrow(light_types[i])]
+        greens = [i for i in heads if has_green(light_types[i])]
+        if len(heads) == 1:
+            head = heads[0]
+            program += serve(head, {head: go_lamps(light_types[head])})
+        elif arrows:
+            left = {i: GREEN_LEFT | (RED if has_green(light_types[i]) else 0) for i in arrows}
+            program += serve(f"{'+'.join(arrows)} left", left)
+            if greens:
+                program += serve("+".join(greens), dict.fromkeys(greens, GREEN))
         else:
             program += serve("+".join(heads), dict.fromkeys(heads, GREEN))
     return tuple(program)

@@ -6,8 +6,8 @@ An MGeo light lists its lamps in `sub_type`, e.g. ["red", "yellow", "left", "str
 | lamps                                   | trafficLightType                      |
 |-----------------------------------------|---------------------------------------|
 | red, yellow, green (straight)           | 0  R/Y/G                              |
-| red, yellow, left arrow (no round green) | 1  R/Y/G-left                         |
-| red, yellow, left arrow, green          | 2  R/Y/G-left/G (arrow in its own phase) |
+| red, yellow, left arrow (no round green) | 1  R/Y/left arrow                     |
+| red, yellow, left arrow, green          | 2  R/Y/left arrow/G                   |
 | yellow only                             | 100 Y/Y/Y (flashing yellow)          |
 
 Right-turn and U-turn arrows are not modelled; a head whose lamps match none of the rows

@@ -6,7 +6,7 @@ catalogue (StVO), which most tools write, is read:
 | type      | subtype   | head                       | trafficLightType |
 |-----------|-----------|----------------------------|------------------|
 | 1000001   | any       | red / yellow / green       | 0 R/Y/G          |
-| 1000011   | 10 (left) | red / yellow / left arrow  | 1 R/Y/G-left     |
+| 1000011   | 10 (left) | red / yellow / left arrow  | 1 R/Y/left arrow |
 | 1000011   | other     | arrow head (right, straight) | 0 R/Y/G        |
 | 1000002, 1000007 | any | pedestrian, bicycle heads | ignored (reported) |
 
