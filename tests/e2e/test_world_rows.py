@@ -78,6 +78,10 @@ def test_driving_into_an_obstacle_reports_one_collision(egosim, rospy_client) ->
     assert (hit["global_offset_x"], hit["global_offset_y"]) == pytest.approx((40.0, -1.75))
     later = client.messages("/CollisionData", since=since, count=5)
     assert all(not m["collision_object"] for m in later)
+    # The offsets keep recording the most recent collision.
+    for message in later:
+        offset = (message["global_offset_x"], message["global_offset_y"])
+        assert offset == pytest.approx((40.0, -1.75))
     assert client.next_message(EGO[0])["velocity"]["x"] < 1.0
 
 

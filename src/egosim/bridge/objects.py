@@ -59,15 +59,18 @@ def publish_collision(context: BridgeContext) -> Any:
     """/CollisionData: the main ego's collisions that began since the last message.
 
     An empty collision_object list means no new collision; global_offset_* is the
-    position of the most recent collided object.
+    position of the most recent collided object, in every message after it (zeros
+    before the first).
     """
-    ego_id = context.world.egos[0].unique_id
+    world = context.world
+    ego_id = world.egos[0].unique_id
     new = [
         c
-        for c in context.unreported("ego_collisions", context.world.ego_collision_log)
+        for c in context.unreported("ego_collisions", world.ego_collision_log)
         if c.ego_id == ego_id
     ]
-    offset = new[-1].other.position if new else (0.0, 0.0, 0.0)
+    latest = world.ego_collision(0)
+    offset = latest.other.position if latest is not None else (0.0, 0.0, 0.0)
     return context.profile.message("morai_msgs/CollisionData").new(
         header=context.header(),
         global_offset_x=offset[0],
