@@ -54,7 +54,11 @@ def test_vehicle_spec_for_ego_npc_and_unknown(egosim, rospy_client) -> None:
     assert ego["max_steering"] == pytest.approx(math.degrees(niro.max_steer_front))
     assert ego["size"]["x"] == pytest.approx(niro.length)
     other = spec(npc["unique_id"])
-    assert other["size"]["x"] == pytest.approx(npc["size"]["x"])
+    # VehicleSpec's size runs along the vehicle's axes (length first); ObjectStatus lists
+    # width, length, height.
+    assert (other["size"]["x"], other["size"]["y"]) == pytest.approx(
+        (npc["size"]["y"], npc["size"]["x"])
+    )
     assert other["wheel_base"] == pytest.approx(vehicle_model(npc["name"]).wheelbase, abs=1e-5)
     assert spec(999_999) == {
         "size": {"x": 0.0, "y": 0.0, "z": 0.0},
