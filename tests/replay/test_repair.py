@@ -73,6 +73,36 @@ def test_truncated_trailing_chunk_is_dropped(killed_bag: tuple[Path, Any], tmp_p
     assert len(ego_positions(cut)) == report.messages
 
 
+def chunk_positions(killed: Path, scratch: Path) -> list[int]:
+    reference = shutil.copy(killed, scratch / "reference.bag")
+    repair_bag(reference)
+    with Reader(reference) as reader:
+        return [info.pos for info in reader.chunk_infos]
+
+
+@pytest.mark.parametrize(
+    ("chunk", "damage"),
+    [
+        (0, lambda data, pos: data.find(b"op=", pos) + 3),  # the first chunk's op
+        (3, lambda data, pos: data.find(b"size=", pos) + 5),  # a middle chunk's size
+        (1, lambda data, pos: pos + 1),  # the length of a chunk's header
+    ],
+)
+def test_a_damaged_bag_is_refused_and_left_as_it_is(
+    killed_bag: tuple[Path, Any], tmp_path: Path, chunk: int, damage: Any
+) -> None:
+    original, _ = killed_bag
+    data = bytearray(Path(original).read_bytes())
+    data[damage(data, chunk_positions(original, tmp_path)[chunk])] ^= 0xFF
+    bag = tmp_path / "damaged.bag"
+    bag.write_bytes(data)
+    with pytest.raises(BagError, match="damaged"):
+        repair_bag(bag)
+    with pytest.raises(BagError, match="damaged"):
+        BagTimeline.open(bag)
+    assert bag.read_bytes() == data
+
+
 def test_quiet_bag_reaches_disk_by_periodic_flush(tmp_path: Path) -> None:
     """Five messages never fill a chunk; the periodic flush still puts them on disk."""
     bag = tmp_path / "quiet.bag"

@@ -6,11 +6,17 @@ index, and the header's `index_pos`, are written only on close. Everything
 needed to rebuild them is inside the chunks, which is what `rosbag reindex`
 relies on too. Record encoding is rosbags' own (its reader's and writer's
 record helpers); only the scan over an unindexed file is done here.
+
+A crash can only cut the file short: the last record runs past its end, or the index
+was being written. A record that is whole but unreadable, or any chunk after the one
+that failed, means the file is damaged instead; it is then refused and left as it is,
+since cutting it there would throw away everything after the damage.
 """
 
 from __future__ import annotations
 
 import logging
+import mmap
 import os
 from collections import defaultdict
 from dataclasses import dataclass, field
@@ -42,6 +48,8 @@ from .recordings import is_recording
 log = logging.getLogger(__name__)
 
 MAGIC = b"#ROSBAG V2.0\n"
+# How a chunk record's header names its op: a later one means the bag goes on past a failure.
+CHUNK_OP_FIELD = b"op=" + bytes([RecordType.CHUNK])
 
 
 @dataclass(frozen=True)
@@ -80,7 +88,10 @@ def repair_bag(path: str | os.PathLike[str]) -> RepairReport:
         if index_pos != 0:
             return RepairReport(path, repaired=False)
         size = bag.seek(0, os.SEEK_END)
-        chunks, connections = _scan_chunks(bag, header_end)
+        chunks, connections, stop = _scan_chunks(bag, header_end)
+        damage = _damage_at(bag, stop, size)
+        if damage is not None:
+            raise BagError(f"{path} is damaged at byte {stop} ({damage}); not repaired")
         kept, index_pos = _rewrite_tail(bag, header_end, chunks, connections)
         _write_bag_header(bag, header_end, index_pos, len(connections), len(chunks))
         bag.flush()
@@ -116,8 +127,11 @@ def _read_bag_header(bag: BinaryIO) -> tuple[int, int]:
     return index_pos, bag.tell() + padding
 
 
-def _scan_chunks(bag: BinaryIO, start: int) -> tuple[list[_ScannedChunk], dict[int, Connection]]:
-    """The complete chunks from `start` on, and the connections declared inside them."""
+def _scan_chunks(
+    bag: BinaryIO, start: int
+) -> tuple[list[_ScannedChunk], dict[int, Connection], int]:
+    """The complete chunks from `start` on, the connections declared inside them, and the
+    offset of the record the scan stopped at."""
     chunks: list[_ScannedChunk] = []
     connections: dict[int, Connection] = {}
     bag.seek(start)
@@ -138,8 +152,33 @@ def _scan_chunks(bag: BinaryIO, start: int) -> tuple[list[_ScannedChunk], dict[i
         chunks.append(chunk)
         chunk.index_end = _skip_index_records(bag, len(chunk.entries))
         if chunk.index_end is None:
+            pos = chunk.end
             break
-    return chunks, connections
+    return chunks, connections, pos
+
+
+def _damage_at(bag: BinaryIO, stop: int, size: int) -> str | None:
+    """Why the bytes from `stop` on are damage rather than a write a crash cut short;
+    None when they are only that (or nothing)."""
+    bag.seek(stop)
+    length = bag.read(4)
+    header_end = stop + 4 + int.from_bytes(length, "little")
+    if len(length) < 4 or header_end > size:
+        return None  # the record's header was being written: nothing can follow it
+    try:
+        bag.seek(stop)
+        op = Header.read(bag).get_uint8("op")
+    except (ReaderError, KeyError, ValueError, EOFError):
+        return "a whole record that cannot be read"
+    data_length = bag.read(4)
+    if len(data_length) < 4:
+        return None
+    if op == RecordType.CHUNK and bag.tell() + int.from_bytes(data_length, "little") <= size:
+        return "a whole chunk that cannot be read"
+    with mmap.mmap(bag.fileno(), 0, access=mmap.ACCESS_READ) as view:
+        if view.find(CHUNK_OP_FIELD, header_end) != -1:
+            return "chunks follow it"
+    return None
 
 
 def _scan_chunk_records(
