@@ -3,6 +3,7 @@ vanish, XML-RPC garbage. The node logs each once with the peer's address and kee
 
 from __future__ import annotations
 
+import errno
 import http.client
 import logging
 import os
@@ -17,6 +18,7 @@ import pytest
 
 from egosim.ros1 import Limits
 from egosim.ros1.connection_header import encode_header, read_header
+from egosim.ros1.tcpros_server import TcprosServer
 from tests.conftest import EVENT_TIMEOUT_S
 from tests.ros1.helpers import (
     PROFILE,
@@ -247,3 +249,139 @@ def test_no_threads_or_sockets_leak_after_bad_peers(embedded_master, make_node):
     wait_until(lambda: pub.num_subscribers == 0)
     wait_until(lambda: threading.active_count() <= baseline_threads)
     wait_until(lambda: _open_fds() <= baseline_fds)
+
+
+def test_registrations_naming_no_callable_api_are_refused_and_notices_keep_flowing(
+    embedded_master, make_node
+):
+    master = xmlrpc.client.ServerProxy(embedded_master.uri, allow_none=True)
+    for api in (None, "ftp://127.0.0.1/", 7):
+        with pytest.raises(xmlrpc.client.Fault, match="caller_api"):
+            master.registerPublisher("/evil", "/chatter", "std_msgs/String", api)
+    with pytest.raises(xmlrpc.client.Fault, match="caller_api"):
+        master.subscribeParam("/evil", "ftp://127.0.0.1/", "/cfg")
+    # The master still tells a subscriber about a real publisher.
+    listener = make_node("listener", master_uri=embedded_master.uri)
+    received: list[str] = []
+    listener.subscribe("/chatter", STRING, lambda d, h: received.append(string_text(d)))
+    talker = make_node("talker", master_uri=embedded_master.uri)
+    pub = talker.advertise("/chatter", STRING)
+    wait_until(lambda: pub.num_subscribers == 1)
+
+
+def test_a_parameter_xmlrpc_cannot_send_back_is_refused(embedded_master):
+    master = xmlrpc.client.ServerProxy(embedded_master.uri)
+    body = xmlrpc.client.dumps(("/x", "/cfg/big", 0), "setParam").replace(
+        "<int>0</int>", f"<i8>{2**40}</i8>"
+    )
+    connection = http.client.HTTPConnection(*_address(embedded_master.uri), timeout=5)
+    connection.request("POST", "/", body=body, headers={"Content-Type": "text/xml"})
+    code, message, _ = xmlrpc.client.loads(connection.getresponse().read())[0][0]
+    connection.close()
+    assert code == -1 and "32-bit" in message
+    assert master.setParam("/x", "/cfg/small", 2**31 - 1)[0] == 1
+    assert master.getParam("/x", "/")[0] == 1
+
+
+def test_a_malformed_publisher_update_changes_nothing(embedded_master, make_node):
+    listener = make_node("listener", master_uri=embedded_master.uri)
+    received: list[str] = []
+    listener.subscribe("/chatter", STRING, lambda d, h: received.append(string_text(d)))
+    talker = make_node("talker", master_uri=embedded_master.uri)
+    pub = talker.advertise("/chatter", STRING)
+    wait_until(lambda: pub.num_subscribers == 1)
+    reply = slave_call(listener, "publisherUpdate", "/chatter", talker.uri)  # not a list
+    assert reply[0] == -1
+    pub.publish(string_bytes("still here"))
+    wait_until(lambda: "still here" in received)
+
+
+class MalformedSlave:
+    """A slave API whose requestTopic answers with `replies`, one per call, then the last."""
+
+    def __init__(self, replies: list[object]) -> None:
+        self._replies = replies
+        self.calls = 0
+        self._rpc = SimpleXMLRPCServer(("127.0.0.1", 0), logRequests=False, allow_none=True)
+        self._rpc.register_function(self._request_topic, "requestTopic")
+        self.uri = f"http://127.0.0.1:{self._rpc.server_address[1]}/"
+        threading.Thread(target=self._rpc.serve_forever, daemon=True).start()
+
+    def _request_topic(self, caller: str, topic: str, protocols: list) -> object:
+        self.calls += 1
+        return self._replies[min(self.calls, len(self._replies)) - 1]
+
+    def close(self) -> None:
+        self._rpc.shutdown()
+        self._rpc.server_close()
+
+
+@pytest.mark.parametrize(
+    "reply",
+    [[1, "ok"], [1, "", ["TCPROS", "127.0.0.1", "abc"]], [1, "", ["TCPROS", None, 5]], "x"],
+)
+def test_a_malformed_request_topic_reply_is_retried(embedded_master, make_node, reply):
+    node = make_node("sub", master_uri=embedded_master.uri)
+    sub = node.subscribe("/chatter", STRING, lambda d, h: None)
+    slave = MalformedSlave([reply])
+    try:
+        sub.update_publishers([slave.uri])
+        wait_until(lambda: slave.calls >= 2)  # the connection thread lives on and retries
+    finally:
+        slave.close()
+
+
+def test_a_subscriber_that_sends_bytes_then_hangs_up_is_let_go(embedded_master, make_node):
+    node = make_node("sim", master_uri=embedded_master.uri)
+    pub = node.advertise("/quiet", STRING)
+    baseline_threads = threading.active_count()
+    for _ in range(10):
+        sock, _ = raw_subscribe(node, "/quiet", "*")
+        sock.sendall(b"x")  # a subscriber has nothing to say; this one does, then leaves
+        sock.close()
+    wait_until(lambda: pub.num_subscribers == 0)
+    wait_until(lambda: threading.active_count() <= baseline_threads)
+
+
+def _address(uri: str) -> tuple[str, int]:
+    host, port = uri.removeprefix("http://").rstrip("/").split(":")
+    return host, int(port)
+
+
+class _ListenerOutOfDescriptors:
+    """A listening socket whose first accepts fail as when the process has no fds left."""
+
+    def __init__(self, real: socket.socket, failures: int) -> None:
+        self._real = real
+        self.failures = failures
+
+    def accept(self) -> tuple[socket.socket, object]:
+        if self.failures:
+            self.failures -= 1
+            raise OSError(errno.EMFILE, "Too many open files")
+        return self._real.accept()
+
+    def __getattr__(self, name: str) -> object:
+        return getattr(self._real, name)
+
+
+def test_the_tcpros_listener_outlives_running_out_of_descriptors(monkeypatch, caplog):
+    create_server = socket.create_server
+    listeners: list[_ListenerOutOfDescriptors] = []
+
+    def failing_server(*args: object, **kwargs: object) -> _ListenerOutOfDescriptors:
+        listeners.append(_ListenerOutOfDescriptors(create_server(*args, **kwargs), 3))
+        return listeners[-1]
+
+    monkeypatch.setattr(socket, "create_server", failing_server)
+    served: list[dict[str, str]] = []
+    server = TcprosServer("127.0.0.1", lambda s, h, p: served.append(dict(h)) or False, Limits())
+    try:
+        with socket.create_connection(("127.0.0.1", server.port), timeout=5) as sock:
+            sock.sendall(encode_header({"callerid": "/x", "topic": "/t"}))
+            wait_until(lambda: served)
+        assert listeners[0].failures == 0
+        errors = [r for r in caplog.records if "accept failed" in r.getMessage()]
+        assert len(errors) == 1  # once per episode, not once per retry
+    finally:
+        server.close()

@@ -152,6 +152,9 @@ class Master:
 
     def _register_node(self, caller_id: str, caller_api: str) -> None:
         """A second node under a known name replaces the first, which is told to shut down."""
+        if not isinstance(caller_api, str) or not caller_api.startswith(("http://", "https://")):
+            # Every later notification goes to this API: refuse what cannot be called.
+            raise ValueError(f"caller_api must be an http:// XML-RPC URI, got {caller_api!r}")
         previous = self._reg.nodes.get(caller_id)
         if previous is not None and previous != caller_api:
             log.info(

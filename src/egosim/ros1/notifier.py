@@ -51,3 +51,5 @@ class Notifier:
                 rpc.call(api, method, self._caller_id, *args, timeout=self._timeout)
             except (Ros1Error, xmlrpc.client.Error) as exc:
                 log.info("%s to %s failed: %s", method, api, exc)
+            except Exception as exc:  # a bad API or value must not end the queue
+                log.warning("%s to %s failed: %s: %s", method, api, type(exc).__name__, exc)

@@ -7,6 +7,7 @@ Keys are global names; the master resolves callers' relative and private keys fi
 from __future__ import annotations
 
 import copy
+import xmlrpc.client
 from typing import Any
 
 from .names import SEP, canonicalize
@@ -16,11 +17,27 @@ def _parts(key: str) -> list[str]:
     return [part for part in canonicalize(key).split(SEP) if part]
 
 
+def _check_answerable(value: Any) -> None:
+    """TypeError if `value` could not be sent back over XML-RPC (whose ints are 32-bit), so
+    that one parameter cannot break getParam for everyone."""
+    if isinstance(value, bool):
+        return
+    if isinstance(value, int) and not xmlrpc.client.MININT <= value <= xmlrpc.client.MAXINT:
+        raise TypeError(f"{value} is outside XML-RPC's 32-bit int range")
+    if isinstance(value, dict):
+        for item in value.values():
+            _check_answerable(item)
+    elif isinstance(value, list | tuple):
+        for item in value:
+            _check_answerable(item)
+
+
 class ParameterTree:
     def __init__(self) -> None:
         self._root: dict[str, Any] = {}
 
     def set(self, key: str, value: Any) -> None:
+        _check_answerable(value)
         parts = _parts(key)
         if not parts:
             if not isinstance(value, dict):

@@ -118,8 +118,12 @@ class _Outbox:
         close_quietly(self.sock)
 
     def _peer_hung_up(self) -> bool:
+        # A subscriber sends nothing after its header: whatever it sends is read and
+        # dropped, so bytes waiting ahead of its hang-up cannot hide the hang-up.
         try:
-            return self.sock.recv(1, socket.MSG_PEEK | socket.MSG_DONTWAIT) == b""
+            while True:
+                if self.sock.recv(4096, socket.MSG_DONTWAIT) == b"":
+                    return True
         except BlockingIOError:
             return False
         except OSError:

@@ -71,6 +71,8 @@ class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
     daemon_threads = True
     block_on_close = False
     allow_reuse_address = True
+    # socketserver's default backlog of 5 resets connections when many nodes start at once.
+    request_queue_size = 128
 
     def __init__(self, address: tuple[str, int], name: str) -> None:
         self.peer = threading.local()

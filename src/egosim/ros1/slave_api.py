@@ -129,6 +129,9 @@ class SlaveApi:
         return [SUCCESS, "", 0]
 
     def publisher_update(self, caller_id: str, topic: str, publishers: list[str]) -> Reply:
+        if not isinstance(publishers, list) or not all(isinstance(p, str) for p in publishers):
+            # The update replaces the topic's publishers: a malformed one must change nothing.
+            return [ERROR, f"publishers must be a list of XML-RPC URIs, got {publishers!r}", 0]
         self._node.publishers_updated(topic, publishers)
         return [SUCCESS, "", 0]
 

@@ -105,7 +105,7 @@ class _Inbound:
             delay = min(delay * 2, _RETRY_MAX_S)
 
     def _request_topic(self) -> tuple[str, int]:
-        code, message, protocol = rpc.call(
+        reply = rpc.call(
             self.stats.publisher_uri,
             "requestTopic",
             self._sub.caller_id,
@@ -113,9 +113,17 @@ class _Inbound:
             [["TCPROS"]],
             timeout=self._sub.limits.connect_timeout,
         )
-        if code != 1 or not protocol or protocol[0] != "TCPROS":
-            raise ProtocolError(f"requestTopic refused: {message}")
-        return protocol[1], int(protocol[2])
+        try:
+            code, message, protocol = reply
+            if code != 1 or not protocol or protocol[0] != "TCPROS":
+                raise ProtocolError(f"requestTopic refused: {message}")
+            host, port = protocol[1], int(protocol[2])
+        except (TypeError, ValueError, IndexError) as exc:
+            # A malformed reply is a failed attempt like any other: retried, not fatal.
+            raise ProtocolError(f"malformed requestTopic reply {reply!r}") from exc
+        if not isinstance(host, str) or not 0 < port < 65536:
+            raise ProtocolError(f"requestTopic reply names no address: {reply!r}")
+        return host, port
 
     def _connect_and_read(self) -> None:
         limits = self._sub.limits

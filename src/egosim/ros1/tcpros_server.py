@@ -9,6 +9,7 @@ from __future__ import annotations
 import logging
 import socket
 import threading
+import time
 from collections.abc import Callable, Mapping
 
 from .connection_header import read_header
@@ -16,6 +17,9 @@ from .errors import ProtocolError
 from .tcpros import Limits, close_quietly
 
 log = logging.getLogger(__name__)
+
+#: Pause before accepting again after accept() failed (e.g. out of file descriptors), s.
+ACCEPT_RETRY_S = 0.1
 
 #: Serves one connection; returns True if it took the socket over (and will close it).
 Dispatch = Callable[[socket.socket, Mapping[str, str], str], bool]
@@ -37,11 +41,23 @@ class TcprosServer:
         return self._listener.getsockname()[1]
 
     def _accept(self) -> None:
+        failing = False
         while True:
             try:
                 sock, address = self._listener.accept()
-            except OSError:
-                return  # listener closed
+            except OSError as exc:
+                if self._closed:
+                    return
+                # Out of file descriptors, or a connection reset while queued: the
+                # listener is still good, so keep serving once the moment has passed.
+                if not failing:
+                    log.error("TCPROS listener: accept failed (%s); retrying", exc)
+                failing = True
+                time.sleep(ACCEPT_RETRY_S)
+                continue
+            if failing:
+                log.warning("TCPROS listener: accepting connections again")
+                failing = False
             peer = f"{address[0]}:{address[1]}"
             with self._lock:
                 if self._closed:
