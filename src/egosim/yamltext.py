@@ -13,6 +13,11 @@ import yaml
 
 FieldPath = tuple[str | int, ...]
 
+# Bounds on what a document may hold, aliases expanded: far beyond any scenario or
+# network settings file, far below what would stall the simulator.
+MAX_VALUES = 200_000
+MAX_DEPTH = 100
+
 
 def field_name(path: FieldPath) -> str:
     """`npcs[2].start.lane` for ("npcs", 2, "start", "lane")."""
@@ -75,24 +80,46 @@ def parse_yaml(
     if root is None:
         return YamlDocument(label, None, lines, error_type)
     constructor = yaml.SafeLoader("")
+    budget = [MAX_VALUES]
+    ancestors: set[int] = set()
 
     def convert(node: yaml.Node, path: FieldPath) -> Any:
-        lines[path] = node.start_mark.line + 1
-        if isinstance(node, yaml.MappingNode):
-            result: dict[Any, Any] = {}
-            for key_node, value_node in node.value:
-                key = constructor.construct_object(key_node, deep=True)
-                key_line = key_node.start_mark.line + 1
-                if key in result:
-                    raise error_type(label, key_line, field_name((*path, key)), "appears twice")
-                result[key] = convert(value_node, (*path, key))
-                lines[(*path, key)] = key_line
-            return result
+        line = node.start_mark.line + 1
+        lines[path] = line
+        # Aliases make a graph of a few lines expand without bound, or loop.
+        budget[0] -= 1
+        if budget[0] < 0:
+            raise error_type(label, line, field_name(path), f"more than {MAX_VALUES} values")
+        if id(node) in ancestors or len(ancestors) >= MAX_DEPTH:
+            raise error_type(label, line, field_name(path), "nested too deep (or in itself)")
+        if isinstance(node, yaml.MappingNode | yaml.SequenceNode):
+            ancestors.add(id(node))
+            try:
+                return convert_collection(node, path)
+            finally:
+                ancestors.discard(id(node))
+        return construct(node, path)
+
+    def convert_collection(node: yaml.Node, path: FieldPath) -> Any:
         if isinstance(node, yaml.SequenceNode):
             return [convert(item, (*path, k)) for k, item in enumerate(node.value)]
+        result: dict[Any, Any] = {}
+        for key_node, value_node in node.value:
+            key = construct(key_node, path)
+            key_line = key_node.start_mark.line + 1
+            if isinstance(key, list | dict):
+                raise error_type(label, key_line, field_name(path), "a key must be a plain value")
+            if key in result:
+                raise error_type(label, key_line, field_name((*path, key)), "appears twice")
+            result[key] = convert(value_node, (*path, key))
+            lines[(*path, key)] = key_line
+        return result
+
+    def construct(node: yaml.Node, path: FieldPath) -> Any:
         try:
             return constructor.construct_object(node, deep=True)
-        except yaml.YAMLError as error:
+        except (yaml.YAMLError, ValueError) as error:
+            # ValueError: e.g. an int of more digits than Python converts.
             line = node.start_mark.line + 1
             raise error_type(label, line, field_name(path), f"bad value: {error}") from None
 

@@ -135,3 +135,16 @@ def test_bag_being_recorded_is_not_touched(tmp_path: Path) -> None:
             repair_bag(tmp_path / "live.bag")
         with pytest.raises(BagError):
             BagTimeline.open(tmp_path / "live.bag")
+
+
+@pytest.mark.parametrize("offset", [0, 1, 2])
+def test_a_bag_header_whose_names_are_not_text_is_refused(
+    recorded_drive: Path, tmp_path: Path, offset: int
+) -> None:
+    data = bytearray(Path(recorded_drive).read_bytes())
+    # Past the magic line, the header length and the first field's length: its name.
+    data[len(b"#ROSBAG V2.0\n") + 8 + offset] ^= 0xFF
+    bag = tmp_path / "garbled.bag"
+    bag.write_bytes(data)
+    with pytest.raises(BagError):
+        BagTimeline.open(bag)

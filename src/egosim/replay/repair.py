@@ -122,7 +122,7 @@ def _read_bag_header(bag: BinaryIO) -> tuple[int, int]:
         header = Header.read(bag, RecordType.BAGHEADER)
         index_pos = header.get_uint64("index_pos")
         padding = read_uint32(bag)
-    except ReaderError as exc:
+    except (ReaderError, KeyError, ValueError) as exc:  # ValueError: names that are not UTF-8
         raise BagError(f"bag header unreadable: {exc}") from exc
     return index_pos, bag.tell() + padding
 

@@ -114,7 +114,7 @@ class BagTimeline:
                 connections = _replay_connections(reader.connections, topics)
                 release = _matching_release(connections, profile)
                 decoded = _decode(reader, connections, release)
-        except ReaderError as exc:
+        except (ReaderError, KeyError, ValueError) as exc:  # ValueError: text that is not UTF-8
             raise BagError(f"cannot read {path}: {exc}") from exc
         return cls._from_decoded(path, release.name, decoded, topics)
 

@@ -1,5 +1,6 @@
 """Scenario errors name the file, the line and the field; they are never tracebacks."""
 
+import itertools
 import textwrap
 
 import jsonschema
@@ -113,3 +114,30 @@ def test_unknown_model_and_map_mismatch_are_located() -> None:
 
 def test_schema_is_a_valid_json_schema() -> None:
     jsonschema.Draft202012Validator.check_schema(scenario_schema())
+
+
+def _alias_bomb(levels: int) -> str:
+    """A few hundred bytes whose aliases expand to 10**levels values."""
+    names = [f"l{k}" for k in range(levels + 1)]
+    text = f"network:\n  {names[0]}: &{names[0]} [x, x, x, x, x, x, x, x, x, x]\n"
+    for previous, name in itertools.pairwise(names):
+        text += f"  {name}: &{name} [{', '.join([f'*{previous}'] * 10)}]\n"
+    return "map: straight\n" + text
+
+
+@pytest.mark.parametrize(
+    ("text", "line", "message"),
+    [
+        (_alias_bomb(8), None, "more than 200000 values"),
+        ("map: straight\nnetwork: &loop\n  again: *loop\n", 2, "nested too deep (or in itself)"),
+        ("map: straight\nseed: " + "9" * 5000 + "\n", 2, "bad value: Exceeds the limit"),
+        ("map: straight\n? [a]\n: 1\n", 2, "a key must be a plain value"),
+    ],
+)
+def test_a_file_yaml_cannot_safely_build_is_an_error(
+    text: str, line: int | None, message: str
+) -> None:
+    error = _error(text)
+    assert error.label == LABEL
+    assert error.line is not None and (line is None or error.line == line)
+    assert message in str(error)
