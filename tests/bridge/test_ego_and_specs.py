@@ -6,7 +6,8 @@ import math
 
 import pytest
 
-from egosim.bridge.ego import control_command, ego_vehicle_status
+from egosim.bridge.context import BridgeContext
+from egosim.bridge.ego import control_command, ego_vehicle_status, on_ctrl_cmd
 from egosim.bridge.messages import header
 from egosim.bridge.specs import map_spec, vehicle_spec
 from egosim.bridge.units import heading_deg
@@ -91,3 +92,17 @@ def test_map_spec_of_a_map_in_a_transverse_mercator_grid_is_tm() -> None:
     assert spec.central_meridian == pytest.approx(127.0)
     assert spec.scale_factor == pytest.approx(1.0)
     assert (spec.false_easting, spec.false_northing) == pytest.approx((200_000.0, 600_000.0))
+
+
+def test_a_stream_of_rejected_commands_is_logged_once_and_the_valid_one_stays(caplog) -> None:
+    world = World(build_builtin_map("straight"))
+    context = BridgeContext(PROFILE, world, lambda: world.sim_time)
+    ctrl = PROFILE.message("morai_msgs/CtrlCmd")
+    on_ctrl_cmd(context, ctrl.new(longlCmdType=2, velocity=36.0))
+    for _ in range(50):
+        on_ctrl_cmd(context, ctrl.new(longlCmdType=2, velocity=math.nan))
+    rejections = [r for r in caplog.records if "rejected" in r.getMessage()]
+    assert len(rejections) == 1
+    for _ in range(40):  # within the 0.5 s command timeout
+        world.step(0.01)
+    assert world.ego_status().accel_pedal > 0.0  # still driving to the last valid 36 km/h

@@ -213,6 +213,8 @@ def test_save_sensor_data_names_files_after_the_sim_time(tmp_path: Path) -> None
         ("../", "x", "outside the data roots"),
         ("missing", "x", "not found"),
         (".", "../escape", "not a plain file name"),
+        ("d" * 5000, "x", "File name too long"),
+        ("a\x00b", "x", "invalid file name"),
     ],
 )
 def test_save_sensor_data_refuses_paths_outside_the_roots(

@@ -3,6 +3,7 @@ simulator-side state the protocol adds to the world (lamps, control modes, ...).
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Callable
 from contextlib import AbstractContextManager, nullcontext
 from dataclasses import dataclass, field
@@ -18,6 +19,8 @@ if TYPE_CHECKING:
     from ..world.traffic.autopilot import LaneAutopilot
     from .sensor_rig import SensorRig
     from .sync_mode import SyncSession
+
+log = logging.getLogger(__name__)
 
 MAP_FRAME = "map"
 
@@ -90,6 +93,13 @@ class BridgeContext:
 
     def header(self, frame_id: str = MAP_FRAME) -> Any:
         return header(self.profile, self.stamp(), frame_id)
+
+    def warn_once(self, key: str, text: str) -> None:
+        """Log `text` the first time `key` comes up, so a 50 Hz stream of the same bad
+        input does not flood the log."""
+        if key not in self.warned:
+            self.warned.add(key)
+            log.warning(text)
 
     def settings_of(self, unique_id: int) -> EgoSettings:
         return self.ego_settings.setdefault(unique_id, EgoSettings())

@@ -5,7 +5,6 @@ Frames and units of every EgoVehicleStatus field are listed in docs/protocol.md.
 
 from __future__ import annotations
 
-import logging
 from typing import Any
 
 from ..msgs import Profile
@@ -15,8 +14,6 @@ from .context import BridgeContext
 from .ground_vehicle import commanded_ego
 from .messages import vector3
 from .units import deg, heading_deg, mps
-
-log = logging.getLogger(__name__)
 
 WHEEL_SUFFIXES = (
     ("fl", "front_left"),
@@ -106,4 +103,7 @@ def drive_with_ctrl_cmd(context: BridgeContext, index: int, row_key: str, ctrl_c
         return
     verdict = ego.vehicle.command(control_command(ctrl_cmd))
     if not verdict.accepted:
-        log.warning("%s rejected (last valid command kept): %s", row_key, verdict.reason)
+        context.warn_once(
+            f"{row_key}: {verdict.reason}",
+            f"{row_key} rejected (last valid command kept): {verdict.reason}",
+        )

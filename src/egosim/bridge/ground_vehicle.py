@@ -8,7 +8,6 @@ Semantics and codes are listed in docs/protocol.md.
 
 from __future__ import annotations
 
-import logging
 from typing import Any
 
 from ..world import Ego
@@ -20,8 +19,6 @@ from ..world.vehicle import (
 )
 from .context import CTRL_MODE_EXTERNAL, BridgeContext
 
-log = logging.getLogger(__name__)
-
 # GVDirectCmd.steerType (the protocol document's "Table 1" is missing; these are egosim's).
 STEER_TYPE_SKID = 0  # throttle and skidSteering drive the two sides
 STEER_TYPE_WHEEL_ANGLES = 1  # steerAngle[] steers the wheels: no ground model has steered wheels
@@ -29,13 +26,6 @@ STEER_TYPE_WHEEL_ANGLES = 1  # steerAngle[] steers the wheels: no ground model h
 # GVStateCmd.latCtrlType, numbered like steerType.
 LAT_CTRL_ANGULAR_VELOCITY = 0  # targetAngularVelocity sets the yaw rate
 LAT_CTRL_STEER_ANGLES = 1  # targetSteerAngle[]: as STEER_TYPE_WHEEL_ANGLES, unsupported
-
-
-def warn_once(context: BridgeContext, key: str, text: str) -> None:
-    """Log `text` the first time `key` comes up, so a 50 Hz stream does not flood the log."""
-    if key not in context.warned:
-        context.warned.add(key)
-        log.warning(text)
 
 
 def commanded_main_ego(
@@ -54,8 +44,7 @@ def commanded_ego(
     if context.settings_of(ego.unique_id).ctrl_mode != CTRL_MODE_EXTERNAL:
         return None
     if not isinstance(ego.vehicle, kind):
-        warn_once(
-            context,
+        context.warn_once(
             f"{row_key}: kind",
             f"{row_key} ignored: the ego's model {ego.vehicle.model.name} does not take it "
             f"(ground vehicle models take webot_cmd, gv_direct_cmd, gv_state_cmd; "
@@ -73,8 +62,7 @@ def _drive(
         return
     verdict = ego.vehicle.command(command)
     if not verdict.accepted:
-        warn_once(
-            context,
+        context.warn_once(
             f"{row_key}: {verdict.reason}",
             f"{row_key} rejected (last valid command kept): {verdict.reason}",
         )
@@ -83,8 +71,7 @@ def _drive(
 def on_gv_direct_cmd(context: BridgeContext, message: Any) -> None:
     """/gv_direct_cmd: throttle, skid steering and brake of the two sides (steerType 0)."""
     if message.steerType != STEER_TYPE_SKID:
-        warn_once(
-            context,
+        context.warn_once(
             f"gv_direct_cmd: steerType {message.steerType}",
             f"gv_direct_cmd ignored: steerType {message.steerType} is not supported "
             f"(0 skid steering; 1 wheel steering angles needs steered wheels)",
@@ -104,8 +91,7 @@ def on_gv_direct_cmd(context: BridgeContext, message: Any) -> None:
 def on_gv_state_cmd(context: BridgeContext, message: Any) -> None:
     """/gv_state_cmd: target forward speed (m/s) and yaw rate (rad/s) (latCtrlType 0)."""
     if message.latCtrlType != LAT_CTRL_ANGULAR_VELOCITY:
-        warn_once(
-            context,
+        context.warn_once(
             f"gv_state_cmd: latCtrlType {message.latCtrlType}",
             f"gv_state_cmd ignored: latCtrlType {message.latCtrlType} is not supported "
             f"(0 angular velocity; 1 steering angles needs steered wheels)",

@@ -29,8 +29,9 @@ class SaveRequestError(Exception):
 def save_directory(file_dir: str, roots: tuple[Path, ...]) -> Path:
     try:
         directory = resolve_in_roots(file_dir or ".", roots)
-    except (PathOutsideRootsError, FileNotFoundError) as error:
-        raise SaveRequestError(str(error)) from error
+    except (PathOutsideRootsError, OSError, ValueError) as error:
+        # OSError: missing, or a name the system refuses (too long...); ValueError: NUL.
+        raise SaveRequestError(f"file_dir {file_dir[:200]!r}: {error}") from error
     if not directory.is_dir():
         raise SaveRequestError(f"{file_dir!r} is not a directory")
     return directory
@@ -40,7 +41,7 @@ def target_path(path: Path, roots: tuple[Path, ...]) -> Path:
     """`path` itself, refused when an existing link there points out of the roots."""
     try:
         return resolve_in_roots(str(path), roots, must_exist=False)
-    except PathOutsideRootsError as error:
+    except (PathOutsideRootsError, OSError, ValueError) as error:
         raise SaveRequestError(str(error)) from error
 
 
