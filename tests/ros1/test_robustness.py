@@ -385,3 +385,25 @@ def test_the_tcpros_listener_outlives_running_out_of_descriptors(monkeypatch, ca
         assert len(errors) == 1  # once per episode, not once per retry
     finally:
         server.close()
+
+
+def test_a_service_client_breaking_off_mid_request_is_logged(embedded_master, make_node, caplog):
+    caplog.set_level(logging.WARNING, logger="egosim.ros1")
+    node = make_node("srv", master_uri=embedded_master.uri)
+    srv = PROFILE.service("morai_msgs/MoraiEventCmdSrv")
+    node.advertise_service("/echo", srv, lambda request, header: request)
+    fields = {"callerid": "/cut", "service": "/echo", "md5sum": "*", "persistent": "1"}
+    with socket.create_connection(node.tcpros_address, timeout=EVENT_TIMEOUT_S) as sock:
+        sock.sendall(encode_header(fields))
+        read_header(sock, 1 << 16)
+        sock.sendall(struct.pack("<I", 100) + b"half")
+    wait_until(lambda: any("/cut" in r.getMessage() for r in caplog.records))
+    assert "after 4 of 100 bytes" in next(
+        r.getMessage() for r in caplog.records if "/cut" in r.getMessage()
+    )
+    with socket.create_connection(node.tcpros_address, timeout=EVENT_TIMEOUT_S) as sock:
+        peer = "{}:{}".format(*sock.getsockname())
+        sock.sendall(encode_header({"service": "/echo"}))  # no md5sum, no callerid
+        assert "error" in read_header(sock, 1 << 16)
+    wait_until(lambda: _warnings_naming(caplog, peer))
+    assert node.service_proxy("/echo", srv).call(b"small") == b"small"

@@ -32,6 +32,11 @@ class FrameTooLargeError(ProtocolError):
 class ConnectionClosedError(ProtocolError):
     """The peer closed the connection, possibly in the middle of a frame."""
 
+    def __init__(self, message: str, mid_frame: bool = False) -> None:
+        super().__init__(message)
+        self.mid_frame = mid_frame
+        """True when part of a frame had arrived: the peer broke off, it did not just leave."""
+
 
 class ConnectionRefusedByPeerError(Ros1Error):
     """A connection was refused with a reason: an ``error`` header, or a negotiation refusal."""

@@ -101,7 +101,9 @@ class ServiceServer:
         """Answer a client's connection header, then its requests until it hangs up."""
         wanted = header.get("md5sum")
         if wanted is None or "callerid" not in header:
-            write_header(sock, error_header("connection header lacks md5sum or callerid"))
+            reason = "connection header lacks md5sum or callerid"
+            log.warning("service %s refused %s: %s", self.service, peer, reason)
+            write_header(sock, error_header(reason))
             return
         try:
             served = self._choose_type(wanted, header)
@@ -126,7 +128,9 @@ class ServiceServer:
         while not self._closed:
             try:
                 request = bytes(recv_length_prefixed(sock, self.limits.max_frame_bytes, "request"))
-            except ConnectionClosedError:
+            except ConnectionClosedError as exc:
+                if exc.mid_frame:
+                    log.warning("service %s: %s from %s", self.service, exc, header["callerid"])
                 return
             self.requests += 1
             self.bytes_received += len(request) + 4

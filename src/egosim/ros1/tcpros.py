@@ -32,7 +32,9 @@ def recv_exact(sock: socket.socket, size: int) -> bytearray:
     while got < size:
         n = sock.recv_into(view[got:], size - got)
         if n == 0:
-            raise ConnectionClosedError(f"peer closed the connection after {got} of {size} bytes")
+            raise ConnectionClosedError(
+                f"peer closed the connection after {got} of {size} bytes", mid_frame=got > 0
+            )
         got += n
     return buf
 
@@ -42,7 +44,10 @@ def recv_length_prefixed(sock: socket.socket, max_bytes: int, what: str = "frame
     (size,) = _U32.unpack(recv_exact(sock, 4))
     if size > max_bytes:
         raise FrameTooLargeError(f"{what} length {size} exceeds the limit of {max_bytes} bytes")
-    return recv_exact(sock, size)
+    try:
+        return recv_exact(sock, size)
+    except ConnectionClosedError as exc:
+        raise ConnectionClosedError(f"{what}: {exc}", mid_frame=True) from None
 
 
 def encode_frame(data: bytes | memoryview) -> bytes:
