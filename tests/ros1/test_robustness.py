@@ -12,11 +12,12 @@ import struct
 import threading
 import xmlrpc.client
 from collections.abc import Callable
+from typing import Any
 from xmlrpc.server import SimpleXMLRPCServer
 
 import pytest
 
-from egosim.ros1 import Limits
+from egosim.ros1 import Limits, Node
 from egosim.ros1.connection_header import encode_header, read_header
 from egosim.ros1.tcpros_server import TcprosServer
 from tests.conftest import EVENT_TIMEOUT_S
@@ -261,12 +262,7 @@ def test_registrations_naming_no_callable_api_are_refused_and_notices_keep_flowi
     with pytest.raises(xmlrpc.client.Fault, match="caller_api"):
         master.subscribeParam("/evil", "ftp://127.0.0.1/", "/cfg")
     # The master still tells a subscriber about a real publisher.
-    listener = make_node("listener", master_uri=embedded_master.uri)
-    received: list[str] = []
-    listener.subscribe("/chatter", STRING, lambda d, h: received.append(string_text(d)))
-    talker = make_node("talker", master_uri=embedded_master.uri)
-    pub = talker.advertise("/chatter", STRING)
-    wait_until(lambda: pub.num_subscribers == 1)
+    _connected_chatter(embedded_master, make_node)
 
 
 def test_a_parameter_xmlrpc_cannot_send_back_is_refused(embedded_master):
@@ -284,12 +280,7 @@ def test_a_parameter_xmlrpc_cannot_send_back_is_refused(embedded_master):
 
 
 def test_a_malformed_publisher_update_changes_nothing(embedded_master, make_node):
-    listener = make_node("listener", master_uri=embedded_master.uri)
-    received: list[str] = []
-    listener.subscribe("/chatter", STRING, lambda d, h: received.append(string_text(d)))
-    talker = make_node("talker", master_uri=embedded_master.uri)
-    pub = talker.advertise("/chatter", STRING)
-    wait_until(lambda: pub.num_subscribers == 1)
+    listener, talker, pub, received = _connected_chatter(embedded_master, make_node)
     reply = slave_call(listener, "publisherUpdate", "/chatter", talker.uri)  # not a list
     assert reply[0] == -1
     pub.publish(string_bytes("still here"))
@@ -341,6 +332,17 @@ def test_a_subscriber_that_sends_bytes_then_hangs_up_is_let_go(embedded_master, 
         sock.close()
     wait_until(lambda: pub.num_subscribers == 0)
     wait_until(lambda: threading.active_count() <= baseline_threads)
+
+
+def _connected_chatter(embedded_master, make_node) -> tuple[Node, Node, Any, list[str]]:
+    """A listener and a talker of /chatter, connected: (listener, talker, publisher, received)."""
+    listener = make_node("listener", master_uri=embedded_master.uri)
+    received: list[str] = []
+    listener.subscribe("/chatter", STRING, lambda d, h: received.append(string_text(d)))
+    talker = make_node("talker", master_uri=embedded_master.uri)
+    pub = talker.advertise("/chatter", STRING)
+    wait_until(lambda: pub.num_subscribers == 1)
+    return listener, talker, pub, received
 
 
 def _address(uri: str) -> tuple[str, int]:
