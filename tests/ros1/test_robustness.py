@@ -409,3 +409,14 @@ def test_a_service_client_breaking_off_mid_request_is_logged(embedded_master, ma
         assert "error" in read_header(sock, 1 << 16)
     wait_until(lambda: _warnings_naming(caplog, peer))
     assert node.service_proxy("/echo", srv).call(b"small") == b"small"
+
+
+def test_an_xmlrpc_request_without_a_length_is_logged(embedded_master, caplog):
+    caplog.set_level(logging.WARNING, logger="egosim.ros1")
+    with socket.create_connection(_address(embedded_master.uri), timeout=EVENT_TIMEOUT_S) as sock:
+        sock.sendall(
+            b"POST / HTTP/1.0\r\nTransfer-Encoding: chunked\r\n\r\n5\r\nhello\r\n0\r\n\r\n"
+        )
+        assert b" 500 " in _drain(sock)
+    wait_until(lambda: any('" 500' in r.getMessage() for r in caplog.records))
+    assert xmlrpc.client.ServerProxy(embedded_master.uri).getPid("/x")[0] == 1

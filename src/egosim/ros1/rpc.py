@@ -64,6 +64,12 @@ class _RequestHandler(SimpleXMLRPCRequestHandler):
     def log_message(self, format: str, *args: Any) -> None:
         log.warning("XML-RPC peer %s: %s", self.address_string(), format % args)
 
+    def log_request(self, code: int | str = "-", size: int | str = "-") -> None:
+        # Answered requests stay quiet; a request the server failed on (a body cut short,
+        # one that never arrives) is logged.
+        if str(code).isdigit() and int(code) >= 500:
+            self.log_message('"%s" %s', self.requestline, code)
+
 
 class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
     """Serves one handler object's public methods on a daemon thread."""
