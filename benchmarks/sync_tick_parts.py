@@ -46,8 +46,9 @@ def world_parts(world: World) -> dict[str, tuple[object, str]]:
 
 def time_world_parts(ticks: int, warmup: int) -> None:
     world = build_world(RunOptions(clock=ClockMode.SYNC))
-    spent = dict.fromkeys(world_parts(world), 0.0)
-    for label, (owner, name) in world_parts(world).items():
+    parts = world_parts(world)
+    spent = dict.fromkeys(parts, 0.0)
+    for label, (owner, name) in parts.items():
         setattr(owner, name, timed(getattr(owner, name), label, spent))
     for _ in range(warmup):
         world.step(TICK_S)

@@ -105,10 +105,10 @@ def parse_yaml(
             return [convert(item, (*path, k)) for k, item in enumerate(node.value)]
         result: dict[Any, Any] = {}
         for key_node, value_node in node.value:
-            key = construct(key_node, path)
             key_line = key_node.start_mark.line + 1
-            if isinstance(key, list | dict):
+            if not isinstance(key_node, yaml.ScalarNode):
                 raise error_type(label, key_line, field_name(path), "a key must be a plain value")
+            key = construct(key_node, path)
             if key in result:
                 raise error_type(label, key_line, field_name((*path, key)), "appears twice")
             result[key] = convert(value_node, (*path, key))

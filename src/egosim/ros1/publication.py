@@ -32,6 +32,8 @@ Variants = Mapping[str, bytes] | Callable[[str], bytes]
 
 #: How often an idle writer checks whether its subscriber hung up (s).
 _IDLE_CHECK_S = 1.0
+#: Stray bytes from a subscriber read (and dropped) per idle check, 4 KiB each.
+_STRAY_READS_PER_CHECK = 16
 #: Messages up to this size are offered to an idle connection's socket by publish() itself,
 #: without blocking: handing them to the writer thread would dominate their latency.
 _DIRECT_SEND_MAX = 64 * 1024
@@ -119,15 +121,17 @@ class _Outbox:
 
     def _peer_hung_up(self) -> bool:
         # A subscriber sends nothing after its header: whatever it sends is read and
-        # dropped, so bytes waiting ahead of its hang-up cannot hide the hang-up.
+        # dropped, so bytes waiting ahead of its hang-up cannot hide the hang-up. A few
+        # reads per check: a peer that never stops sending must not hold the caller here.
         try:
-            while True:
+            for _ in range(_STRAY_READS_PER_CHECK):
                 if self.sock.recv(4096, socket.MSG_DONTWAIT) == b"":
                     return True
         except BlockingIOError:
             return False
         except OSError:
             return True
+        return False
 
     def _write(self) -> None:
         try:

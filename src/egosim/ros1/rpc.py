@@ -65,8 +65,8 @@ class _RequestHandler(SimpleXMLRPCRequestHandler):
         log.warning("XML-RPC peer %s: %s", self.address_string(), format % args)
 
     def log_request(self, code: int | str = "-", size: int | str = "-") -> None:
-        # Answered requests stay quiet; a request the server failed on (a body cut short,
-        # one that never arrives) is logged.
+        # Answered requests stay quiet; a request the server failed on (such as a chunked
+        # body, which it cannot read) is logged.
         if str(code).isdigit() and int(code) >= 500:
             self.log_message('"%s" %s', self.requestline, code)
 
