@@ -15,6 +15,9 @@ from egosim.world.map import LaneMap, build_builtin_map
 SYNTHETIC_GRID = 16
 SYNTHETIC_SPACING_M = 120.0
 POINTS = 1000
+# What the simulation loop projects each step with the default scenario: the ego's two
+# points and the pedestrians on crosswalks.
+STEP_POINTS = 5
 
 
 def points_on_roads(lane_map: LaneMap, count: int, rng: np.random.Generator) -> tuple:
@@ -39,6 +42,10 @@ def measure(label: str, lane_map: LaneMap) -> None:
         )
     )
     batch = min(timeit.repeat(lambda: lane_map.project_many(xy, headings), number=10, repeat=3))
+    few, few_headings = xy[:STEP_POINTS], headings[:STEP_POINTS]
+    step = min(
+        timeit.repeat(lambda: lane_map.project_many(few, few_headings), number=1000, repeat=3)
+    )
     xmin, ymin, xmax, ymax = lane_map.bounds()
     anywhere = rng.uniform((xmin, ymin), (xmax, ymax), size=(POINTS, 2))
     scattered = min(timeit.repeat(lambda: lane_map.project_many(anywhere), number=10, repeat=3))
@@ -51,6 +58,7 @@ def measure(label: str, lane_map: LaneMap) -> None:
     )
     print(f"{label:>10}: {len(lane_map.lanes):5d} lanes")
     print(f"{'':>12}project (on road, heading hint)   {single / POINTS * 1e6:8.1f} us/call")
+    print(f"{'':>12}project_many {STEP_POINTS} on-road points     {step / 1000 * 1e6:8.1f} us")
     print(f"{'':>12}project_many {POINTS} on-road points  {batch / 10 * 1e3:8.2f} ms")
     print(f"{'':>12}project_many {POINTS} points anywhere {scattered / 10 * 1e3:8.2f} ms")
     print(f"{'':>12}poses_at {POINTS}                    {poses / 10 * 1e3:8.2f} ms")

@@ -153,11 +153,15 @@ class SegmentTable:
             cost += np.fmax(HEADING_WEIGHT_M_PER_RAD * error, 0.0) + np.where(
                 error > math.pi / 2, WRONG_WAY_PENALTY_M, 0.0
             )
-        # Pairs are grouped by point; a stable sort by (point, cost) puts each point's
-        # cheapest pair first, the earliest of equals first.
-        order = np.lexsort((cost, point))
-        first = order[_group_starts(point[order])]
-        points = point[first]
+        # Pairs are grouped by point; the first pair reaching each point's minimum wins.
+        # Linear in the pairs: large batches (thousands of points) stay cheap too.
+        new_group = np.concatenate(([True], point[1:] != point[:-1]))
+        group_start = np.flatnonzero(new_group)
+        group = np.cumsum(new_group) - 1
+        is_min = cost == np.minimum.reduceat(cost, group_start)[group]
+        pair = np.arange(len(cost))
+        first = np.minimum.reduceat(np.where(is_min, pair, len(cost)), group_start)
+        points = point[group_start]
         found[points] = True
         seg_best[points] = seg[first]
         t_best[points] = t[first]
@@ -181,8 +185,3 @@ class SegmentTable:
             distance_right=width / 2.0 + lateral,
             width=width,
         )
-
-
-def _group_starts(sorted_keys: IntArray) -> IntArray:
-    """Index of the first element of each run of equal keys."""
-    return np.flatnonzero(np.concatenate(([True], sorted_keys[1:] != sorted_keys[:-1])))
