@@ -8,7 +8,7 @@ import sys
 from collections.abc import Sequence
 
 from .. import __version__
-from . import map, msgs, record, run, topics
+from . import map, msgs, record, report, run, topics
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -23,6 +23,7 @@ def build_parser() -> argparse.ArgumentParser:
     topics.add_parser(subparsers)
     record.add_parser(subparsers)
     map.add_parser(subparsers)
+    report.add_parser(subparsers)
     return parser
 
 

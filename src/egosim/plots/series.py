@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
+from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
@@ -36,11 +37,13 @@ class Series:
 
 @dataclass(frozen=True)
 class Panel:
-    """One plot of the stack: its series share a y axis in `unit`."""
+    """One plot of the stack: its series share a y axis in `unit`, spanning at least
+    `min_span` (so numerical noise around a constant is drawn flat, not magnified)."""
 
     title: str
     unit: str
     series: tuple[Series, ...]
+    min_span: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -77,6 +80,7 @@ def series_figure(
                     f"series {series.label!r}: {times.shape} times but {values.shape} values"
                 )
             axes.plot(times, values, linewidth=1.0, label=series.label)
+        _widen(axes, panel.min_span)
         axes.set_ylabel(f"{panel.title}\n({panel.unit})", fontsize=8)
         axes.tick_params(labelsize=7)
         axes.grid(True, linewidth=0.4, alpha=0.6)
@@ -106,6 +110,13 @@ def series_figure(
         figure.suptitle(title, fontsize=10)
     figure.tight_layout(rect=(0, 0.03 if kinds else 0, 1, 0.97 if marks else 1))
     return figure
+
+
+def _widen(axes: Axes, min_span: float) -> None:
+    low, high = axes.get_ylim()
+    if high - low < min_span:
+        middle = (low + high) / 2.0
+        axes.set_ylim(middle - min_span / 2.0, middle + min_span / 2.0)
 
 
 __all__ = ["Panel", "Series", "TimeMark", "series_figure"]

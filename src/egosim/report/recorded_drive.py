@@ -1,0 +1,166 @@
+"""A drive read back from a bag egosim recorded: the ego's series, its collisions and the
+light states it was shown, as numpy arrays in SI units on the bag's time axis."""
+
+from __future__ import annotations
+
+import logging
+import os
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+from rosbags.interfaces import Connection
+from rosbags.rosbag1 import Reader, ReaderError
+from rosbags.typesys.msg import denormalize_msgtype
+
+from egosim.msgs import PROFILES, MsgsError, Profile, get_profile
+from egosim.replay import DEFAULT_TOPICS, BagError, BagTimeline, MissingTopicsError, ReplayTopics
+
+FloatArray = npt.NDArray[np.float64]
+
+log = logging.getLogger(__name__)
+
+COLLISION_TYPE = "morai_msgs/CollisionData"
+LIGHT_STATUS_TYPE = "morai_msgs/GetTrafficLightStatus"
+
+
+@dataclass(frozen=True)
+class RecordedCollision:
+    """A collision the simulator reported (/CollisionData): when, where, with what."""
+
+    time_s: float
+    x: float
+    y: float
+    name: str
+    unique_id: int
+    object_type: int
+
+
+@dataclass(frozen=True)
+class LightState:
+    """A light's aspect (protocol bits) as /GetTrafficLightStatus showed it at `time_s`."""
+
+    time_s: float
+    light_id: str
+    aspect: int
+
+
+@dataclass(frozen=True, eq=False)
+class RecordedDrive:
+    """The ego's EgoVehicleStatus series (times in s from the bag's first message), in SI:
+    position m, heading rad (unwrapped), forward speed m/s, pedals 0..1, steering rad."""
+
+    path: Path
+    profile: str
+    times_s: FloatArray
+    x: FloatArray
+    y: FloatArray
+    heading: FloatArray
+    speed_mps: FloatArray
+    accel_pedal: FloatArray
+    brake_pedal: FloatArray
+    front_steer_rad: FloatArray
+    collisions: tuple[RecordedCollision, ...]
+    light_states: tuple[LightState, ...]
+
+    @property
+    def xy(self) -> FloatArray:
+        return np.column_stack((self.x, self.y))
+
+
+def read_drive(
+    path: str | os.PathLike[str], *, topics: ReplayTopics = DEFAULT_TOPICS
+) -> RecordedDrive:
+    """The drive recorded in the bag at `path` (by `egosim run --record` or `egosim record`).
+
+    The ego comes from `topics.ego`; collisions and light states from every connection
+    of type CollisionData / GetTrafficLightStatus, whatever its topic name. Raises
+    FileNotFoundError, BagError (unreadable, no ego messages, unknown release).
+    """
+    timeline = BagTimeline.open(path, topics=topics)
+    if timeline.ego is None:
+        raise MissingTopicsError(f"{path} has no {topics.ego} messages")
+    ego = timeline.ego
+    columns = ego.columns
+    collisions, lights = _read_events(timeline)
+    return RecordedDrive(
+        path=timeline.path,
+        profile=timeline.profile,
+        times_s=ego.times,
+        x=columns[:, 0],
+        y=columns[:, 1],
+        heading=columns[:, 9],
+        # EgoVehicleStatus.velocity is in the vehicle frame: x is the forward speed.
+        speed_mps=columns[:, 3],
+        accel_pedal=columns[:, 10],
+        brake_pedal=columns[:, 11],
+        front_steer_rad=columns[:, 12],
+        collisions=collisions,
+        light_states=lights,
+    )
+
+
+def _read_events(
+    timeline: BagTimeline,
+) -> tuple[tuple[RecordedCollision, ...], tuple[LightState, ...]]:
+    collisions: list[RecordedCollision] = []
+    lights: list[LightState] = []
+    try:
+        with Reader(timeline.path) as reader:
+            releases = _event_connections(reader.connections, timeline.profile)
+            wanted = [c for c in reader.connections if c.id in releases]
+            for connection, _, raw in reader.messages(connections=wanted):
+                type_name = denormalize_msgtype(connection.msgtype)
+                message = releases[connection.id].message(type_name).deserialize(raw)
+                stamp = message.header.stamp
+                t = (stamp.sec * 10**9 + stamp.nanosec - timeline.start_ns) / 1e9
+                if type_name == LIGHT_STATUS_TYPE:
+                    lights.append(
+                        LightState(t, message.trafficLightIndex, int(message.trafficLightStatus))
+                    )
+                    continue
+                collisions.extend(
+                    RecordedCollision(
+                        t, obj.position.x, obj.position.y, obj.name, obj.unique_id, obj.type
+                    )
+                    for obj in message.collision_object
+                )
+    except (ReaderError, KeyError, ValueError, MsgsError) as exc:
+        raise BagError(f"cannot read {timeline.path}: {exc}") from exc
+    return (
+        tuple(sorted(collisions, key=lambda c: c.time_s)),
+        tuple(sorted(lights, key=lambda s: s.time_s)),
+    )
+
+
+def _event_connections(connections: Iterable[Connection], preferred: str) -> dict[int, Profile]:
+    """The collision and light-status connections to read (by id), each with its release.
+
+    A topic served to clients of several releases was recorded once per release: only one
+    release of each topic is read (the ego's when it has it), so no event counts twice.
+    """
+    by_topic: dict[str, list[tuple[Connection, Profile]]] = {}
+    order = [preferred, *(name for name in PROFILES if name != preferred)]
+    for connection in connections:
+        type_name = denormalize_msgtype(connection.msgtype)
+        if type_name not in (COLLISION_TYPE, LIGHT_STATUS_TYPE):
+            continue
+        release = next(
+            (
+                get_profile(name)
+                for name in order
+                if get_profile(name).message(type_name).md5sum == connection.digest
+            ),
+            None,
+        )
+        if release is None:
+            log.warning("%s: %s has an unknown md5sum; not read", connection.topic, type_name)
+            continue
+        by_topic.setdefault(connection.topic, []).append((connection, release))
+    chosen: dict[int, Profile] = {}
+    for candidates in by_topic.values():
+        best = min(order.index(release.name) for _, release in candidates)
+        chosen.update((c.id, r) for c, r in candidates if order.index(r.name) == best)
+    return chosen
