@@ -8,6 +8,7 @@ from . import (
     ghost,
     ground_vehicle,
     lights,
+    markers,
     multi_ego,
     objects,
     replay_rows,
@@ -37,6 +38,7 @@ HANDLERS = Handlers(
         "sync_mode_info": sync_mode.publish_sync_mode_info,
         "sim_proc_status": replay_rows.publish_sim_proc_status,
         "replay_info": replay_rows.publish_replay_info,
+        "markers": markers.build_scene_markers,
     },
     subscribers={
         "ctrl_cmd": ego.on_ctrl_cmd,
@@ -71,4 +73,5 @@ HANDLERS = Handlers(
     release_adapters={
         ("sync_mode_wait_for_tick", "2021.08"): sync_mode.apply_tick_command,
     },
+    latched={"markers": markers.build_map_markers},
 )

@@ -16,7 +16,7 @@ from typing import Any
 
 from ..app.inbox import Inbox
 from ..msgs import MessageType, MsgsError, get_profile
-from ..ros1 import ConnectionRefusedByPeerError, Node, Publisher, Subscriber
+from ..ros1 import ConnectionRefusedByPeerError, Node, Publisher, Subscriber, Variants
 from ..ros1.types import TopicType
 from .network import NetworkSettings
 from .releases import (
@@ -50,6 +50,9 @@ class Handlers:
     # (service row key, release) -> what to do with a request field that only that
     # release has, before the row's handler answers (the request as the client sent it)
     release_adapters: dict[tuple[str, str], MessageHandler] = field(default_factory=dict)
+    # publisher row key -> the row's static part: built once, before the row's first
+    # message, and latched (every subscriber gets it first; later messages never replace it)
+    latched: dict[str, Builder] = field(default_factory=dict)
 
     def __contains__(self, key: str) -> bool:
         return key in self.publishers or key in self.subscribers or key in self.services
@@ -67,6 +70,7 @@ class Outlet:
     period: float | None
     next_due: float = 0.0
     seq: int = 0
+    static: Builder | None = None  # Handlers.latched's builder, until it has run
 
     def variant(self, message: Any, md5sum: str) -> bytes:
         """`message` serialized in the release a subscriber negotiated by `md5sum`."""
@@ -140,10 +144,22 @@ class Bridge:
     def publish(self, outlet: Outlet) -> None:
         if outlet.publisher.num_subscribers == 0 and not self.taps:
             return
+        if outlet.static is not None:
+            static, outlet.static = outlet.static(self.context), None
+            if static is not None:
+                (variant,) = self._variants(outlet, static)
+                outlet.publisher.latch_first(variant)
+                outlet.publisher.publish_many((variant,))
         built = outlet.build(self.context)
         if built is None:
             return
-        variants = []
+        # A row's messages of one step (e.g. every intersection's status) go out together.
+        outlet.publisher.publish_many(self._variants(outlet, built))
+
+    def _variants(self, outlet: Outlet, built: Any) -> list[Variants]:
+        """The built message(s), stamped with the row's header sequence, serialised lazily
+        per release, and tapped."""
+        variants: list[Variants] = []
         for message in built if isinstance(built, list | tuple) else (built,):
             header = getattr(message, "header", None)
             if header is not None:
@@ -158,8 +174,7 @@ class Bridge:
                 )
             )
             self._tap(outlet.row.name, outlet.message_type, data)
-        # A row's messages of one step (e.g. every intersection's status) go out together.
-        outlet.publisher.publish_many(variants)
+        return variants
 
     def _tap(self, topic: str, message_type: MessageType, data: bytes) -> None:
         for tap in self.taps:
@@ -167,11 +182,23 @@ class Bridge:
 
     def _advertise(self, row: Row, build: Builder) -> Outlet:
         releases = releases_of(row.type_name, self.default_release)
+        static = self.handlers.latched.get(row.key)
         publisher = self.node.advertise(
-            row.name, releases[0].message_type, negotiate=negotiator(row.name, releases)
+            row.name,
+            releases[0].message_type,
+            latch=static is not None,
+            negotiate=negotiator(row.name, releases),
         )
         period = 1.0 / row.rate_hz if row.rate_hz else None
-        outlet = Outlet(row, publisher, canonical(row.type_name), releases, build, period)
+        outlet = Outlet(
+            row,
+            publisher,
+            canonical(row.type_name),
+            releases,
+            build,
+            period,
+            static=static,
+        )
         self.outlets.append(outlet)
         return outlet
 

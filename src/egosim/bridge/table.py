@@ -138,6 +138,8 @@ ROWS: tuple[Row, ...] = (
     Row("imu", "IMU", "sensor_msgs/Imu", P, "/imu", 100),
     Row("lidar", "3D LiDAR", "sensor_msgs/PointCloud2", P, "/lidar3D", 10),
     Row("tf", "TF2Publisher", "tf2_msgs/TFMessage", P, "/tf", 50),
+    # The scene for RViz (an egosim row, not MORAI's): the map latched, then what moves
+    Row("markers", "EgosimMarkers", "visualization_msgs/MarkerArray", P, "/egosim/markers", 10),
     # Simulation time (--clock sim / sync); no rate: after every step
     Row("clock", "Clock", "rosgraph_msgs/Clock", P, "/clock"),
     Row("sync_mode_info", "SyncModeInfoPublisher", "morai_msgs/SyncModeInfo", P, "/SyncModeInfo"),

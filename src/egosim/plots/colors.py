@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import zlib
 
+from egosim.world.signals.aspects import shown_colour
+
 ROAD = "#d9d9d9"
 CENTRE_LINE = "#8c8c8c"
 JUNCTION_ROAD = "#e6e6e6"
@@ -15,12 +17,7 @@ LANE_LABEL = "#1f3f7f"
 LIGHT_LABEL = "#7f1f1f"
 PATH = "#1f77b4"
 
-# Traffic-light aspects in the protocol's bits (GetTrafficLightStatus): red wins, then
-# yellow, then the greens; off and unknown lights are grey.
-_RED, _YELLOW, _GREEN, _LEFT = 1, 4, 16, 32
-LIGHT_RED = "#d62728"
-LIGHT_YELLOW = "#ffbf00"
-LIGHT_GREEN = "#2ca02c"
+LIGHT_COLOURS = {"red": "#d62728", "yellow": "#ffbf00", "green": "#2ca02c"}
 LIGHT_UNKNOWN = "#7f7f7f"
 
 _KIND_COLORS = {
@@ -31,16 +28,9 @@ _PALETTE = ("#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f", "#
 
 
 def light_color(aspect: int | None) -> str:
-    """The colour of a light showing `aspect` (protocol bits; None: unknown)."""
-    if aspect is None or aspect < 0:
-        return LIGHT_UNKNOWN
-    if aspect & _RED and not aspect & (_GREEN | _LEFT):
-        return LIGHT_RED
-    if aspect & _YELLOW:
-        return LIGHT_YELLOW
-    if aspect & (_GREEN | _LEFT):
-        return LIGHT_GREEN
-    return LIGHT_UNKNOWN
+    """The colour of a light showing `aspect` (protocol bits; None: unknown; dark: grey)."""
+    shown = None if aspect is None else shown_colour(aspect)
+    return LIGHT_UNKNOWN if shown is None else LIGHT_COLOURS[shown]
 
 
 def kind_color(kind: str) -> str:

@@ -28,6 +28,7 @@ from matplotlib.text import Text
 from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
 
 from egosim.world.map import Lane, LaneMap
+from egosim.world.map.sections import lane_cross_section
 
 from . import colors
 
@@ -172,7 +173,11 @@ def draw_map(
             )
         )
     if stop_lines:
-        segments = [_stop_line(lane_map, lane) for lane in lanes if lane.stop_line_s is not None]
+        segments = [
+            lane_cross_section(lane_map, lane.id, lane.stop_line_s)[:, :2]
+            for lane in lanes
+            if lane.stop_line_s is not None
+        ]
         if segments:
             axes.add_collection(
                 LineCollection(segments, linewidths=1.0, colors=colors.STOP_LINE, zorder=4)
@@ -269,15 +274,6 @@ def _crosswalk_outline(
     along = (b - a) / max(float(np.hypot(*(b - a))), 1e-9)
     side = np.array((-along[1], along[0])) * width / 2.0
     return np.array((a + side, b + side, b - side, a - side))
-
-
-def _stop_line(lane_map: LaneMap, lane: Lane) -> npt.NDArray[np.float64]:
-    assert lane.stop_line_s is not None
-    x, y, _, heading = lane_map.pose_at(lane.id, lane.stop_line_s)
-    half = float(np.interp(lane.stop_line_s, lane.stations, lane.widths)) / 2.0
-    centre = np.array((x, y))
-    side = np.array((-math.sin(heading), math.cos(heading))) * half
-    return np.array((centre + side, centre - side))
 
 
 class _LabelPlacer:

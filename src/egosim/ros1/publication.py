@@ -193,6 +193,7 @@ class Publisher:
         # Replaced, never mutated, so publish() enqueues to a snapshot outside the lock.
         self._outboxes: tuple[_Outbox, ...] = ()
         self._latched: bytes | Variants | None = None
+        self._latch_fixed = False
         self._closed = False
         self._held = False
         self.messages_published = 0
@@ -229,6 +230,15 @@ class Publisher:
                 ]
             outbox.put(payloads)
 
+    def latch_first(self, message: bytes | Variants) -> None:
+        """Latch `message` for good: every connection accepted from now on gets it first and
+        later messages do not replace it (the static part of a topic whose other messages
+        stream, e.g. a map under moving markers). It is not sent here; publish it too."""
+        with self._lock:
+            self.latch = True
+            self._latched = message
+            self._latch_fixed = True
+
     def hold_output(self, held: bool) -> None:
         """While held, every connection packs what it is sent into full packets and sends
         the rest when released (see Node.holding_output)."""
@@ -244,7 +254,7 @@ class Publisher:
         with self._lock:
             if self._closed:
                 raise NodeShutdownError(f"publisher of {self.topic} is closed")
-            if self.latch and messages:
+            if self.latch and messages and not self._latch_fixed:
                 self._latched = messages[-1]
             self.messages_published += len(messages)
             return self._outboxes

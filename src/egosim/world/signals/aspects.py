@@ -58,3 +58,18 @@ def can_show(light_type: int, aspect: int) -> bool:
 def is_red_only(aspect: int) -> bool:
     """A plain red: nothing may enter on it, so crossing pedestrians may walk."""
     return aspect == RED
+
+
+def shown_colour(aspect: int) -> str | None:
+    """The colour a head showing `aspect` reads as from afar: "red" while red is lit and no
+    green lamp or arrow is (nothing may go), else "yellow" while yellow is lit, else
+    "green" while a green lamp or arrow is; None when it is dark."""
+    if aspect == OFF or aspect <= 0:
+        return None
+    if aspect & RED and not aspect & (GREEN | GREEN_LEFT):
+        return "red"
+    if aspect & YELLOW:
+        return "yellow"
+    if aspect & (GREEN | GREEN_LEFT):
+        return "green"
+    return None
