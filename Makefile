@@ -6,6 +6,7 @@ ARGS ?=
 # Debian's ROS 1 (Noetic): test peers only, never a runtime dependency.
 ROS_PEER_DEBS := python3-rospy python3-rosmaster python3-rostopic python3-rosservice \
 	python3-rosparam python3-rosnode python3-rosbag python3-genpy ros-core-dev \
+	python3-visualization-msgs \
 	g++ pkg-config
 SOURCES := $(wildcard src tests benchmarks examples)
 
@@ -33,7 +34,7 @@ run: $(VENV)/.installed
 	$(BIN)/egosim run $(ARGS)
 
 ros-peers:
-	@if /usr/bin/python3 -c "import rospy, rosmaster, rostopic, rosservice, rosbag, genpy" 2>/dev/null \
+	@if /usr/bin/python3 -c "import rospy, rosmaster, rostopic, rosservice, rosbag, genpy, visualization_msgs" 2>/dev/null \
 		&& [ -f /usr/include/ros/ros.h ]; then \
 		echo "ROS 1 test peers: present"; \
 	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \

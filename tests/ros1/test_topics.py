@@ -40,6 +40,22 @@ def test_latched_message_goes_to_late_subscribers(embedded_master, make_node):
     assert late_subscriber_gets(late, "/map") == ["latest"]
 
 
+def test_a_message_latched_first_stays_latched_under_a_stream(embedded_master, make_node):
+    node = make_node("pub", master_uri=embedded_master.uri)
+    pub = node.advertise("/scene", STRING)
+    pub.latch_first(string_bytes("map"))
+    pub.publish(string_bytes("map"))
+    for k in range(5):
+        pub.publish(string_bytes(f"objects {k}"))
+    sock, header = raw_subscribe(node, "/scene", STRING.md5sum, STRING.name)
+    with sock:
+        assert header["latching"] == "1"
+        assert string_text(read_frame(sock)) == "map"
+        wait_until(lambda: pub.num_subscribers == 1)
+        pub.publish(string_bytes("objects 5"))
+        assert string_text(read_frame(sock)) == "objects 5"
+
+
 def late_subscriber_gets(listener, topic: str) -> list[str]:
     """What a subscriber joining now receives first: the latched message, if any."""
     received: list[str] = []
