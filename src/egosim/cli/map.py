@@ -14,7 +14,7 @@ from ..world.map import DEFAULT_MAP_NAME, GeoReference, LaneMap
 EXIT_BAD_INPUT = 2
 
 
-def add_parser(subparsers: argparse._SubParsersAction) -> None:
+def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "map",
         help="describe a map and draw it to a PNG",

@@ -13,7 +13,7 @@ from ..world.map import BUILTIN_MAP_NAMES, build_builtin_map
 EXIT_BAD_INPUT = 2
 
 
-def add_parser(subparsers: argparse._SubParsersAction) -> None:
+def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "report",
         help="an HTML report (and PNGs) of a drive recorded in a bag",

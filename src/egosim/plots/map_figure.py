@@ -237,11 +237,14 @@ def map_figure(
     max_px: int = DEFAULT_MAX_PX,
     dpi: int = DEFAULT_DPI,
     title: str | None = None,
-    **layers: bool,
+    junction_lane_ids: bool = False,
+    light_aspects: Mapping[str, int] | None = None,
 ) -> tuple[Figure, DrawnLabels]:
-    """`map_axes` + `draw_map` in one call; `layers` are draw_map's switches."""
+    """`map_axes` + `draw_map` (every layer) in one call, titled with the map's name."""
     figure, axes = map_axes(view or map_view(lane_map), max_px=max_px, dpi=dpi)
-    drawn = draw_map(axes, lane_map, **layers)
+    drawn = draw_map(
+        axes, lane_map, junction_lane_ids=junction_lane_ids, light_aspects=light_aspects
+    )
     axes.set_title(title if title is not None else f"map {lane_map.name}", fontsize=9)
     return figure, drawn
 
@@ -322,7 +325,8 @@ def _renderer(axes: Axes) -> RendererBase:
     canvas = figure.canvas
     if not isinstance(canvas, FigureCanvasAgg):
         canvas = FigureCanvasAgg(figure)
-    return canvas.get_renderer()
+    renderer: RendererBase = canvas.get_renderer()  # type: ignore[no-untyped-call]
+    return renderer
 
 
 def _lane_label(lane_map: LaneMap, lane: Lane, fraction: float) -> tuple[float, float, float, str]:
