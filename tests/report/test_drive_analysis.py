@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 import pytest
 
+from egosim.cli import main
 from egosim.msgs import get_profile
 from egosim.replay import BagRecorder
 from egosim.report import best_fitting_map, lane_errors, read_drive, red_lights_run
@@ -165,3 +166,38 @@ def test_each_collision_counts_once_across_releases(town, red_drive) -> None:
 def test_the_map_a_drive_was_on_is_found(red_drive) -> None:
     maps = [build_builtin_map(name) for name in BUILTIN_MAP_NAMES]
     assert best_fitting_map(red_drive.xy, maps).name == "town"
+
+
+def test_report_command_errors_are_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    not_a_bag = tmp_path / "notes.bag"
+    not_a_bag.write_text("not a bag\n")
+    for bag, expected in (
+        (tmp_path / "missing.bag", "no bag at"),
+        (not_a_bag, "is not a ROS 1 v2.0 bag"),
+    ):
+        assert main(["report", str(bag), "-o", str(tmp_path / "r.html")]) == 2
+        (line,) = capsys.readouterr().err.splitlines()
+        assert line.startswith("egosim report: ") and expected in line
+    bag = write_drive(tmp_path / "drive.bag", light_aspect=1)
+    assert main(["report", str(bag), "-o", str(tmp_path / "none" / "r.html")]) == 2
+    assert capsys.readouterr().err.strip() == f"egosim report: no folder {tmp_path / 'none'}"
+    assert main(["report", str(bag), "-o", str(tmp_path / "r.html"), "--map", "nowhere"]) == 2
+    assert "nowhere: no such file or folder" in capsys.readouterr().err
+
+
+def test_report_command_on_a_named_map(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    bag = write_drive(tmp_path / "drive.bag", light_aspect=1)
+    page = tmp_path / "drive.html"
+    assert main(["report", str(bag), "-o", str(page), "--map", "town"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out == [
+        "map: town",
+        f"wrote {page}",
+        f"wrote {tmp_path / 'drive_trajectory.png'}",
+        f"wrote {tmp_path / 'drive_series.png'}",
+    ]
+    text = page.read_text()
+    assert "red lights run: 1" in text and "collisions: 1" in text
+    assert "<td>red_light</td>" in text and "<td>collision</td>" in text
