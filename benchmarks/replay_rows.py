@@ -100,7 +100,7 @@ def main() -> None:
         info = [0.0] * 200
         for k in range(len(info)):
             start = time.perf_counter()
-            publish_replay_info(context, context.row("replay_info"), context.row("replay_info"))
+            publish_replay_info(context, context.row("replay_info"))
             info[k] = time.perf_counter() - start
         print(f"ReplayInfo build (8 NPCs, 6 pedestrians, 4 obstacles): {median_us(info):.0f} us")
 

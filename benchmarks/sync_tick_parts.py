@@ -115,7 +115,10 @@ def main() -> None:
     ) as node:
         bridge = Bridge(node, settings, HANDLERS, Inbox())
         context = simulation_context(
-            world, settings=settings, clock_mode=ClockMode.SYNC, data_roots=(Path.cwd(),),
+            world,
+            settings=settings,
+            clock_mode=ClockMode.SYNC,
+            data_roots=(Path.cwd(),),
             bridge=bridge,
         )
         bridge.open(context)

@@ -118,7 +118,7 @@ def test_non_finite_targets_are_rejected_once_and_the_robot_keeps_its_command(ca
     with caplog.at_level(logging.WARNING):
         run(context, "webot_cmd", twist(math.nan, 0.0), seconds=0.3)
     assert context.world.ego_status().velocity[0] == pytest.approx(1.0, abs=1e-3)
-    assert sum("webot_cmd rejected" in r.getMessage() for r in caplog.records) == 1
+    assert sum("/commands/vel rejected" in r.getMessage() for r in caplog.records) == 1
 
 
 def test_ground_commands_wait_for_external_control_mode() -> None:

@@ -76,7 +76,6 @@ def status(context: BridgeContext) -> tuple[int, int, int]:
     message = publish_sim_proc_status(
         context,
         context.row("sim_proc_status"),
-        context.row("sim_proc_status"),
     )
     return message.command_result, message.current_mode, message.current_status
 
@@ -84,7 +83,6 @@ def status(context: BridgeContext) -> tuple[int, int, int]:
 def listed(context: BridgeContext) -> dict[str, dict[int, Any]]:
     message = publish_object_list(
         context,
-        context.row("object_status"),
         context.row("object_status"),
     )
     return {
@@ -100,13 +98,11 @@ def test_status_before_any_command_is_initial_simulation_running(
     latest = publish_sim_proc_status(
         context,
         context.row("sim_proc_status"),
-        context.row("sim_proc_status"),
     ).latest_command_time
     assert (latest.sec, latest.nanosec) == (0, 0)
     assert (
         publish_replay_info(
             context,
-            context.row("replay_info"),
             context.row("replay_info"),
         )
         is None
@@ -126,7 +122,7 @@ def test_the_ego_and_objects_follow_the_recording(context: BridgeContext, speed:
     assert status(context) == (0x01, 0x10, 0x01)
     run(context, 1.0)
     t = 1.0 * speed
-    ego = publish_ego_status(context, context.row("ego_status"), context.row("ego_status"))
+    ego = publish_ego_status(context, context.row("ego_status"))
     assert math.dist((ego.position.x, ego.position.y), ego_position(t)[:2]) < 1e-3
     assert math.radians(ego.heading) == pytest.approx(ego_heading(t), abs=1e-4)
     assert ego.velocity.x == pytest.approx(SPEED_MS)
@@ -146,9 +142,7 @@ def test_unselected_targets_keep_being_simulated_and_stop_restores_the_agents(
 ) -> None:
     run(context, 0.5)
     simulated = listed(context)
-    start = publish_ego_status(
-        context, context.row("ego_status"), context.row("ego_status")
-    ).position
+    start = publish_ego_status(context, context.row("ego_status")).position
     assert command(
         context,
         sim_process_status=PLAY,
@@ -157,7 +151,7 @@ def test_unselected_targets_keep_being_simulated_and_stop_restores_the_agents(
         replay_target_option=TARGET_NPC,
     )
     run(context, 1.0)
-    ego = publish_ego_status(context, context.row("ego_status"), context.row("ego_status")).position
+    ego = publish_ego_status(context, context.row("ego_status")).position
     assert (ego.x, ego.y) == pytest.approx((start.x, start.y), abs=0.05)  # undriven, in place
     lists = listed(context)
     assert lists["npc_list"].keys() == RECORDED_NPCS.keys()
@@ -169,7 +163,6 @@ def test_unselected_targets_keep_being_simulated_and_stop_restores_the_agents(
     assert (
         publish_replay_info(
             context,
-            context.row("replay_info"),
             context.row("replay_info"),
         )
         is None
@@ -190,7 +183,7 @@ def test_replay_info_reports_recorded_inputs_in_protocol_units(context: BridgeCo
         context, sim_process_status=PLAY, replay_option=LOAD, rosbag_file_name="drive.bag"
     )
     run(context, 2.0)
-    info = publish_replay_info(context, context.row("replay_info"), context.row("replay_info"))
+    info = publish_replay_info(context, context.row("replay_info"))
     assert info.ego_acc == pytest.approx(ego_pedal(2.0), abs=1e-4)
     assert info.ego_brake == 0.0
     assert info.ego_steer == pytest.approx(math.degrees(math.atan(2.7 / RADIUS_M)))
@@ -218,15 +211,10 @@ def test_pause_holds_the_recorded_scene(context: BridgeContext) -> None:
     )
     run(context, 1.0)
     assert command(context, sim_process_status=PAUSE)
-    held = publish_ego_status(
-        context, context.row("ego_status"), context.row("ego_status")
-    ).position
+    held = publish_ego_status(context, context.row("ego_status")).position
     run(context, 1.0)
     assert status(context) == (0x01, 0x10, 0x10)
-    assert (
-        publish_ego_status(context, context.row("ego_status"), context.row("ego_status")).position
-        == held
-    )
+    assert publish_ego_status(context, context.row("ego_status")).position == held
 
 
 @pytest.mark.parametrize("name", ["missing.bag", "../drive.bag", "/etc/hostname"])
@@ -239,7 +227,6 @@ def test_a_bag_that_cannot_load_fails_with_0x20_and_changes_nothing(
     assert status(context) == (0x20, 0x01, 0x01)
     assert publish_sim_proc_status(
         context,
-        context.row("sim_proc_status"),
         context.row("sim_proc_status"),
     ).latest_command_time.nanosec == pytest.approx(0.2e9, abs=1e3)
     assert listed(context).keys() == before.keys()

@@ -53,6 +53,11 @@ def published(key: str, context: BridgeContext) -> Any:
     return HANDLERS.publishers[key](context, context.row(key))
 
 
+def save_sensor_data(context: BridgeContext, request: Any) -> None:
+    """/SaveSensorData receives `request`."""
+    sensor_files.on_save_sensor_data(context, context.row("save_sensor_data"), request)
+
+
 def empty_world() -> World:
     return World(build_builtin_map("straight"))
 
@@ -100,7 +105,7 @@ def test_imu_at_rest_reads_gravity_up_and_no_rotation() -> None:
 def test_tf_places_base_link_at_the_ego_and_sensors_at_their_mounts() -> None:
     world = empty_world()
     context = context_for(world)
-    message = sensor_rows.publish_tf(context, context.row("tf"), context.row("tf"))
+    message = sensor_rows.publish_tf(context, context.row("tf"))
     frames = {(t.header.frame_id, t.child_frame_id): t.transform for t in message.transforms}
     assert set(frames) == {
         ("map", "base_link"),
@@ -133,13 +138,11 @@ def test_sensor_pos_control_moves_the_lidar_and_its_ground_ring() -> None:
         yaw=[math.pi / 2],
     )
     sensor_rows.on_sensor_pos_control(context, context.row("sensor_pos_control"), command)
-    transforms = sensor_rows.publish_tf(context, context.row("tf"), context.row("tf")).transforms
+    transforms = sensor_rows.publish_tf(context, context.row("tf")).transforms
     lidar = next(t.transform for t in transforms if t.child_frame_id == "lidar")
     assert (lidar.translation.x, lidar.translation.z) == pytest.approx((1.0, 1.0))
     assert (lidar.rotation.z, lidar.rotation.w) == pytest.approx((math.sqrt(0.5), math.sqrt(0.5)))
-    points = cloud_points(
-        sensor_rows.publish_lidar(context, context.row("lidar"), context.row("lidar"))
-    )
+    points = cloud_points(sensor_rows.publish_lidar(context, context.row("lidar")))
     # At 1 m height a -30 deg beam meets the ground 2 m away along the beam.
     assert np.linalg.norm(points[:, :3], axis=1) == pytest.approx(
         np.full(len(points), 2.0), abs=1e-4
@@ -201,9 +204,7 @@ def test_save_sensor_data_writes_the_cloud_and_the_readings(tmp_path: Path) -> N
     fields = dict(line.split(" ", 1) for line in header.decode().splitlines())
     count = int(fields["POINTS"])
     assert fields["FIELDS"] == "x y z intensity"
-    assert count == len(
-        cloud_points(sensor_rows.publish_lidar(context, context.row("lidar"), context.row("lidar")))
-    )
+    assert count == len(cloud_points(sensor_rows.publish_lidar(context, context.row("lidar"))))
     assert len(body) == 16 * count
     readings = json.loads((tmp_path / "out" / "frame1.json").read_text())
     assert readings["gps"]["status"] == 1
@@ -213,9 +214,7 @@ def test_save_sensor_data_writes_the_cloud_and_the_readings(tmp_path: Path) -> N
 def test_save_sensor_data_names_files_after_the_sim_time(tmp_path: Path) -> None:
     world = empty_world()
     world.step()
-    sensor_files.on_save_sensor_data(
-        context_for(world, roots=[tmp_path]), save_request(str(tmp_path))
-    )
+    save_sensor_data(context_for(world, roots=[tmp_path]), save_request(str(tmp_path)))
     assert sorted(p.name for p in tmp_path.iterdir()) == [
         "sensor_data_10000.json",
         "sensor_data_10000.pcd",
@@ -238,9 +237,7 @@ def test_save_sensor_data_refuses_paths_outside_the_roots(
 ) -> None:
     root = tmp_path / "root"
     root.mkdir()
-    sensor_files.on_save_sensor_data(
-        context_for(empty_world(), roots=[root]), save_request(file_dir, name)
-    )
+    save_sensor_data(context_for(empty_world(), roots=[root]), save_request(file_dir, name))
     assert list(root.iterdir()) == []
     assert not (tmp_path / "escape.pcd").exists()
     assert reason in caplog.text
@@ -251,8 +248,6 @@ def test_save_sensor_data_does_not_follow_a_link_out_of_the_roots(tmp_path: Path
     root.mkdir()
     outside.mkdir()
     (root / "frame.pcd").symlink_to(outside / "frame.pcd")
-    sensor_files.on_save_sensor_data(
-        context_for(empty_world(), roots=[root]), save_request(".", "frame")
-    )
+    save_sensor_data(context_for(empty_world(), roots=[root]), save_request(".", "frame"))
     assert list(outside.iterdir()) == []
     assert "outside the data roots" in caplog.text

@@ -26,9 +26,7 @@ def tick_to(context: BridgeContext, frame: int) -> None:
         request=context.profile.message("morai_msgs/WaitForTick").new(user_id="client", frame=frame)
     )
     row = context.row("sync_mode_wait_for_tick")
-    assert serve_wait_for_tick(
-        context, context.row("sync_mode_wait_for_tick"), row, request
-    ).response.tick_status
+    assert serve_wait_for_tick(context, row, request).response.tick_status
 
 
 def recorder(log: list[tuple[int, str]], frame: int, name: str):
