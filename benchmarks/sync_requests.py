@@ -11,7 +11,7 @@ from __future__ import annotations
 import argparse
 import time
 
-from egosim.bridge import ClockMode, simulation_context
+from egosim.bridge import simulation_context
 from egosim.bridge.context import BridgeContext
 from egosim.bridge.sync_mode import at_frame
 from egosim.world import World
@@ -25,9 +25,8 @@ def main() -> None:
     args = parser.parse_args()
 
     world = World(build_builtin_map("straight"))
-    context = simulation_context(world, clock_mode=ClockMode.SYNC)
-    assert context.sync is not None
-    context.sync.active, context.sync.user_id, context.sync.time_step_ms = True, "benchmark", 10
+    context = simulation_context(world)
+    context.sync.start("benchmark", time_step_ms=10)
     row = context.row("sync_mode_ctrl_cmd")
 
     def nothing(_: BridgeContext) -> bool:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from egosim.bridge import BridgeContext, ClockMode, simulation_context
+from egosim.bridge import BridgeContext, simulation_context
 from egosim.bridge.sync_mode import MAX_PENDING_ACTIONS, at_frame, serve_wait_for_tick
 from egosim.bridge.table import ROWS_BY_KEY
 from egosim.world import World
@@ -14,9 +14,8 @@ REQUESTS = ROWS_BY_KEY["sync_mode_ctrl_cmd"]
 
 def sync_context() -> BridgeContext:
     world = World(build_builtin_map("straight"))
-    context = simulation_context(world, clock_mode=ClockMode.SYNC)
-    assert context.sync is not None
-    context.sync.active, context.sync.user_id, context.sync.time_step_ms = True, "client", 10
+    context = simulation_context(world)
+    context.sync.start("client", time_step_ms=10)
     return context
 
 

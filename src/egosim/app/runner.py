@@ -127,12 +127,10 @@ def _run(options: RunOptions) -> int:
             options.rtf,
             stop,
             max_steps,
+            held=lambda: context.sync.holds_time,
         )
         try:
-            if options.clock is ClockMode.SYNC:
-                loop.serve()
-            else:
-                loop.run()
+            loop.run()
         finally:
             inbox.close()
             node.shutdown("egosim stopping")

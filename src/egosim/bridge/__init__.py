@@ -89,8 +89,8 @@ def simulation_context(
         settings=settings,
         sensors=SensorRig(settings.sensors, world.map.georef),
         replay=ReplaySession(data_roots, profile=CANONICAL_PROFILE, topics=replay_topics(settings)),
+        sync=SyncSession(awaiting_client=clock_mode is ClockMode.SYNC),
         data_roots=tuple(data_roots),
-        sync=SyncSession() if clock_mode is ClockMode.SYNC else None,
         rows=bridge,
         hold_output=hold_output,
     )

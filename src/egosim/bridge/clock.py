@@ -12,7 +12,7 @@ from ..world import World
 class ClockMode(Enum):
     REAL = "real"  # headers carry wall time; the world advances in real time
     SIM = "sim"  # /clock published, /use_sim_time set, run at --rtf (0: as fast as possible)
-    SYNC = "sync"  # the client steps the world through the SyncMode services
+    SYNC = "sync"  # as SIM, but starting in MORAI's synchronous mode: the client steps the world
 
 
 class HeaderClock:

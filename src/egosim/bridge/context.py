@@ -94,10 +94,10 @@ class BridgeContext:
     """The main ego's GPS, IMU and LiDAR, as the network settings configure them."""
     replay: ReplaySession
     """The rosbag replay system behind /Morai_SimProc; bags resolve in data_roots."""
+    sync: SyncSession
+    """Synchronous mode: whether a client owns time, the frame, requests kept for later."""
     data_roots: tuple[Path, ...] = ()
     """Where file names from the network (scenarios, bags, sensor data) resolve."""
-    sync: SyncSession | None = None
-    """Synchronous-mode state; None unless the run uses --clock sync."""
     rows: RowOpener | None = None
     """Opens rows at run time (the bridge); None in-process, without a ROS node."""
     hold_output: Callable[[], AbstractContextManager[None]] = nullcontext

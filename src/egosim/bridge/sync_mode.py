@@ -1,7 +1,12 @@
 """MORAI's synchronous mode (morai_msgs 26.r1): the client steps the world.
 
-Served with `--clock sync`; in the other clock modes every request is refused
-(result / tick_status false) because the loop already steps the world.
+Any run serves it: SyncModeCmd(start) switches the simulator into synchronous mode,
+where the world advances only on WaitForTick (the loop stops stepping it and rows
+publish only on ticks), and SyncModeCmd(stop) returns it to the clock mode it had
+(real time, or sim time at its --rtf); `--clock sync` starts a run in it, the world
+held until the first client starts. Header stamps keep the run's clock across the
+switch: simulation time with --clock sim/sync, wall time read at each tick with
+--clock real.
 
 Frames: SyncModeCmd(start) answers with the current frame F and the tick length
 (time_step ms; 0 asks for the simulator's physics step). Every tick advances the
@@ -43,11 +48,8 @@ MAX_TIME_STEP_MS = 1000
 
 
 def _session(context: BridgeContext, row: Row) -> SyncSession | None:
-    """The active session, or None (logged) when sync mode is off or not running."""
+    """The active session, or None (logged) when sync mode is not started."""
     session = context.sync
-    if session is None:
-        log.error("%s: synchronous mode needs `egosim run --clock sync`", row.name)
-        return None
     if not session.active:
         log.error("%s: synchronous mode is not started (call SyncModeCmd first)", row.name)
         return None
@@ -66,14 +68,12 @@ def serve_sync_mode_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
     """/SyncModeCmd: start (with a tick length) or stop synchronous mode."""
     command = request.request
     session = context.sync
-    ok = session is not None
-    if session is None:
-        log.error("%s: synchronous mode needs `egosim run --clock sync`", row.name)
-    elif command.start_sync_mode:
+    ok = True
+    if command.start_sync_mode:
         step_ms = int(command.time_step) or round(context.world.physics_step_s * 1000)
         ok = 0 < step_ms <= MAX_TIME_STEP_MS
         if ok:
-            session.active, session.user_id, session.time_step_ms = True, command.user_id, step_ms
+            session.start(command.user_id, step_ms)
             log.info(
                 "sync mode started by %r at frame %d, %d ms",
                 command.user_id,
@@ -83,17 +83,20 @@ def serve_sync_mode_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
         else:
             log.error("%s: time_step %d ms is not 1..%d", row.name, step_ms, MAX_TIME_STEP_MS)
     else:
-        session.active = False
-        session.drop_pending()
-        log.info("sync mode stopped at frame %d", session.frame)
+        session.stop()
+        log.info(
+            "sync mode stopped at frame %d; the %s clock runs",
+            session.frame,
+            context.clock.mode.value,
+        )
     return service_response(
         context,
         "MoraiSyncModeCmdSrv",
         context.profile.message("morai_msgs/SyncModeCmdResponse").new(
             user_id=command.user_id,
-            frame=session.frame if session is not None else 0,
+            frame=session.frame,
             result=ok,
-            time_step=session.time_step_ms if session is not None else 0,
+            time_step=session.time_step_ms,
         ),
     )
 
@@ -131,7 +134,7 @@ def serve_wait_for_tick(context: BridgeContext, row: Row, request: Any) -> Any:
         context.profile.message("morai_msgs/WaitForTickResponse").new(
             tick_status=ticked,
             pause_status=world.paused,
-            frame=context.sync.frame if context.sync is not None else 0,
+            frame=context.sync.frame,
             vehicle_status=ego_status_of(context, 0),
             time=f"{world.sim_time:.6f}",
         ),
@@ -226,8 +229,6 @@ def serve_scenario_load(context: BridgeContext, row: Row, request: Any) -> Any:
 def publish_sync_mode_info(context: BridgeContext, row: Row) -> Any:
     """/SyncModeInfo: who runs sync mode, whether it is on, and the current frame."""
     session = context.sync
-    if session is None:
-        return None
     return context.profile.message("morai_msgs/SyncModeInfo").new(
         master_id=session.user_id,
         status=session.active,
