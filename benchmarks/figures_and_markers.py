@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from egosim.bridge.context import BridgeContext
+from egosim.bridge import simulation_context
 from egosim.bridge.markers import build_map_markers, build_scene_markers
 from egosim.msgs import get_profile
 from egosim.plots import figure_png, map_figure, write_report
@@ -78,9 +78,10 @@ def main() -> None:
     print(f"report of a {DRIVE_S:.0f} s drive at {EGO_HZ} Hz: {seconds * 1e3:.0f} ms ({sizes})")
     profile = get_profile("26.r1")
     array = profile.message("visualization_msgs/MarkerArray")
-    context = BridgeContext(profile, World(town, load_default_scenario()), lambda: 0.0)
+    context = simulation_context(World(town, load_default_scenario()))
+    row = context.row("markers")
     for label, build in (("map (once)", build_map_markers), ("scene (10 Hz)", build_scene_markers)):
-        build_s, message = best(lambda build=build: build(context))
+        build_s, message = best(lambda build=build: build(context, row))
         serialize_s, data = best(lambda message=message: array.serialize(message))
         print(
             f"/egosim/markers {label}, town: {len(message.markers)} markers, "

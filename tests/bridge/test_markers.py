@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from egosim.bridge.context import BridgeContext
+from egosim.bridge import BridgeContext, simulation_context
 from egosim.bridge.markers import build_map_markers, build_scene_markers
 from egosim.bridge.network import parse_network_settings
 from egosim.msgs import get_profile
@@ -20,7 +20,11 @@ PROFILE = get_profile("26.r1")
 
 
 def context_of(world: World) -> BridgeContext:
-    return BridgeContext(PROFILE, world, lambda: 12.5)
+    return simulation_context(world)
+
+
+def with_row(context: BridgeContext) -> tuple[BridgeContext, object]:
+    return context, context.row("markers")
 
 
 @pytest.fixture(scope="module")
@@ -38,7 +42,7 @@ def by_ns(message) -> dict[str, list]:
 def test_the_map_message_of_the_straight_road() -> None:
     lane_map = build_builtin_map("straight")
     scenario = parse_scenario("map: straight\nego: {start: {lane: R1_E_1, s: 5}}\n", "s.yaml")
-    message = build_map_markers(context_of(World(lane_map, scenario)))
+    message = build_map_markers(*with_row(context_of(World(lane_map, scenario))))
     markers = by_ns(message)
     assert set(markers) == {"roads", "lane_centres", "lane_ids"}  # no lights, stops, walks
     (road,) = markers["roads"]
@@ -51,7 +55,7 @@ def test_the_map_message_of_the_straight_road() -> None:
 
 
 def test_scene_boxes_stand_where_the_objects_are(town_world: World) -> None:
-    message = build_scene_markers(context_of(town_world))
+    message = build_scene_markers(*with_row(context_of(town_world)))
     markers = by_ns(message)
     objects = town_world.objects()
     boxes = {(m.ns, m.id): m for ns in ("egos", "npcs", "pedestrians", "obstacles")
@@ -67,13 +71,14 @@ def test_scene_boxes_stand_where_the_objects_are(town_world: World) -> None:
         yaw = 2 * math.atan2(box.pose.orientation.z, box.pose.orientation.w)
         assert math.remainder(yaw - objects.headings[k], math.tau) == pytest.approx(0, abs=1e-9)
         assert box.lifetime.nanosec == 500_000_000
-    assert message.markers[0].header.stamp.sec == 12
+    stamp = message.markers[0].header.stamp
+    assert stamp.sec + stamp.nanosec * 1e-9 == pytest.approx(town_world.sim_time)
 
 
 @pytest.mark.parametrize(("aspect", "rgb"), [(RED, "r"), (YELLOW, "rg"), (GREEN, "g")])
 def test_lights_show_their_colour(town_world: World, aspect: int, rgb: str) -> None:
     town_world.signals.set_light("TL6_N", aspect)
-    (lights,) = by_ns(build_scene_markers(context_of(town_world)))["lights"]
+    (lights,) = by_ns(build_scene_markers(*with_row(context_of(town_world))))["lights"]
     index = list(town_world.signals.light_ids).index("TL6_N")
     point, colour = lights.points[index], lights.colors[index]
     assert (point.x, point.y) == pytest.approx(town_world.map.traffic_lights["TL6_N"].position[:2])

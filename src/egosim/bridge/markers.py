@@ -4,7 +4,7 @@ The map is built once and latched (Handlers.latched): roads at their width, lane
 lines, stop lines, crosswalks, sidewalks, and the ids of road lanes and lights as text.
 At the row's rate (10 Hz) follow every ego, NPC, pedestrian and obstacle as a box and
 every light as a sphere in the colour of its aspect; those markers live
-DYNAMIC_LIFETIME_S, so an object that leaves the scene leaves the display too.
+LIFETIME_PERIODS of the row, so an object that leaves the scene leaves the display too.
 Namespaces (`ns`) let RViz show or hide each layer.
 """
 
@@ -25,9 +25,13 @@ from ..world.signals.aspects import shown_colour
 from ..world.traffic import ObjectType
 from .context import BridgeContext
 from .messages import quaternion, vector3
+from .table import Row
 
-DYNAMIC_LIFETIME_S = 0.5
-"""Five periods of the 10 Hz row: a missed message does not blink, a gone object goes."""
+LIFETIME_PERIODS = 5
+"""Moving markers live this many periods of the row (0.5 s at 10 Hz): a missed message does
+not blink, an object that is gone goes."""
+UNTIMED_LIFETIME_S = 0.5
+"""Their lifetime when the row has no rate."""
 
 # visualization_msgs/Marker types and actions.
 CUBE, SPHERE_LIST, LINE_STRIP, LINE_LIST, TEXT_VIEW_FACING = 1, 7, 4, 5, 9
@@ -126,7 +130,7 @@ class _Builder:
         return duration
 
 
-def build_map_markers(context: BridgeContext) -> Any:
+def build_map_markers(context: BridgeContext, row: Row) -> Any:
     """The static scene, once: roads, centre lines, stop lines, crosswalks, sidewalks, ids."""
     lane_map = context.world.map
     make = _Builder(context)
@@ -193,9 +197,10 @@ def build_map_markers(context: BridgeContext) -> Any:
     return context.profile.message("visualization_msgs/MarkerArray").new(markers=markers)
 
 
-def build_scene_markers(context: BridgeContext) -> Any:
+def build_scene_markers(context: BridgeContext, row: Row) -> Any:
     """What moves, at the row's rate: a box per object, a sphere per light."""
     make = _Builder(context)
+    lifetime = LIFETIME_PERIODS / row.rate_hz if row.rate_hz else UNTIMED_LIFETIME_S
     world = context.world
     objects = world.objects()
     markers = []
@@ -210,7 +215,7 @@ def build_scene_markers(context: BridgeContext) -> Any:
         markers.append(
             make.new(
                 OBJECT_NAMESPACES[kind], uid, CUBE, OBJECT_COLOURS[kind], (length, width, height),
-                position=(x, y, z + height / 2.0), yaw=heading, lifetime_s=DYNAMIC_LIFETIME_S,
+                position=(x, y, z + height / 2.0), yaw=heading, lifetime_s=lifetime,
             )
         )  # fmt: skip
     signals = world.signals
@@ -219,7 +224,7 @@ def build_scene_markers(context: BridgeContext) -> Any:
         markers.append(
             make.new(
                 "lights", 0, SPHERE_LIST, LIGHT_COLOURS[None], (LIGHT_SIZE_M,) * 3,
-                lifetime_s=DYNAMIC_LIFETIME_S,
+                lifetime_s=lifetime,
                 points=make.points(sites[i].position for i in signals.light_ids),
                 colors=[
                     make.colour(LIGHT_COLOURS[shown_colour(int(aspect))])
