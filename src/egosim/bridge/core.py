@@ -47,6 +47,9 @@ RequestHandler = Callable[[BridgeContext, Row, Any], Any]  # (context, row, requ
 # (context, row, request as the client sent it): applies a request field only one
 # release has, before the row's handler answers
 ReleaseAdapter = Callable[[BridgeContext, Row, Any], None]
+# (context, row, message or request) -> what the row's handler gets instead: work done on
+# the transport's thread, such as reading a user's file, so the loop never waits on it
+Preparer = Callable[[BridgeContext, Row, Any], Any]
 
 
 class Inbox(Protocol):
@@ -65,6 +68,7 @@ class Handlers:
     # (service row key, release) -> what to do with a request field that only that
     # release has, before the row's handler answers
     release_adapters: dict[tuple[str, str], ReleaseAdapter] = field(default_factory=dict)
+    preparers: dict[str, Preparer] = field(default_factory=dict)
 
     def __contains__(self, key: str) -> bool:
         return key in self.publishers or key in self.subscribers or key in self.services
@@ -223,7 +227,9 @@ class Bridge:
                 log.error("%s from %s: %s", row.name, caller, exc)
                 return
             self._tap(row.name, release.message_type, data)
-            self.inbox.post(lambda: handle(self.context, row, message))
+            prepare = self.handlers.preparers.get(row.key)
+            prepared = message if prepare is None else prepare(self.context, row, message)
+            self.inbox.post(lambda: handle(self.context, row, prepared))
 
         any_release = TopicType(row.type_name, "*", releases[0].message_type.definition)
         return self.node.subscribe(row.name, any_release, received)
@@ -247,11 +253,13 @@ class Bridge:
             sent = served.request.deserialize(data)
             request = convert(sent, served.request, canonical_type.request)
             adapt = self.handlers.release_adapters.get((row.key, release.profile_name))
+            prepare = self.handlers.preparers.get(row.key)
+            prepared = request if prepare is None else prepare(self.context, row, request)
 
             def answer() -> Any:
                 if adapt is not None:
                     adapt(self.context, row, sent)
-                return handle(self.context, row, request)
+                return handle(self.context, row, prepared)
 
             response = self.inbox.call(answer)
             return served.response.serialize(
