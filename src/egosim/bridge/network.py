@@ -100,7 +100,7 @@ def _override(document: YamlDocument, key: Any, value: Any) -> Row:
         if isinstance(rate, bool) or not isinstance(rate, int | float):
             raise document.error((*path, "rate_hz"), "expected a number of Hz")
         if not (math.isfinite(rate) and 0 < rate <= MAX_RATE_HZ):
-            raise document.error((*path, "rate_hz"), f"must be in 0..{MAX_RATE_HZ} Hz (above 0)")
+            raise document.error((*path, "rate_hz"), f"must be in 0..{MAX_RATE_HZ:g} Hz (above 0)")
     return replace(row, name=name, enabled=enabled, rate_hz=rate)
 
 
