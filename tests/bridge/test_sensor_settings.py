@@ -109,7 +109,12 @@ def test_every_field_of_the_section_is_read() -> None:
             "sensors.lidar",
             "rays a scan (at most 1000000)",
         ),
-        ("sensors:\n  gps:\n    mount: {z: 1.0e+300}\n", 3, "sensors.gps.mount.z", "must be <= 100"),
+        (
+            "sensors:\n  gps:\n    mount: {z: 1.0e+300}\n",
+            3,
+            "sensors.gps.mount.z",
+            "must be <= 100",
+        ),
         (
             "sensors:\n  imu:\n    noise: {linear_acceleration_bias_m_s2: [0, 0, 1.0e+9]}\n",
             3,

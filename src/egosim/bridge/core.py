@@ -16,8 +16,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any, Protocol, TypeVar
 
+from ..logthrottle import LogThrottle
 from ..msgs import MessageType, MsgsError, get_profile
-from ..ros1 import ConnectionRefusedByPeerError, Node, Publisher, Subscriber
+from ..ros1 import BadRequestError, ConnectionRefusedByPeerError, Node, Publisher, Subscriber
 from ..ros1.types import TopicType
 from .context import BridgeContext
 from .network import NetworkSettings
@@ -35,6 +36,7 @@ from .releases import (
 from .table import Direction, Row
 
 log = logging.getLogger(__name__)
+throttle = LogThrottle(log)
 
 T = TypeVar("T")
 
@@ -211,7 +213,9 @@ class Bridge:
             caller = header.get("callerid", "?")
             release = release_for_md5(releases, header.get("md5sum", ""))
             if release is None:
-                log.error(
+                throttle.log(
+                    logging.ERROR,
+                    (row.name, caller, "md5sum"),
                     "%s from %s: md5sum %s is no release of %s; message dropped",
                     row.name,
                     caller,
@@ -224,7 +228,14 @@ class Bridge:
                     release.message_type.deserialize(data), release.message_type, message_type
                 )
             except MsgsError as exc:
-                log.error("%s from %s: %s", row.name, caller, exc)
+                throttle.log(
+                    logging.ERROR,
+                    (row.name, caller, "undecodable"),
+                    "%s from %s: message dropped: %s",
+                    row.name,
+                    caller,
+                    exc,
+                )
                 return
             self._tap(row.name, release.message_type, data)
             prepare = self.handlers.preparers.get(row.key)
@@ -250,7 +261,10 @@ class Bridge:
         def serve(data: bytes, header: Any) -> bytes:
             release = release_of(header)
             served = release.service_type
-            sent = served.request.deserialize(data)
+            try:
+                sent = served.request.deserialize(data)
+            except MsgsError as exc:
+                raise BadRequestError(f"undecodable {served.request.name}: {exc}") from None
             request = convert(sent, served.request, canonical_type.request)
             adapt = self.handlers.release_adapters.get((row.key, release.profile_name))
             prepare = self.handlers.preparers.get(row.key)
