@@ -10,7 +10,6 @@ Namespaces (`ns`) let RViz show or hide each layer.
 
 from __future__ import annotations
 
-import math
 from collections import defaultdict
 from collections.abc import Iterable, Sequence
 from typing import Any
@@ -19,6 +18,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ..msgs import Profile
+from ..sensors.rotation import quaternion_from_euler
 from ..world.map import LaneMap
 from ..world.map.sections import lane_cross_section
 from ..world.signals.aspects import shown_colour
@@ -83,6 +83,7 @@ class _Builder:
         colour = self.profile.message("std_msgs/ColorRGBA")
         self.point_type = point.store.types[point.store_name]
         self.colour_type = colour.store.types[colour.store_name]
+        self.duration_type = type(self.marker.new().lifetime)
 
     def colour(self, rgba: RGBA) -> Any:
         return self.colour_type(r=rgba[0], g=rgba[1], b=rgba[2], a=rgba[3])
@@ -114,9 +115,7 @@ class _Builder:
                 position=self.profile.message("geometry_msgs/Point").new(
                     x=float(position[0]), y=float(position[1]), z=float(position[2])
                 ),
-                orientation=quaternion(
-                    self.profile, (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
-                ),
+                orientation=quaternion(self.profile, quaternion_from_euler(0.0, 0.0, yaw)),
             ),
             scale=vector3(self.profile, scale),
             color=self.colour(rgba),
@@ -125,9 +124,8 @@ class _Builder:
         )
 
     def _duration(self, seconds: float) -> Any:
-        duration = self.marker.new().lifetime
-        duration.sec, duration.nanosec = divmod(round(seconds * 1e9), 1_000_000_000)
-        return duration
+        sec, nanosec = divmod(round(seconds * 1e9), 1_000_000_000)
+        return self.duration_type(sec=sec, nanosec=nanosec)
 
 
 def build_map_markers(context: BridgeContext, row: Row) -> Any:
