@@ -39,12 +39,15 @@ MAP_FRAME = "map"
 RowHandler = Callable[..., Any]
 
 
-class RowOpener(Protocol):
-    """Opens a topic row of the table under a namespace at run time (Bridge.open_row)."""
+class RowBinder(Protocol):
+    """Binds rows of the table at run time (the bridge): a topic row under a namespace
+    (Bridge.open_row), or a whole new table (Bridge.apply_settings)."""
 
     def open_row(
         self, key: str, namespace: str, handler: RowHandler
     ) -> Callable[[], None] | None: ...
+
+    def apply_settings(self, settings: NetworkSettings) -> list[str]: ...
 
 
 @dataclass
@@ -98,8 +101,8 @@ class BridgeContext:
     """Synchronous mode: whether a client owns time, the frame, requests kept for later."""
     data_roots: tuple[Path, ...] = ()
     """Where file names from the network (scenarios, bags, sensor data) resolve."""
-    rows: RowOpener | None = None
-    """Opens rows at run time (the bridge); None in-process, without a ROS node."""
+    rows: RowBinder | None = None
+    """Binds rows at run time (the bridge); None in-process, without a ROS node."""
     hold_output: Callable[[], AbstractContextManager[None]] = nullcontext
     """A block whose topic output reaches subscribers as one burst when it ends
     (Node.holding_output); sync mode ticks a WaitForTick's frames inside one."""
