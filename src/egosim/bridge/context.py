@@ -18,6 +18,7 @@ from ..logthrottle import LogThrottle
 from ..msgs import Profile
 from ..replay import ReplaySession
 from ..world import World
+from .angle_rates import AngleRates
 from .clock import HeaderClock
 from .codes import ControlMode
 from .messages import header
@@ -80,6 +81,8 @@ class SessionState:
     """The autopilot of each ego in control mode auto, by unique id."""
     ego_rows: dict[int, list[Callable[[], None]]] = field(default_factory=dict)
     """What closes the namespaced topics of each additional ego, by unique id."""
+    angle_rates: AngleRates = field(default_factory=AngleRates)
+    """The last reading of each angle whose rate a row reports (extended status rows)."""
 
 
 @dataclass
