@@ -6,6 +6,7 @@ import contextlib
 import logging
 import sys
 import threading
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from ..bridge.bindings import HANDLERS
@@ -38,6 +39,9 @@ EXIT_OK = 0
 EXIT_BAD_INPUT = 2
 EXIT_ROS_FAILED = 3
 
+StepObserver = Callable[[World], bool]
+"""Looks at the world after each step; True ends the run."""
+
 
 class StartupError(Exception):
     """A startup failure with a one-line reason for the user."""
@@ -68,16 +72,16 @@ def build_world(options: RunOptions) -> World:
         raise StartupError(str(error)) from error
 
 
-def run(options: RunOptions) -> int:
-    """Run the simulator until stopped; the process exit status."""
+def run(options: RunOptions, observers: Sequence[StepObserver] = ()) -> int:
+    """Run the simulator until stopped (or until an observer ends it); the exit status."""
     try:
-        return _run(options)
+        return _run(options, observers)
     except StartupError as error:
         print(f"egosim: {error}", file=sys.stderr)
         return error.exit_code
 
 
-def _run(options: RunOptions) -> int:
+def _run(options: RunOptions, observers: Sequence[StepObserver]) -> int:
     # Messages are built in the newest release; peers of others get them converted.
     profile = get_profile(CANONICAL_PROFILE)
     world = build_world(options)
@@ -143,6 +147,9 @@ def _run(options: RunOptions) -> int:
             clock.tick()
             loop_time += dt
             bridge.publish_due(loop_time)
+            # Every observer sees every step, whichever of them ends the run.
+            if any([observe(world) for observe in observers]):
+                stop.set()
 
         context.step = step
         max_steps = None

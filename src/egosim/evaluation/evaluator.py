@@ -96,10 +96,17 @@ class DriveEvaluator:
         self._start_s: float | None = None
 
     @property
+    def finish_reason(self) -> str | None:
+        """Why the drive is over whatever the time ("route_completed", "blocked"), else None."""
+        if self._blocked.record is not None:
+            return "blocked"
+        if self._route is not None and self._route.completed:
+            return "route_completed"
+        return None
+
+    @property
     def finished(self) -> bool:
-        """The drive is over whatever the time: route completed, or blocked."""
-        route_done = self._route is not None and self._route.completed
-        return route_done or self._blocked.record is not None
+        return self.finish_reason is not None
 
     def observe(self, world: World) -> None:
         """Take one sample of the main ego (call after each step of the world)."""
