@@ -1,33 +1,11 @@
 """`egosim batch`: a stack run through many scenario cases, each scored from the world.
 
-Public API:
-    load_suite, suite_schema, SuiteError       suite files -> concrete cases
-    CaseSpec, StackSpec                        one case, as picklable data
-    run_case                                   one case in its own processes -> its result
-    run_local, run_ray                         many cases (thread-supervised pool or Ray)
-    results_document, write_results, write_junit, write_html_report   outputs
+Modules (imported one by one: a case's simulator loads only what it needs):
+    suite        load_suite: suite files (suite.schema.json) -> concrete CaseSpecs
+    sweep        parameter lists, ranges and products; stable case names
+    case         CaseSpec, StackSpec: one case as picklable data
+    simulate     a case's simulator process (`python -m egosim.batch.simulate DIR`)
+    case_runner  run_case: one case's processes, supervised -> its result
+    pool         run_local (N cases at a time) and run_ray (one Ray task per case)
+    results, junit, html_report   results.json, junit.xml, report.html
 """
-
-from egosim.batch.case import CaseSpec, StackSpec
-from egosim.batch.case_runner import run_case
-from egosim.batch.errors import SuiteError
-from egosim.batch.html_report import write_html_report
-from egosim.batch.junit import write_junit
-from egosim.batch.pool import run_local, run_ray
-from egosim.batch.results import results_document, write_results
-from egosim.batch.suite import load_suite, suite_schema
-
-__all__ = [
-    "CaseSpec",
-    "StackSpec",
-    "SuiteError",
-    "load_suite",
-    "results_document",
-    "run_case",
-    "run_local",
-    "run_ray",
-    "suite_schema",
-    "write_html_report",
-    "write_junit",
-    "write_results",
-]

@@ -17,17 +17,16 @@ from pathlib import Path
 from typing import Any
 
 from egosim.batch.case import CaseSpec
+from egosim.batch.files import BAG_FILE, CASE_FILE, SCORE_FILE, SIMULATOR_LOG, STACK_LOG
 from egosim.batch.logs import tail_text
 from egosim.batch.processes import GroupProcess
-from egosim.batch.simulate import BAG_FILE, CASE_FILE, SCORE_FILE
 from egosim.evaluation import METRIC_NAMES, parse_criterion
 
 SIMULATOR_START_S = 60.0
 POLL_S = 0.05
 MASTER_LINE = re.compile(r"^egosim-batch: master (\S+)$")
 RUNNING_LINE = "egosim-batch: running"
-SIMULATOR_LOG = "simulator.log"
-STACK_LOG = "stack.log"
+ENDED_PREFIX = "egosim-batch: ended"
 
 PASSED, FAILED, ERROR = "passed", "failed", "error"
 """A case passes its criteria, fails them, or could not be scored as asked (the stack
@@ -88,6 +87,7 @@ class _Supervisor:
         self.simulator: GroupProcess | None = None
         self.stack: GroupProcess | None = None
         self.stack_status: int | None = None
+        self.drive_ended = False
 
     def run(self) -> str | None:
         """Drive the case to its end; the reason it could not be scored, if any."""
@@ -166,6 +166,12 @@ class _Supervisor:
             self._check_cancel()
             if time.monotonic() > deadline:
                 return f"case exceeded its wall-clock limit of {self.case.wall_limit_s:g} s"
+            line = self.lines.take()
+            self.drive_ended |= line is not None and line.startswith(ENDED_PREFIX)
+            if self.drive_ended:
+                # A stack may fail once its simulator has gone: not the stack's fault.
+                time.sleep(POLL_S)
+                continue
             if self._stack_ended():
                 # The drive ends with the stack; the simulator writes the score so far.
                 self.simulator.stop(signal.SIGINT)

@@ -11,7 +11,7 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from egosim.batch.simulate import SCORE_FILE
+from egosim.batch.files import CASE_FILE, SCORE_FILE
 from egosim.maps import MapLoadError, load_map
 from egosim.plots import (
     Block,
@@ -146,5 +146,5 @@ def _drive(folder: Path) -> dict[str, Any] | None:
 
 
 def _map_name(folder: Path) -> str:
-    case = json.loads((folder / "case.json").read_text(encoding="utf-8"))
+    case = json.loads((folder / CASE_FILE).read_text(encoding="utf-8"))
     return str(case["scenario"]["map"])

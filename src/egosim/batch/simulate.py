@@ -8,6 +8,7 @@ blocked, time limit, or SIGINT/SIGTERM from the case's supervisor).
 Lines on stdout tell the supervisor how far it got:
     egosim-batch: master URI     the master is up (the stack may be started)
     egosim-batch: running        the stack is connected and the drive has begun
+    egosim-batch: ended REASON   the drive is over (the simulator then stops)
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ import yaml
 from egosim.app.options import ClockMode, RunOptions
 from egosim.app.runner import run
 from egosim.batch.case import CaseSpec
+from egosim.batch.files import BAG_FILE, CASE_FILE, SCENARIO_FILE, SCORE_FILE
 from egosim.batch.ros_graph import stack_connected
 from egosim.evaluation import DriveEvaluator, EvaluationSettings, InfractionKind, Route
 from egosim.evaluation.route import RouteError
@@ -30,10 +32,6 @@ from egosim.ros1 import Master
 from egosim.world import World
 from egosim.world.map import LaneMap
 
-CASE_FILE = "case.json"
-SCORE_FILE = "score.json"
-SCENARIO_FILE = "scenario.yaml"
-BAG_FILE = "drive.bag"
 CONNECT_POLL_S = 0.25
 PHYSICS_RATE_HZ = 100.0
 
@@ -78,6 +76,12 @@ class CaseDrive:
 
     def __call__(self, world: World) -> bool:
         self.world = world
+        over = self._observe(world)
+        if over:
+            print(f"egosim-batch: ended {self.end}", flush=True)
+        return over
+
+    def _observe(self, world: World) -> bool:
         if self.evaluator is None:
             if self._gate and not self._stack_ready(world):
                 return False

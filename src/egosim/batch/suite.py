@@ -112,9 +112,11 @@ def _expand(
     time_limit = float(entry.get("time_limit_s", data.get("time_limit_s", DEFAULT_TIME_LIMIT_S)))
     route = _route(source, path, entry.get("route"), suite_dir)
     cases = []
-    for parameters in sets:
-        name = case_name(entry["name"], parameters)
-        where = (*path, "sweep") if parameters else path
+    defaults = data.get("parameters", {})
+    for swept in sets:
+        name = case_name(entry["name"], swept)
+        where = (*path, "sweep") if swept else path
+        parameters = {**defaults, **swept}
         scenario = _apply(source, where, name, scenario_data, parameters, stack_spec)
         cases.append(
             CaseSpec(

@@ -9,20 +9,20 @@ import sys
 import time
 from pathlib import Path
 
-from ..batch import (
-    CaseSpec,
-    SuiteError,
-    load_suite,
+from ..batch.case import CaseSpec
+from ..batch.errors import SuiteError
+from ..batch.html_report import write_html_report
+from ..batch.junit import write_junit
+from ..batch.pool import default_workers, failed, run_local, run_ray
+from ..batch.progress import BatchProgress
+from ..batch.results import (
+    needs_rerun,
+    previous_results,
     results_document,
-    run_local,
-    run_ray,
-    write_html_report,
-    write_junit,
+    summary,
     write_results,
 )
-from ..batch.pool import default_workers, failed
-from ..batch.progress import BatchProgress
-from ..batch.results import needs_rerun, previous_results, summary
+from ..batch.suite import load_suite
 
 EXIT_ALL_PASSED = 0
 EXIT_SOME_FAILED = 1
