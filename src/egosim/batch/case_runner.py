@@ -70,7 +70,7 @@ def run_case(case: CaseSpec, out_dir: str, cancel: threading.Event | None = None
         problem = "interrupted"
     finally:
         supervisor.stop_all()
-    result = _result(case, folder, problem, supervisor.stack_status)
+    result = _result(case, folder, problem)
     result["timings"] = {
         "case_wall_s": round(time.monotonic() - started, 3),
         "drive_wall_s": result.pop("drive_wall_s", None),
@@ -209,9 +209,7 @@ def _simulator_env() -> dict[str, str]:
     return env
 
 
-def _result(
-    case: CaseSpec, folder: Path, problem: str | None, stack_status: int | None
-) -> dict[str, Any]:
+def _result(case: CaseSpec, folder: Path, problem: str | None) -> dict[str, Any]:
     score_path = folder / SCORE_FILE
     try:
         drive = json.loads(score_path.read_text(encoding="utf-8"))
@@ -247,7 +245,6 @@ def _result(
         result.update(status=FAILED, reason="; ".join(failed))
     else:
         result.update(status=PASSED, reason="")
-    result["stack_exit_status"] = stack_status
     return result
 
 

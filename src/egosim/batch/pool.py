@@ -29,11 +29,16 @@ def default_workers() -> int:
 
 
 def run_local(
-    cases: Sequence[CaseSpec], out_dir: str, workers: int, on_result: OnResult
+    cases: Sequence[CaseSpec],
+    out_dir: str,
+    workers: int,
+    on_result: OnResult,
+    results: dict[str, Result] | None = None,
 ) -> dict[str, Result]:
-    """Run `cases`, `workers` at a time; their results by name (fewer if interrupted)."""
+    """Run `cases`, `workers` at a time; their results by name, also put in `results` as
+    they come (so an interrupted run, which raises KeyboardInterrupt, leaves them there)."""
     cancel = threading.Event()
-    results: dict[str, Result] = {}
+    results = {} if results is None else results
     executor = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="case")
     pending: set[Future[Result]] = {executor.submit(run_case, c, out_dir, cancel) for c in cases}
     try:
@@ -58,17 +63,21 @@ def run_local(
 
 
 def run_ray(
-    cases: Sequence[CaseSpec], out_dir: str, address: str | None, on_result: OnResult
+    cases: Sequence[CaseSpec],
+    out_dir: str,
+    address: str | None,
+    on_result: OnResult,
+    results: dict[str, Result] | None = None,
 ) -> dict[str, Result]:
     """One Ray task per case on the cluster at `address` (None: the one `ray start`
-    left running on this machine, else a new local one). The output folder must be on
-    storage every node writes to."""
+    left running on this machine, else a new local one); results as run_local's. The
+    output folder must be on storage every node writes to."""
     ray = importlib.import_module("ray")  # an optional extra: pip install egosim[ray]
     ray.init(address=address, include_dashboard=False, log_to_driver=False)
     try:
         remote = ray.remote(num_cpus=1, max_retries=0)(run_case)
         refs = {remote.remote(case, out_dir): case for case in cases}
-        results: dict[str, Result] = {}
+        results = {} if results is None else results
         pending = list(refs)
         try:
             while pending:

@@ -112,7 +112,7 @@ def _expand(
     time_limit = float(entry.get("time_limit_s", data.get("time_limit_s", DEFAULT_TIME_LIMIT_S)))
     route = _route(source, path, entry.get("route"), suite_dir)
     cases = []
-    defaults = data.get("parameters", {})
+    defaults = {**data.get("parameters", {}), **entry.get("parameters", {})}
     for swept in sets:
         name = case_name(entry["name"], swept)
         where = (*path, "sweep") if swept else path

@@ -115,6 +115,7 @@ def run(args: argparse.Namespace) -> int:
     started = time.monotonic()
     interrupted = False
     done = failures = 0
+    new: dict[str, dict] = {}
     with BatchProgress(len(to_run)) as bar:
 
         def on_result(result: dict, running: int) -> None:
@@ -127,12 +128,11 @@ def run(args: argparse.Namespace) -> int:
         try:
             if args.ray is not None:
                 address = None if args.ray == LOCAL_RAY else args.ray
-                new = run_ray(to_run, str(out_dir), address, on_result)
+                run_ray(to_run, str(out_dir), address, on_result, new)
             else:
-                new = run_local(to_run, str(out_dir), workers, on_result)
+                run_local(to_run, str(out_dir), workers, on_result, new)
         except KeyboardInterrupt:
             interrupted = True
-            new = {}
     results.update(new)
     execution = {
         "runner": "ray" if args.ray is not None else "local",
