@@ -26,6 +26,8 @@ class CaseSpec:
     parameters: dict[str, Value]
     stack: StackSpec
     suite_dir: str
+    map: str
+    """egosim run --map: a built-in map's name or a path."""
     route: dict[str, Any] | None = None
     """{"waypoints": [[x, y], ...]} or {"lanes": [...]}, optionally with "first_m"."""
     clock: str = "sim"

@@ -147,4 +147,4 @@ def _drive(folder: Path) -> dict[str, Any] | None:
 
 def _map_name(folder: Path) -> str:
     case = json.loads((folder / CASE_FILE).read_text(encoding="utf-8"))
-    return str(case["scenario"]["map"])
+    return str(case["map"])

@@ -7,7 +7,7 @@ import os
 import signal
 import subprocess
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from egosim.batch.logs import BoundedLog
@@ -26,7 +26,7 @@ class GroupProcess:
         log_path: Path,
         env: dict[str, str] | None = None,
         cwd: Path | None = None,
-        on_line=None,  # type: ignore[no-untyped-def]
+        on_line: Callable[[str], None] | None = None,
     ) -> None:
         self.popen = subprocess.Popen(
             list(args),

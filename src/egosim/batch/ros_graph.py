@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import http.client
 import xmlrpc.client
+from typing import Any
 
 SIMULATOR_NODE = "/egosim"
 NOT_THE_STACK = frozenset({SIMULATOR_NODE, "/master"})
@@ -34,7 +36,7 @@ class _TimeoutTransport(xmlrpc.client.Transport):
         super().__init__()
         self._timeout_s = timeout_s
 
-    def make_connection(self, host):  # type: ignore[no-untyped-def]
+    def make_connection(self, host: Any) -> http.client.HTTPConnection:
         connection = super().make_connection(host)
         connection.timeout = self._timeout_s
         return connection

@@ -141,7 +141,7 @@ def main(case_dir: Path) -> int:
         drive = CaseDrive(case, master.uri)
 
         options = RunOptions(
-            map=case.scenario["map"],
+            map=case.map,
             scenario=scenario_path,
             clock=ClockMode(case.clock),
             rtf=case.rtf if case.clock == ClockMode.SIM.value else 1.0,

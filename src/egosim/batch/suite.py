@@ -18,6 +18,7 @@ from egosim.batch.case import CaseSpec, StackSpec
 from egosim.batch.errors import SuiteError
 from egosim.batch.sweep import Value, case_name, parameter_sets
 from egosim.evaluation import METRIC_NAMES, CriterionError, InfractionKind, parse_criterion
+from egosim.world.map import BUILTIN_MAP_NAMES
 from egosim.world.scenario import ScenarioError, parse_scenario
 from egosim.yamltext import FieldPath, YamlDocument, YamlFileError, parse_yaml
 
@@ -111,6 +112,11 @@ def _expand(
     mode, rtf = (clock, 0.0) if isinstance(clock, str) else (clock["mode"], clock.get("rtf", 0.0))
     time_limit = float(entry.get("time_limit_s", data.get("time_limit_s", DEFAULT_TIME_LIMIT_S)))
     route = _route(source, path, entry.get("route"), suite_dir)
+    map_name = entry.get(
+        "map", scenario_data.get("map") if isinstance(scenario_data, dict) else None
+    )
+    if map_name is not None and map_name not in BUILTIN_MAP_NAMES and "map" in entry:
+        map_name = str(suite_dir / map_name)
     cases = []
     defaults = {**data.get("parameters", {}), **entry.get("parameters", {})}
     for swept in sets:
@@ -126,6 +132,7 @@ def _expand(
                 parameters=parameters,
                 stack=stack_spec,
                 suite_dir=str(suite_dir),
+                map=str(map_name),
                 route=route,
                 clock=mode,
                 rtf=float(rtf),
