@@ -7,6 +7,9 @@ needed), runs `egosim batch` once per configuration and reads results.json: wall
 cases per hour, and the split of a case's wall time between the drive and the rest
 (starting the simulator and the stack, stopping them, writing the bag).
 
+CPU per case counts the processes the batch started (not those of Ray's own workers,
+which a Ray run does not start as its children).
+
 Usage: .venv/bin/python benchmarks/batch_throughput.py [--cases 12] [--runs local1 local2 ray]
 """
 
@@ -15,6 +18,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -29,6 +33,13 @@ EXAMPLES = ROOT / "examples"
 MSGS = ROOT / "src" / "egosim" / "msgs" / "definitions" / "26.r1" / "morai_msgs"
 BUILD_MSGS = ROOT / "tests" / "e2e" / "peers" / "build_msg_packages.py"
 RUNS = {"local1": ["--workers", "1"], "local2": ["--workers", "2"], "ray": ["--ray"]}
+
+
+def _children_cpu_s() -> float:
+    """User + system CPU time of every finished child process so far (the batch, its
+    cases' simulators and stacks; Ray's workers are not its children)."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
 
 
 def write_suite(folder: Path, cases: int) -> Path:
@@ -71,11 +82,15 @@ def main() -> None:
         env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
         env["PYTHONPATH"] = str(folder / "msgs")
         print(f"{args.cases} cases, load average before: {os.getloadavg()[0]:.1f}")
-        print("| run | wall (s) | cases/hour | case wall mean (s) | drive wall mean (s) |")
-        print("|---|---:|---:|---:|---:|")
+        print(
+            "| run | wall (s) | cases/hour | case wall mean (s) | drive wall mean (s) "
+            "| CPU per case (s) |"
+        )
+        print("|---|---:|---:|---:|---:|---:|")
         for run in args.runs:
             out = folder / run
             started = time.monotonic()
+            cpu_before = _children_cpu_s()
             subprocess.run(
                 [sys.executable, "-m", "egosim", "batch", str(suite), "--out", str(out)]
                 + RUNS[run],
@@ -84,6 +99,7 @@ def main() -> None:
                 capture_output=True,
             )
             wall = time.monotonic() - started
+            cpu = _children_cpu_s() - cpu_before
             document = json.loads((out / "results.json").read_text())
             cases = document["cases"]
             passed = document["summary"]["passed"]
@@ -93,7 +109,7 @@ def main() -> None:
             print(
                 f"| {run} ({passed}/{len(cases)} passed) | {batch_wall:.1f} (command {wall:.1f}) "
                 f"| {len(cases) / batch_wall * 3600:.0f} | {statistics.mean(case_walls):.2f} "
-                f"| {statistics.mean(drive_walls):.2f} |",
+                f"| {statistics.mean(drive_walls):.2f} | {cpu / len(cases):.2f} |",
                 flush=True,
             )
         bag = next(folder.glob("local1/*/drive.bag"), None) or next(folder.glob("*/*/drive.bag"))

@@ -67,7 +67,7 @@ def test_collision_with_a_static_object_at_the_time_it_must_happen() -> None:
 def test_time_to_collision_and_headway_to_the_object_ahead() -> None:
     speed = 10.0
     world = straight_world([{"model": "Cone", "pose": {"x": 80.0, "y": LANE_Y}}])
-    evaluator = DriveEvaluator(world)
+    evaluator = DriveEvaluator(world, settings=EvaluationSettings(safety_period_s=DT))
     drive(world, evaluator, straight(0.0, LANE_Y, speed), 2.0)
 
     front = EGO.bounding_box_center_offset + EGO.length / 2.0
