@@ -14,6 +14,7 @@ import pytest
 
 from egosim.batch.pool import run_local
 from egosim.batch.suite import load_suite
+from egosim.cli import main
 from tests.batch.processes import processes_using
 from tests.batch.suites import write_suite
 
@@ -131,3 +132,22 @@ def test_ctrl_c_stops_every_case_and_still_writes_the_results(tmp_path: Path) ->
     assert all(c["reason"] == "interrupted" for c in document["cases"] if c["status"] == "error")
     assert (out / "junit.xml").exists() and (out / "report.html").exists()
     assert processes_using(out) == []
+
+
+def test_filter_then_rerun_failed_runs_only_what_did_not_pass(tmp_path: Path) -> None:
+    suite = robustness_suite(
+        tmp_path, [case("ok", f"{STAND_IN} exit 0 600"), case("broken", "exit 3")]
+    )
+    out = tmp_path / "out"
+    assert main(["batch", str(suite), "--out", str(out), "--filter", "o*"]) == 0
+    first = json.loads((out / "results.json").read_text())
+    assert [(c["name"], c["status"]) for c in first["cases"]] == [("ok", "passed")]
+
+    assert main(["batch", str(suite), "--out", str(out), "--rerun-failed"]) == 1
+    second = json.loads((out / "results.json").read_text())
+    assert second["execution"]["cases_run"] == 1  # "broken" only: "ok" had passed
+    assert [(c["name"], c["status"]) for c in second["cases"]] == [
+        ("ok", "passed"),
+        ("broken", "error"),
+    ]
+    assert second["cases"][0] == first["cases"][0]
