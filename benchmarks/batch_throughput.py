@@ -42,7 +42,7 @@ def _children_cpu_s() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def write_suite(folder: Path, cases: int) -> Path:
+def write_suite(folder: Path, cases: int, route_m: float) -> Path:
     suite = {
         "stack": {
             "command": f"/usr/bin/python3 {EXAMPLES / 'pure_pursuit_lap.py'} "
@@ -56,7 +56,7 @@ def write_suite(folder: Path, cases: int) -> Path:
             {
                 "name": "lap",
                 "scenario": str(EXAMPLES / "town_lap_scenario.yaml"),
-                "route": {"csv": str(EXAMPLES / "town_block_lap.csv"), "first_m": 50},
+                "route": {"csv": str(EXAMPLES / "town_block_lap.csv"), "first_m": route_m},
                 "sweep": {"seed": list(range(1, cases + 1))},
             }
         ],
@@ -70,6 +70,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", type=int, default=12)
     parser.add_argument("--runs", nargs="+", choices=list(RUNS), default=list(RUNS))
+    parser.add_argument("--route-m", type=float, default=50.0, help="route length per case")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as temp:
         folder = Path(temp)
@@ -78,15 +79,17 @@ def main() -> None:
             check=True,
             capture_output=True,
         )
-        suite = write_suite(folder, args.cases)
+        suite = write_suite(folder, args.cases, args.route_m)
         env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
         env["PYTHONPATH"] = str(folder / "msgs")
-        print(f"{args.cases} cases, load average before: {os.getloadavg()[0]:.1f}")
+        print(
+            f"{args.cases} cases, {args.route_m:g} m routes, load before: {os.getloadavg()[0]:.1f}"
+        )
         print(
             "| run | wall (s) | cases/hour | case wall mean (s) | drive wall mean (s) "
-            "| CPU per case (s) |"
+            "| CPU per case (s) | simulated per case (s) |"
         )
-        print("|---|---:|---:|---:|---:|---:|")
+        print("|---|---:|---:|---:|---:|---:|---:|")
         for run in args.runs:
             out = folder / run
             started = time.monotonic()
@@ -105,11 +108,12 @@ def main() -> None:
             passed = document["summary"]["passed"]
             case_walls = [c["timings"]["case_wall_s"] for c in cases]
             drive_walls = [c["timings"]["drive_wall_s"] or 0.0 for c in cases]
+            sim_s = statistics.mean(c["sim_time_s"] or 0.0 for c in cases)
             batch_wall = document["execution"]["wall_s"]
             print(
                 f"| {run} ({passed}/{len(cases)} passed) | {batch_wall:.1f} (command {wall:.1f}) "
                 f"| {len(cases) / batch_wall * 3600:.0f} | {statistics.mean(case_walls):.2f} "
-                f"| {statistics.mean(drive_walls):.2f} | {cpu / len(cases):.2f} |",
+                f"| {statistics.mean(drive_walls):.2f} | {cpu / len(cases):.2f} | {sim_s:.2f} |",
                 flush=True,
             )
         bag = next(folder.glob("local1/*/drive.bag"), None) or next(folder.glob("*/*/drive.bag"))
