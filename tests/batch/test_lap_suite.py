@@ -17,10 +17,10 @@ from rosbags.rosbag1 import Reader
 from tests.batch.processes import processes_using
 from tests.e2e.conftest import built_msg_packages  # noqa: F401 (a fixture)
 
-pytestmark = pytest.mark.ros
-
 SUITE = Path(__file__).parents[2] / "examples" / "batch" / "lap_suite.yaml"
 BATCH_TIMEOUT_S = 240
+# A whole batch per run: beyond the default per-test timeout on a busy 2-core machine.
+pytestmark = [pytest.mark.ros, pytest.mark.timeout(2 * BATCH_TIMEOUT_S)]
 
 
 def run_batch(out: Path, msgs: Path, *options: str) -> subprocess.CompletedProcess[str]:
