@@ -16,16 +16,20 @@ from __future__ import annotations
 import json
 import os
 import sys
+import threading
 import time
 from pathlib import Path
 
 import yaml
 
-from egosim.app.options import ClockMode, RunOptions
+from egosim.app.options import RunOptions
 from egosim.app.runner import run
 from egosim.batch.case import CaseSpec
 from egosim.batch.files import BAG_FILE, CASE_FILE, SCENARIO_FILE, SCORE_FILE
 from egosim.batch.ros_graph import stack_connected
+from egosim.bridge import ClockMode
+from egosim.bridge.context import BridgeContext
+from egosim.bridge.pipeline import Stage, Tick
 from egosim.evaluation import DriveEvaluator, EvaluationSettings, InfractionKind, Route
 from egosim.evaluation.route import RouteError
 from egosim.ros1 import Master
@@ -60,12 +64,15 @@ def build_route(lane_map: LaneMap, spec: dict | None) -> Route | None:
 
 
 class CaseDrive:
-    """The observer on the tick pipeline: holds the world until the stack is connected
-    (sim clock), then evaluates every step and ends the run when the drive is over."""
+    """The drive stage of the tick pipeline (right after the world's step): holds the
+    world until the stack is connected (sim clock), then evaluates every step and ends
+    the run (sets `stop`) when the drive is over."""
 
-    def __init__(self, case: CaseSpec, master_uri: str) -> None:
+    def __init__(self, case: CaseSpec, master_uri: str, stop: threading.Event) -> None:
         self.case = case
         self.master_uri = master_uri
+        self.stop = stop
+        self.over = False
         self.evaluator: DriveEvaluator | None = None
         self.end = "stopped"
         self.started_wall: float | None = None
@@ -74,12 +81,17 @@ class CaseDrive:
         self._gate = case.clock == ClockMode.SIM.value
         self.world: World | None = None
 
-    def __call__(self, world: World) -> bool:
-        self.world = world
-        over = self._observe(world)
-        if over:
+    def stage(self) -> Stage[BridgeContext]:
+        return Stage("drive", self.run)
+
+    def run(self, context: BridgeContext, tick: Tick) -> None:
+        if self.over:  # the loop ends after this tick
+            return
+        self.world = context.world
+        self.over = self._observe(context.world)
+        if self.over:
             print(f"egosim-batch: ended {self.end}", flush=True)
-        return over
+            self.stop.set()
 
     def _observe(self, world: World) -> bool:
         if self.evaluator is None:
@@ -138,7 +150,8 @@ def main(case_dir: Path) -> int:
         os.environ["ROS_MASTER_URI"] = master.uri
         os.environ.setdefault("ROS_IP", "127.0.0.1")
         print(f"egosim-batch: master {master.uri}", flush=True)
-        drive = CaseDrive(case, master.uri)
+        stop = threading.Event()
+        drive = CaseDrive(case, master.uri, stop)
 
         options = RunOptions(
             map=case.map,
@@ -150,7 +163,7 @@ def main(case_dir: Path) -> int:
             physics_rate_hz=PHYSICS_RATE_HZ,
             data_roots=(case_dir,),
         )
-        status = run(options, [drive])
+        status = run(options, [drive.stage()], stop)
         result = {"exit_status": status, **drive.result()}
         (case_dir / SCORE_FILE).write_text(json.dumps(result), encoding="utf-8")
         return status
