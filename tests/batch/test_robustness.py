@@ -136,7 +136,13 @@ def test_ctrl_c_stops_every_case_and_still_writes_the_results(tmp_path: Path) ->
 
 def test_filter_then_rerun_failed_runs_only_what_did_not_pass(tmp_path: Path) -> None:
     suite = robustness_suite(
-        tmp_path, [case("ok", f"{STAND_IN} exit 0 600"), case("broken", "exit 3")]
+        tmp_path,
+        [
+            case("ok", f"{STAND_IN} exit 0 600"),
+            # No route to complete: the criterion cannot hold.
+            case("broken", f"{STAND_IN} exit 0 600", criteria=["route_completion >= 0.5"]),
+        ],
+        bags="failed",
     )
     out = tmp_path / "out"
     assert main(["batch", str(suite), "--out", str(out), "--filter", "o*"]) == 0
@@ -148,6 +154,12 @@ def test_filter_then_rerun_failed_runs_only_what_did_not_pass(tmp_path: Path) ->
     assert second["execution"]["cases_run"] == 1  # "broken" only: "ok" had passed
     assert [(c["name"], c["status"]) for c in second["cases"]] == [
         ("ok", "passed"),
-        ("broken", "error"),
+        ("broken", "failed"),
     ]
+    assert second["cases"][1]["reason"] == (
+        "route_completion >= 0.5 (route_completion is not measured)"
+    )
     assert second["cases"][0] == first["cases"][0]
+    # Only the case that did not pass keeps its bag.
+    assert first["cases"][0]["bag"] is None and not (out / "ok" / "drive.bag").exists()
+    assert (out / second["cases"][1]["bag"]).exists()

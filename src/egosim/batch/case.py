@@ -36,6 +36,8 @@ class CaseSpec:
     wall_limit_s: float = 720.0
     criteria: tuple[str, ...] = ()
     scoring: dict[str, Any] = field(default_factory=dict)
+    bags: str = "all"
+    """Which cases keep their bag: "all", "failed" (those that did not pass), "none"."""
 
     def as_dict(self) -> dict[str, Any]:
         return asdict(self)

@@ -71,6 +71,9 @@ def run_case(case: CaseSpec, out_dir: str, cancel: threading.Event | None = None
     finally:
         supervisor.stop_all()
     result = _result(case, folder, problem)
+    if case.bags == "failed" and result["status"] == PASSED and result["bag"] is not None:
+        (folder / BAG_FILE).unlink()
+        result["bag"] = None
     result["timings"] = {
         "case_wall_s": round(time.monotonic() - started, 3),
         "drive_wall_s": result.pop("drive_wall_s", None),

@@ -158,7 +158,7 @@ def main(case_dir: Path) -> int:
             scenario=scenario_path,
             clock=ClockMode(case.clock),
             rtf=case.rtf if case.clock == ClockMode.SIM.value else 1.0,
-            record=case_dir / BAG_FILE,
+            record=None if case.bags == "none" else case_dir / BAG_FILE,
             log_level="WARNING",
             physics_rate_hz=PHYSICS_RATE_HZ,
             data_roots=(case_dir,),

@@ -140,6 +140,7 @@ def _expand(
                 wall_limit_s=float(data.get("wall_limit_s", 120.0 + 10.0 * time_limit)),
                 criteria=tuple(entry.get("criteria", data.get("criteria", DEFAULT_CRITERIA))),
                 scoring=dict(data.get("scoring", {})),
+                bags=data.get("bags", "all"),
             )
         )
     return cases
