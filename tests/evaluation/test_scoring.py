@@ -241,3 +241,15 @@ def test_criteria_read_and_check() -> None:
     for bad in ("route_completion >> 1", "no_such_thing", "speediness <= 3"):
         with pytest.raises(CriterionError):
             parse_criterion(bad, METRIC_NAMES)
+
+
+def test_a_route_through_lanes_and_its_first_metres() -> None:
+    route = Route.through_lanes(build_builtin_map("straight"), ["R1_E_1"])
+    assert route.length == pytest.approx(1000.0)
+    first = route.first(40.0)
+    assert first.length == pytest.approx(40.0)
+    assert first.points[-1] == pytest.approx((40.0, LANE_Y))
+    world = straight_world()
+    evaluator = DriveEvaluator(world, first)
+    drive(world, evaluator, straight(0.0, LANE_Y, 10.0), 1.0)
+    assert evaluator.score().metrics["route_completion"] == pytest.approx(0.25, abs=0.003)
