@@ -6,10 +6,13 @@ import contextlib
 import logging
 import sys
 import threading
+from collections.abc import Sequence
 from pathlib import Path
 
 from ..bridge import HANDLERS, Bridge, ClockMode, simulation_context
+from ..bridge.context import BridgeContext
 from ..bridge.network import load_network_settings
+from ..bridge.pipeline import Stage
 from ..maps import MapLoadError, load_map
 from ..replay import RecorderError
 from ..ros1 import Node, Ros1Error
@@ -59,16 +62,24 @@ def build_world(options: RunOptions) -> World:
         raise StartupError(str(error)) from error
 
 
-def run(options: RunOptions) -> int:
-    """Run the simulator until stopped; the process exit status."""
+def run(
+    options: RunOptions,
+    stages: Sequence[Stage[BridgeContext]] = (),
+    stop: threading.Event | None = None,
+) -> int:
+    """Run the simulator until stopped; the exit status.
+
+    `stages` join the tick pipeline right after the world's step (an evaluator watching
+    the drive); setting `stop` ends the run as Ctrl-C does.
+    """
     try:
-        return _run(options)
+        return _run(options, stages, stop or threading.Event())
     except StartupError as error:
         print(f"egosim: {error}", file=sys.stderr)
         return error.exit_code
 
 
-def _run(options: RunOptions) -> int:
+def _run(options: RunOptions, stages: Sequence[Stage[BridgeContext]], stop: threading.Event) -> int:
     world = build_world(options)
     try:
         settings = load_network_settings(
@@ -84,7 +95,6 @@ def _run(options: RunOptions) -> int:
         except RecorderError as error:
             raise StartupError(f"--record: {error}") from error
 
-    stop = threading.Event()
     # The bag is closed (index and header written) however the run ends.
     with stop_on_signals(stop), recorder or contextlib.nullcontext():
         try:
@@ -104,6 +114,8 @@ def _run(options: RunOptions) -> int:
             bridge=bridge,
             hold_output=node.holding_output,
         )
+        for stage in reversed(stages):
+            context.pipeline = context.pipeline.with_stage(stage, after="world")
         if recorder is not None:
             bridge.taps.append(recorder.tap())
         try:
