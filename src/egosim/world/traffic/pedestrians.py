@@ -222,8 +222,8 @@ class CrosswalkLights:
         """
         if self._lights.size == 0:
             return np.ones(len(self._lights), bool)
-        open_: BoolArray = np.all(stops_traffic[self._lights] | ~self._used, axis=1)
-        return open_
+        walk: BoolArray = np.all(stops_traffic[self._lights] | ~self._used, axis=1)
+        return walk
 
 
 CROSSWALK_SAMPLE_STEP_M = 0.5
