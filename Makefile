@@ -51,6 +51,7 @@ ros-peers:
 lint: $(VENV)/.installed-test
 	$(BIN)/ruff check $(SOURCES)
 	$(BIN)/ruff format --check $(SOURCES)
+	$(BIN)/mypy
 
 test: $(VENV)/.installed-test ros-peers lint
 	$(BIN)/pytest

@@ -124,10 +124,13 @@ def parse_yaml(
             if not isinstance(key_node, yaml.ScalarNode):
                 raise error_type(label, key_line, field_name(path), "a key must be a plain value")
             key = construct(key_node, path)
+            # Named once: mypy (run by Python >= 3.11) misreads `lines[(*path, key)]` as
+            # Python 3.11's unparenthesised star index when checking for Python 3.10.
+            key_path = (*path, key)
             if key in result:
-                raise error_type(label, key_line, field_name((*path, key)), "appears twice")
-            result[key] = convert(value_node, (*path, key))
-            lines[(*path, key)] = key_line
+                raise error_type(label, key_line, field_name(key_path), "appears twice")
+            result[key] = convert(value_node, key_path)
+            lines[key_path] = key_line
         return result
 
     def construct(node: yaml.Node, path: FieldPath) -> Any:

@@ -10,10 +10,11 @@ import itertools
 import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
-from egosim.world.arrays import FloatArray
+from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.collision import (
     ContactTracker,
     EgoCollision,
@@ -150,7 +151,7 @@ class World:
         """Every ego collision since the objects were last deleted, oldest first."""
         self.vehicle_collisions: list[VehicleCollision] = []
         """Every NPC-NPC collision since the objects were last deleted, oldest first."""
-        self.network_settings_request: dict | None = None
+        self.network_settings_request: dict[str, Any] | None = None
         """The network settings of the last ScenarioLoad that asked for them."""
         self.recorded = RecordedScene()
         """What a replay shows instead of simulating (nothing by default); see show_recorded."""
@@ -324,15 +325,15 @@ class World:
         """
         unique_id = self._next_id
         if model_name in OBSTACLE_MODELS:
-            model = OBSTACLE_MODELS[model_name]
-            size = (model.length, model.width, model.height)
+            obstacle = OBSTACLE_MODELS[model_name]
+            size = (obstacle.length, obstacle.width, obstacle.height)
             self.obstacles.spawn([ObstacleSpawn(unique_id, model_name, position, heading, size)])
             self._place_obstacles_on_lanes()
         elif model_name in VEHICLE_CATALOGUE:
             lane = self.map.project(position[0], position[1], heading)
             index = self.map.lane_index(lane.lane_id)
-            model = VEHICLE_CATALOGUE[model_name]
-            self.npcs.spawn([NpcSpawn(unique_id, model, index, lane.s, lane.lateral)])
+            vehicle = VEHICLE_CATALOGUE[model_name]
+            self.npcs.spawn([NpcSpawn(unique_id, vehicle, index, lane.s, lane.lateral)])
         else:
             raise UnknownObjectModelError(model_name)
         self._next_id += 1
@@ -513,8 +514,10 @@ class World:
             return
         slot = {int(uid): k for k, uid in enumerate(ids)}
         # Only simulated agents can be halted; recorded ones go where the recording says.
-        npcs = self.npcs.unique_ids if self.recorded.npcs is None else []
-        walkers = self.pedestrians.unique_ids if self.recorded.pedestrians is None else []
+        npcs: IntArray | list[int] = self.npcs.unique_ids if self.recorded.npcs is None else []
+        walkers: IntArray | list[int] = (
+            self.pedestrians.unique_ids if self.recorded.pedestrians is None else []
+        )
         npc_slot = {int(uid): k for k, uid in enumerate(npcs)}
         walker_slot = {int(uid): k for k, uid in enumerate(walkers)}
         egos = {ego.unique_id: ego for ego in self.egos}

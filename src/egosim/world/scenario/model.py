@@ -103,4 +103,8 @@ class Scenario:
 
     def error(self, path: FieldPath, message: str) -> ScenarioError:
         """An error naming this scenario's file, the line of `path` and the field."""
-        return self.source.error(path, message)
+        error = self.source.error(path, message)
+        if isinstance(error, ScenarioError):
+            return error
+        # A source made without error_type=ScenarioError still raises what callers catch.
+        return ScenarioError(error.label, error.line, error.field, error.message)

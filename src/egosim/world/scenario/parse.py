@@ -7,7 +7,7 @@ import math
 from collections.abc import Mapping
 from functools import cache
 from importlib import resources
-from typing import Any
+from typing import Any, cast
 
 import jsonschema
 
@@ -37,7 +37,7 @@ _TIMING_FIELDS = ("green_s", "left_s", "yellow_s", "all_red_s", "flash_s")
 def scenario_schema() -> dict[str, Any]:
     """The JSON Schema of the scenario format."""
     text = resources.files(__package__).joinpath("scenario.schema.json").read_text("utf-8")
-    return json.loads(text)
+    return cast(dict[str, Any], json.loads(text))
 
 
 def parse_scenario(document: str | Mapping[str, Any], label: str = "<scenario>") -> Scenario:

@@ -39,7 +39,7 @@ def vehicle_model_at(
     scenario: Scenario,
     name: str,
     path: FieldPath,
-    catalogue: Mapping[str, ModelT] = VEHICLE_CATALOGUE,
+    catalogue: Mapping[str, ModelT],
 ) -> ModelT:
     try:
         return catalogue[name]
@@ -112,7 +112,7 @@ def ego_placement(
 def npc_spawns(scenario: Scenario, lane_map: LaneMap, ids: Iterator[int]) -> list[NpcSpawn]:
     spawns = []
     for npc in scenario.npcs:
-        model = vehicle_model_at(scenario, npc.model, (*npc.path, "model"))
+        model = vehicle_model_at(scenario, npc.model, (*npc.path, "model"), VEHICLE_CATALOGUE)
         lane, s, lateral = lane_position(scenario, lane_map, npc.start, (*npc.path, "start"))
         route = tuple(
             _lane_index(scenario, lane_map, lane_id, (*npc.path, "route", k))

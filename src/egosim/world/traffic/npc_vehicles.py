@@ -14,9 +14,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
-import numpy.typing as npt
 
-from egosim.world.arrays import FloatArray
+from egosim.world.arrays import FloatArray, Indices
 from egosim.world.traffic.idm import IntelligentDriverModel
 from egosim.world.traffic.junction_rules import (
     DECISION_MARGIN_M,
@@ -140,7 +139,7 @@ class NpcFleet:
                 self.next_lanes[i, k] = previous
         self.pose = self._poses()
 
-    def remove(self, indices: npt.ArrayLike) -> None:
+    def remove(self, indices: Indices) -> None:
         """Take these NPCs out of the fleet (e.g. an NPC ghost takes one over)."""
         keep = np.ones(len(self), bool)
         keep[indices] = False
@@ -171,7 +170,7 @@ class NpcFleet:
     def occupants(self) -> LaneOccupants:
         return LaneOccupants(self.lane, self.s, self.dims[:, 0] / 2.0, self.speed)
 
-    def stop(self, indices: npt.ArrayLike) -> None:
+    def stop(self, indices: Indices) -> None:
         """Crash stop: these NPCs halt at once and stay halted."""
         self.crashed[indices] = True
         self.speed[indices] = 0.0
@@ -231,7 +230,10 @@ class NpcFleet:
         approach = np.sqrt(
             next_curve**2 + 2.0 * self.idm.comfortable_decel_mps2 * np.maximum(to_next, 0.0)
         )
-        return np.maximum(np.minimum.reduce([base, graph.curve_speed[self.lane], approach]), 0.1)
+        speed: FloatArray = np.maximum(
+            np.minimum.reduce([base, graph.curve_speed[self.lane], approach]), 0.1
+        )
+        return speed
 
     def _stop_line_gap(self, lights: LightsView, half: FloatArray) -> FloatArray:
         """Bumper-to-stop-line distance (m) where a light says stop, else inf."""
@@ -299,7 +301,7 @@ class NpcFleet:
                 self.s[i] -= length[self.lane[i]]
                 self.lane[i] = nxt
                 self.next_lanes[i, :-1] = self.next_lanes[i, 1:]
-                self.next_lanes[i, -1] = self._choose_successor(i, int(self.next_lanes[i, -2]))
+                self.next_lanes[i, -1] = self._choose_successor(int(i), int(self.next_lanes[i, -2]))
                 self.yellow[i] = _YELLOW_UNDECIDED
 
     def _poses(self) -> FloatArray:
