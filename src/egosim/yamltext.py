@@ -69,7 +69,8 @@ def check_nesting(text: str, label: str, error_type: type[YamlFileError]) -> Non
         if isinstance(event, yaml.CollectionStartEvent):
             depth += 1
             if depth > MAX_DEPTH:
-                line = event.start_mark.line + 1
+                mark = event.start_mark
+                line = None if mark is None else mark.line + 1
                 raise error_type(label, line, "", f"nested deeper than {MAX_DEPTH} levels")
         elif isinstance(event, yaml.CollectionEndEvent):
             depth -= 1
