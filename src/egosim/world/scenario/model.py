@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import PurePath
 from typing import Any
 
 from egosim.world.scenario.errors import ScenarioError
@@ -86,9 +87,17 @@ class SignalsSpec:
     """Where each intersection's entry sits in the file."""
 
 
+def map_name_of(reference: str) -> str:
+    """The name of the map a scenario's `map` field refers to: a map name as it is, a
+    path its last part (`maps/kcity/` -> `kcity`, `maps/track.xodr` -> `track`)."""
+    name = PurePath(reference).name or reference
+    return name[: -len(".xodr")] if name.lower().endswith(".xodr") else name
+
+
 @dataclass(frozen=True)
 class Scenario:
     map_name: str
+    """The map's name, compared with the name of the map the world runs."""
     seed: int = 0
     ego: EgoSpec | None = None
     npcs: tuple[NpcSpec, ...] = ()
@@ -97,6 +106,9 @@ class Scenario:
     signals: SignalsSpec = field(default_factory=SignalsSpec)
     network: dict[str, Any] | None = None
     """The file's network settings, handed to the simulator as they are."""
+    map_reference: str = ""
+    """The `map` field as written: a map name, or a path relative to the scenario file
+    (what `egosim run --scenario FILE` loads); empty: `map_name`."""
     source: YamlDocument = field(
         default_factory=lambda: YamlDocument("<scenario>", None, error_type=ScenarioError)
     )

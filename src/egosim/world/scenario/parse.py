@@ -22,6 +22,7 @@ from egosim.world.scenario.model import (
     Scenario,
     SignalsSpec,
     Start,
+    map_name_of,
 )
 from egosim.world.signals import IntersectionProgram, PhaseTiming
 from egosim.world.traffic.catalogue import DEFAULT_OBSTACLE_MODEL, DEFAULT_PEDESTRIAN_MODEL
@@ -69,7 +70,7 @@ def _build(source: YamlDocument) -> Scenario:
     data = source.data
     ego = data.get("ego")
     return Scenario(
-        map_name=data["map"],
+        map_name=map_name_of(data["map"]),
         seed=data.get("seed", 0),
         ego=None if ego is None else _ego(ego, ("ego",)),
         npcs=tuple(_npc(n, ("npcs", k)) for k, n in enumerate(data.get("npcs", ()))),
@@ -81,6 +82,7 @@ def _build(source: YamlDocument) -> Scenario:
         ),
         signals=_signals(source, data.get("signals", {})),
         network=data.get("network"),
+        map_reference=data["map"],
         source=source,
     )
 
