@@ -43,6 +43,16 @@ class EgoSpec:
 
 
 @dataclass(frozen=True)
+class LaneChangeSpec:
+    """Move into `lane`, a lane beside the NPC's, `after_s` s after the load (or as soon
+    after as the NPC drives beside it), sliding across over `duration_s` s."""
+
+    lane: str
+    after_s: float = 0.0
+    duration_s: float = 3.0
+
+
+@dataclass(frozen=True)
 class NpcSpec:
     path: FieldPath
     model: str
@@ -54,6 +64,9 @@ class NpcSpec:
     speed_factor: float = 1.0
     route: tuple[str, ...] = ()
     start_delay_s: float = 0.0
+    stalled: bool = False
+    """Stands where it is placed for the whole scenario (a broken-down car)."""
+    lane_change: LaneChangeSpec | None = None
 
 
 @dataclass(frozen=True)
