@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 from pathlib import Path
 
@@ -150,7 +151,7 @@ COURSE = [(15.0, 0.0), (22.0, 0.0), (25.0, 1.2), (31.0, -1.2), (37.0, 1.2), (43.
 def drive_robot(world: World, waypoints: list[tuple[float, float]]) -> None:
     """A pure-pursuit skid-steer driver: 1 m/s, steering towards a point 1.5 m ahead."""
     path = np.array(waypoints)
-    dense = np.vstack([np.linspace(a, b, 50) for a, b in zip(path[:-1], path[1:], strict=True)])
+    dense = np.vstack([np.linspace(a, b, 50) for a, b in itertools.pairwise(path)])
     robot = world.egos[0].vehicle
     while world.sim_time < 90.0 and world.ego_collision() is None:
         pose = robot.status().pose
