@@ -11,6 +11,9 @@ import pytest
 
 from egosim.app.options import RunOptions
 from egosim.app.runner import StartupError, build_world
+from egosim.maps import load_map
+from egosim.world import World
+from egosim.world.scenario import parse_scenario
 from tests.conftest import free_port
 
 JUNCTION_XODR = Path(__file__).parents[1] / "data" / "maps" / "junction.xodr"
@@ -89,3 +92,11 @@ def test_cli_conflict_is_one_line_before_anything_starts(tmp_path: Path) -> None
         f"egosim: {scenario}:1: map: the scenario is for map 'straight', --map gives 'loop' "
         "(leave --map out to run the scenario's own map)"
     )
+
+
+def test_a_scenario_naming_its_map_by_path_loads_on_that_map_over_the_network() -> None:
+    # ScenarioLoad hands the world a parsed file: the path's last part is the map's name.
+    world = World(load_map("mgeo_sample"))
+    scenario = parse_scenario("map: ../maps/mgeo_sample/\nego: {start: {lane: R3_E_1}}\n")
+    assert scenario.map_name == "mgeo_sample"
+    assert world.load_scenario(scenario).ego_placed
