@@ -111,7 +111,9 @@ def _override(document: YamlDocument, key: Any, value: Any) -> Row:
     return replace(row, name=name, enabled=enabled, rate_hz=rate)
 
 
-def _check_rate(document: YamlDocument, path: tuple[str, ...], row: Row, value: dict) -> None:
+def _check_rate(
+    document: YamlDocument, path: tuple[str, ...], row: Row, value: dict[str, Any]
+) -> None:
     if "rate_hz" not in value:
         return
     rate = value["rate_hz"]

@@ -29,7 +29,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields, replace
-from typing import Any, TypeVar
+from typing import Any, TypeVar, cast
 
 from ..sensors import GpsNoise, ImuNoise, LidarConfig, MountPose, SensorConfigError
 from ..yamltext import Problems, YamlDocument, YamlFileError
@@ -124,7 +124,7 @@ def _point_sensor(
     """GPS or IMU settings: a frame id, a mount and a noise model, each defaulted."""
     defaults: Any = settings()
     if data is None:
-        return defaults
+        return cast(T, defaults)
     _check_keys(document, path, data, ("frame_id", "mount", "noise"))
     problems = Problems()
     values: dict[str, Any] = {}
@@ -197,7 +197,7 @@ def _noise(document: YamlDocument, path: Path, data: Any, kind: Callable[..., T]
     return _built(document, path, lambda: kind(**values))
 
 
-def _frame_id(document: YamlDocument, path: Path, data: dict, default: str) -> str:
+def _frame_id(document: YamlDocument, path: Path, data: dict[str, Any], default: str) -> str:
     frame_id = data.get("frame_id", default)
     if not isinstance(frame_id, str) or not frame_id or "/" in frame_id.strip("/"):
         raise document.error((*path, "frame_id"), f"not a tf frame name: {frame_id!r}")

@@ -28,7 +28,7 @@ from egosim.world.scenario.model import (
 from egosim.world.signals import IntersectionProgram, PhaseTiming
 from egosim.world.traffic.catalogue import DEFAULT_OBSTACLE_MODEL, DEFAULT_PEDESTRIAN_MODEL
 from egosim.world.vehicle import DEFAULT_EGO_MODEL
-from egosim.yamltext import FieldPath, Problems, YamlDocument, parse_yaml
+from egosim.yamltext import FieldPath, Problems, YamlDocument, YamlFileError, parse_yaml
 
 DEFAULT_NPC_MODEL = DEFAULT_EGO_MODEL
 DEFAULT_WALK_SPEED_MPS = 1.3
@@ -55,7 +55,7 @@ def parse_scenario(document: str | Mapping[str, Any], label: str = "<scenario>")
 def _validate(source: YamlDocument) -> None:
     """Every schema violation of the file, each at its own line, at once."""
     validator = jsonschema.Draft202012Validator(scenario_schema())
-    errors: list[ScenarioError] = []
+    errors: list[YamlFileError] = []
     for violation in validator.iter_errors(source.data):
         # A violation of a oneOf / anyOf holds its branches' errors: keep the telling one.
         error = jsonschema.exceptions.best_match([violation])

@@ -29,7 +29,7 @@ from egosim.world.traffic.pedestrians import (
     crosswalk_path,
     sidewalk_path,
 )
-from egosim.world.vehicle import EGO_MODELS, VEHICLE_CATALOGUE, EgoModel
+from egosim.world.vehicle import EGO_MODELS, VEHICLE_CATALOGUE, EgoModel, VehicleModel
 from egosim.world.vehicle import Pose as VehiclePose
 from egosim.yamltext import FieldPath, Problems
 
@@ -129,7 +129,9 @@ def npc_spawns(scenario: Scenario, lane_map: LaneMap, ids: Iterator[int]) -> lis
 
 def _npc_spawn(scenario: Scenario, lane_map: LaneMap, npc: NpcSpec, unique_id: int) -> NpcSpawn:
     problems = Problems()
-    model = position = change = None
+    model: VehicleModel | None = None
+    position: tuple[int, float, float] | None = None
+    change: LaneChange | None = None
     route: list[int] = []
     with problems.collecting():
         model = vehicle_model_at(scenario, npc.model, (*npc.path, "model"))

@@ -343,7 +343,7 @@ class NpcFleet:
         for i in np.flatnonzero(pending & (self.change_timer <= 0.0) & ~frozen):
             here, target = lanes[ids[self.lane[i]]], ids[self.change_to[i]]
             if target in (here.left_neighbor, here.right_neighbor):
-                self._move_beside(i, int(self.change_to[i]))
+                self._move_beside(int(i), int(self.change_to[i]))
 
     def _move_beside(self, i: int, target: int) -> None:
         """NPC i onto lane `target` at the same place, then sliding to its centreline."""

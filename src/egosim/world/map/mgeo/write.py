@@ -289,7 +289,9 @@ def _link(
     }
 
 
-def _outline(start: tuple[float, float], end: tuple[float, float], width: float) -> list:
+def _outline(
+    start: tuple[float, float], end: tuple[float, float], width: float
+) -> list[list[float]]:
     a, b = np.asarray(start), np.asarray(end)
     along = (b - a) / max(float(np.hypot(*(b - a))), 1e-12)
     side = np.array([-along[1], along[0]]) * width / 2.0
