@@ -1,8 +1,9 @@
 """Load time of a large MGeo map: a ~3 MB link_set.json of thousands of links.
 
 The map is a synthetic grid of signalised junctions (the built-in road builder), written
-out as an MGeo folder with centrelines resampled every metre, as MGeo tools write them,
-plus its nodes, lights, synced light sets and intersection controllers.
+out as an MGeo folder by egosim's MGeo writer: centrelines resampled every metre, as MGeo
+tools write them, lane boundaries, nodes, lights, synced light sets, intersection
+controllers and crosswalks.
 
 Run: .venv/bin/python benchmarks/map_load.py
 """
@@ -45,6 +46,9 @@ def main() -> None:
         all_bytes = sum(p.stat().st_size for p in folder.iterdir())
         parse = best_of(3, lambda: [json.loads(p.read_bytes()) for p in folder.iterdir()])
         build = best_of(3, lambda: build_mgeo_map("grid", files, []))
+        # Widths from lane boundaries (every road link names two) instead of width fields.
+        unbounded = {n: c for n, c in files.items() if n != "lane_boundary_set.json"}
+        build_unbounded = best_of(3, lambda: build_mgeo_map("grid", unbounded, []))
         total = best_of(3, lambda: read_map(str(folder)))
         lane_map = read_map(str(folder)).lane_map
     links: list[dict] = files["link_set.json"]  # type: ignore[assignment]
@@ -60,6 +64,7 @@ def main() -> None:
     )
     print(f"  json.loads of every file : {parse * 1e3:8.1f} ms")
     print(f"  build_mgeo_map           : {build * 1e3:8.1f} ms")
+    print(f"    without lane boundaries: {build_unbounded * 1e3:8.1f} ms")
     print(f"  read_map (read + build)  : {total * 1e3:8.1f} ms")
 
 
