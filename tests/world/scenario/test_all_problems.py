@@ -54,7 +54,7 @@ def test_every_schema_mistake_is_reported_with_its_line() -> None:
         "bad.yaml:4: ego.start.s: -5 is less than the minimum of 0",
         "bad.yaml:7: npcs[0].colour: unknown field 'colour'",
         "bad.yaml:8: npcs[0].speed_mps: 'fast' is not of type 'number'",
-        "bad.yaml:9: npcs[1].start: {'x': 1} is not valid under any of the given schemas",
+        "bad.yaml:9: npcs[1].start: 'y' is a required property",
         lines[5],
     ]
     assert lines[5].startswith("bad.yaml:11: pedestrians[0]: ")

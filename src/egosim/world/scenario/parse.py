@@ -57,8 +57,7 @@ def _validate(source: YamlDocument) -> None:
     validator = jsonschema.Draft202012Validator(scenario_schema())
     errors: list[YamlFileError] = []
     for violation in validator.iter_errors(source.data):
-        # A violation of a oneOf / anyOf holds its branches' errors: keep the telling one.
-        error = jsonschema.exceptions.best_match([violation])
+        error = _telling(violation)
         path = tuple(error.absolute_path)
         if error.validator == "additionalProperties" and isinstance(error.instance, dict):
             # Point at each unexpected key rather than at the mapping holding it.
@@ -70,6 +69,24 @@ def _validate(source: YamlDocument) -> None:
         errors.append(source.error(path, error.message))
     if errors:
         raise ScenarioError.of_all(errors)
+
+
+def _telling(violation: jsonschema.ValidationError) -> jsonschema.ValidationError:
+    """The error to show for a violation. A oneOf (a start is a pose or a lane start)
+    holds each branch's errors: those of a branch whose fields the entry uses (one with
+    no unknown-field error) tell the user what is wrong with what they wrote."""
+    if violation.validator == "oneOf" and violation.context:
+        branches: dict[object, list[jsonschema.ValidationError]] = {}
+        for error in violation.context:
+            branches.setdefault(error.relative_schema_path[0], []).append(error)
+        meant = [
+            errors
+            for errors in branches.values()
+            if not any(e.validator == "additionalProperties" for e in errors)
+        ]
+        if len(meant) == 1:
+            return jsonschema.exceptions.best_match(meant[0])
+    return jsonschema.exceptions.best_match([violation])
 
 
 def _build(source: YamlDocument) -> Scenario:
