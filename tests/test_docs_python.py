@@ -6,6 +6,7 @@ import re
 from pathlib import Path
 
 import pytest
+import yaml
 
 REPOSITORY = Path(__file__).parents[1]
 DOCS_WITH_PYTHON = ("docs/scenarios.md", "docs/maps.md")
@@ -35,3 +36,13 @@ def test_the_scenario_tutorial_prints_what_it_says() -> None:
     text = (REPOSITORY / "docs" / "scenarios.md").read_text(encoding="utf-8")
     assert text.index("## Tutorial") < text.index("## Units")
     assert "which prints `t = 2.00 s: the NPC cuts in" in text
+
+
+def test_the_tutorial_builds_the_gallery_file() -> None:
+    text = (REPOSITORY / "docs" / "scenarios.md").read_text(encoding="utf-8")
+    tutorial = text[text.index("## Tutorial") : text.index("## Loading in code")]
+    steps = re.findall(r"^```yaml\n(.*?)^```", tutorial, re.MULTILINE | re.DOTALL)
+    assert len(steps) == 3
+    built = yaml.safe_load("".join(steps))
+    gallery = yaml.safe_load((REPOSITORY / "examples" / "scenarios" / "cut_in.yaml").read_text())
+    assert built == gallery
