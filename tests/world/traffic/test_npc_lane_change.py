@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -17,22 +19,29 @@ def world_with(npcs: str) -> World:
     return World(STRAIGHT, parse_scenario(f"map: straight\n{AWAY}npcs:\n{npcs}"))
 
 
-def test_lane_change_slides_across_at_a_constant_sideways_speed() -> None:
+def test_lane_change_slides_across_smoothly_turning_its_heading() -> None:
     world = world_with(
         "  - start: {lane: R1_E_1, s: 100}\n"
         "    target_speed_mps: 10\n    speed_mps: 10\n"
         "    lane_change: {lane: R1_E_2, after_s: 1.0, duration_s: 2.0}\n"
     )
-    ys = []
+    ys, headings = [], []
     for _ in range(200):
         world.step(0.02)
         ys.append(world.npcs.pose[0, 1])
-    ys = np.array(ys)
-    assert ys[:49] == pytest.approx(-1.75)  # in its own lane for the first second
-    # Then 3.5 m across in 2 s: 1.75 m/s, straight down to the next lane's centreline.
-    sliding = np.diff(ys[50:148])
-    assert sliding == pytest.approx(-1.75 * 0.02, rel=1e-6)
-    assert ys[-1] == pytest.approx(-5.25)
+        headings.append(world.npcs.pose[0, 3])
+    y, heading = np.array(ys), np.array(headings)
+    assert y[:49] == pytest.approx(-1.75)  # in its own lane for the first second
+    assert heading[:49] == pytest.approx(0.0)
+    # 3.5 m across in 2 s along a half-cosine: half-way at 1 s, fastest there
+    # (pi / 2 * 3.5 m / 2 s = 2.75 m/s sideways at 10 m/s: heading -15.4 deg).
+    change = 49
+    assert y[change + 50] == pytest.approx(-3.5, abs=0.01)
+    assert heading[change + 50] == pytest.approx(-math.atan2(math.pi / 2 * 3.5 / 2, 10), abs=1e-3)
+    assert np.all(np.diff(y[change : change + 101]) <= 1e-12)
+    assert y[-1] == pytest.approx(-5.25) and heading[-1] == pytest.approx(0.0)
+    # No jump in heading anywhere: a smooth manoeuvre.
+    assert np.max(np.abs(np.diff(heading))) < 0.01
     assert world.map.lane_ids[world.npcs.lane[0]] == "R1_E_2"
 
 

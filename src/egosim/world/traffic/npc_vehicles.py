@@ -6,7 +6,8 @@ path (two lanes of look-ahead), a stop line whose light tells it to stop, or the
 a dead-end lane. Laterally it sits on its lane's centreline plus a fixed offset; at the
 lane end it moves on to the successor it planned (its route, else a seeded random pick).
 A scripted lane change puts it on the lane beside at once, at the offset it had, and
-slides it to that lane's centreline at a constant sideways speed.
+slides it to that lane's centreline along a half-cosine (no sideways speed at either
+end), its heading turned with the sideways motion.
 """
 
 from __future__ import annotations
@@ -40,7 +41,7 @@ LOOKAHEAD_LANES = 2
 _PER_NPC_ARRAYS = (
     "unique_ids", "dims", "lane", "next_lanes", "s", "speed", "accel", "lateral",
     "target_speed", "speed_factor", "delay", "crashed", "yellow", "pose", "yaw_rate",
-    "change_to", "change_timer", "change_duration", "lateral_speed",
+    "change_to", "change_timer", "change_duration", "slide_from", "slide_elapsed",
 )  # fmt: skip
 _PER_NPC_LISTS = ("names", "routes", "route_pos")
 
@@ -120,8 +121,10 @@ class NpcFleet:
         """Lane index of a pending lane change, -1: none."""
         self.change_timer = np.empty(0)
         self.change_duration = np.empty(0)
-        self.lateral_speed = np.empty(0)
-        """m/s towards the lane's centreline after a lane change (0: keeps its offset)."""
+        self.slide_from = np.empty(0)
+        """Offset from the new lane's centreline when a lane change began, m."""
+        self.slide_elapsed = np.empty(0)
+        """Seconds since that lane change began; inf: not changing lanes."""
 
     def __len__(self) -> int:
         return len(self.unique_ids)
@@ -153,7 +156,8 @@ class NpcFleet:
         self.change_to = np.append(self.change_to, [c.lane for c in changes]).astype(np.int64)
         self.change_timer = np.append(self.change_timer, [c.after_s for c in changes])
         self.change_duration = np.append(self.change_duration, [c.duration_s for c in changes])
-        self.lateral_speed = np.append(self.lateral_speed, np.zeros(len(spawns)))
+        self.slide_from = np.append(self.slide_from, np.zeros(len(spawns)))
+        self.slide_elapsed = np.append(self.slide_elapsed, np.full(len(spawns), np.inf))
         self.next_lanes = np.vstack(
             (self.next_lanes, np.full((len(spawns), LOOKAHEAD_LANES), -1, np.int64))
         )
@@ -332,10 +336,13 @@ class NpcFleet:
 
     def _change_lanes(self, dt: float, frozen: npt.NDArray[np.bool_]) -> None:
         """Scripted lane changes that are due, and the sideways slides they started."""
-        sliding = self.lateral_speed > 0.0
-        step = np.minimum(np.abs(self.lateral), self.lateral_speed * dt)
-        self.lateral[sliding] -= (np.sign(self.lateral) * step)[sliding]
-        self.lateral_speed[sliding & (self.lateral == 0.0)] = 0.0
+        sliding = np.isfinite(self.slide_elapsed)
+        self.slide_elapsed[sliding] += dt
+        progress = np.clip(self.slide_elapsed / self.change_duration, 0.0, 1.0)
+        self.lateral[sliding] = (self.slide_from * 0.5 * (1.0 + np.cos(math.pi * progress)))[
+            sliding
+        ]
+        self.slide_elapsed[sliding & (progress >= 1.0)] = np.inf
         pending = self.change_to >= 0
         self.change_timer[pending] -= dt
         lanes = self.graph.lane_map.lanes
@@ -353,7 +360,8 @@ class NpcFleet:
         s = min(self.s[i] * length[target] / length[self.lane[i]], length[target])
         cx, cy, _, heading = lane_map.poses_at(np.array([target]), np.array([s]))[0]
         self.lateral[i] = -(x - cx) * math.sin(heading) + (y - cy) * math.cos(heading)
-        self.lateral_speed[i] = abs(self.lateral[i]) / self.change_duration[i]
+        self.slide_from[i] = self.lateral[i]
+        self.slide_elapsed[i] = 0.0
         self.lane[i], self.s[i] = target, s
         self.change_to[i] = -1
         self.yellow[i] = _YELLOW_UNDECIDED
@@ -364,9 +372,17 @@ class NpcFleet:
 
     def _poses(self) -> FloatArray:
         pose = self.graph.lane_map.poses_at(self.lane, self.s)
-        heading = pose[:, 3]
+        heading = pose[:, 3].copy()
         pose[:, 0] -= self.lateral * np.sin(heading)
         pose[:, 1] += self.lateral * np.cos(heading)
+        sliding = np.isfinite(self.slide_elapsed)
+        if np.any(sliding):
+            # The heading follows the slide: d(lateral)/dt against the forward speed.
+            duration = self.change_duration[sliding]
+            progress = self.slide_elapsed[sliding] / duration
+            sideways = -self.slide_from[sliding] * math.pi / (2.0 * duration)
+            sideways *= np.sin(math.pi * progress)
+            pose[sliding, 3] += np.arctan2(sideways, np.maximum(self.speed[sliding], 0.1))
         return pose
 
     def table(self) -> ObjectTable:
