@@ -18,20 +18,15 @@ import numpy.typing as npt
 from egosim.world.map.georef import GeoReference
 from egosim.world.map.lanes import Lane, LaneMap
 from egosim.world.map.polyline import stations
-from egosim.world.map.road_network import (
-    LIGHT_FLASHING_YELLOW,
-    LIGHT_RYG,
-    LIGHT_RYG_LEFT,
-    LIGHT_RYG_LEFT_GREEN,
-)
+from egosim.world.map.light_type import LightType
 
 FloatArray = npt.NDArray[np.float64]
 
 SUB_TYPES = {
-    LIGHT_RYG: ["red", "yellow", "straight"],
-    LIGHT_RYG_LEFT: ["red", "yellow", "left"],
-    LIGHT_RYG_LEFT_GREEN: ["red", "yellow", "left", "straight"],
-    LIGHT_FLASHING_YELLOW: ["yellow"],
+    LightType.RYG: ["red", "yellow", "straight"],
+    LightType.RYG_LEFT: ["red", "yellow", "left"],
+    LightType.RYG_LEFT_GREEN: ["red", "yellow", "left", "straight"],
+    LightType.FLASHING_YELLOW: ["yellow"],
 }
 CENTRE_LINE = {"lane_type": 501, "lane_color": "yellow", "lane_shape": ["Solid", "Solid"]}
 LANE_LINE = {"lane_type": 503, "lane_color": "white", "lane_shape": ["Broken"]}
@@ -69,7 +64,7 @@ def mgeo_files(lane_map: LaneMap, point_spacing_m: float = 1.0) -> dict[str, obj
                 "idx": light.id,
                 "point": list(light.position),
                 "type": "car",
-                "sub_type": SUB_TYPES.get(light.light_type, SUB_TYPES[LIGHT_RYG]),
+                "sub_type": SUB_TYPES.get(light.light_type, SUB_TYPES[LightType.RYG]),
                 "link_id_list": list(light.lane_ids),
                 "orientation": f"{math.degrees(light.heading) % 360.0:.1f}",
             }
