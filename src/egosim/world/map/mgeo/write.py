@@ -17,8 +17,8 @@ import numpy.typing as npt
 
 from egosim.world.map.georef import GeoReference
 from egosim.world.map.lanes import Lane, LaneMap
-from egosim.world.map.polyline import stations
 from egosim.world.map.light_type import LightType
+from egosim.world.map.polyline import stations
 
 FloatArray = npt.NDArray[np.float64]
 
