@@ -5,6 +5,7 @@ from __future__ import annotations
 from . import (
     ego,
     events,
+    extended_status,
     ghost,
     ground_vehicle,
     lights,
@@ -24,6 +25,8 @@ from .core import Handlers
 HANDLERS = Handlers(
     publishers={
         "ego_status": ego.publish_ego_status,
+        "ego_status_extended": extended_status.publish_ego_status_extended,
+        "object_status_extended": extended_status.publish_object_list_extended,
         "object_status": objects.publish_object_list,
         "collision": objects.publish_collision,
         "vehicle_collision": objects.publish_vehicle_collisions,
@@ -70,5 +73,10 @@ HANDLERS = Handlers(
     },
     release_adapters={
         ("sync_mode_wait_for_tick", "2021.08"): sync_mode.apply_tick_command,
+    },
+    preparers={
+        "scenario_load": scenarios.prepare_scenario,
+        "scenario_load_srv": scenarios.prepare_scenario_service,
+        "sync_mode_scenario_load": scenarios.prepare_scenario_service,
     },
 )

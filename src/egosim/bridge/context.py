@@ -14,9 +14,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
 
+from ..logthrottle import LogThrottle
 from ..msgs import Profile
 from ..replay import ReplaySession
 from ..world import World
+from .angle_rates import AngleRates
 from .clock import HeaderClock
 from .codes import ControlMode
 from .messages import header
@@ -30,6 +32,7 @@ if TYPE_CHECKING:
     from ..world.traffic.autopilot import LaneAutopilot
 
 log = logging.getLogger(__name__)
+throttle = LogThrottle(log)
 
 MAP_FRAME = "map"
 
@@ -37,12 +40,15 @@ MAP_FRAME = "map"
 RowHandler = Callable[..., Any]
 
 
-class RowOpener(Protocol):
-    """Opens a topic row of the table under a namespace at run time (Bridge.open_row)."""
+class RowBinder(Protocol):
+    """Binds rows of the table at run time (the bridge): a topic row under a namespace
+    (Bridge.open_row), or a whole new table (Bridge.apply_settings)."""
 
     def open_row(
         self, key: str, namespace: str, handler: RowHandler
     ) -> Callable[[], None] | None: ...
+
+    def apply_settings(self, settings: NetworkSettings) -> list[str]: ...
 
 
 @dataclass
@@ -71,12 +77,12 @@ class SessionState:
     """Control mode and lamps of each ego, by unique id."""
     reported: dict[str, int] = field(default_factory=dict)
     """How many entries of each world log a publisher has already reported."""
-    warned: set[str] = field(default_factory=set)
-    """Warnings already logged, so repeated bad input is reported once."""
     autopilots: dict[int, LaneAutopilot] = field(default_factory=dict)
     """The autopilot of each ego in control mode auto, by unique id."""
     ego_rows: dict[int, list[Callable[[], None]]] = field(default_factory=dict)
     """What closes the namespaced topics of each additional ego, by unique id."""
+    angle_rates: AngleRates = field(default_factory=AngleRates)
+    """The last reading of each angle whose rate a row reports (extended status rows)."""
 
 
 @dataclass
@@ -98,8 +104,8 @@ class BridgeContext:
     """Synchronous mode: whether a client owns time, the frame, requests kept for later."""
     data_roots: tuple[Path, ...] = ()
     """Where file names from the network (scenarios, bags, sensor data) resolve."""
-    rows: RowOpener | None = None
-    """Opens rows at run time (the bridge); None in-process, without a ROS node."""
+    rows: RowBinder | None = None
+    """Binds rows at run time (the bridge); None in-process, without a ROS node."""
     hold_output: Callable[[], AbstractContextManager[None]] = nullcontext
     """A block whose topic output reaches subscribers as one burst when it ends
     (Node.holding_output); sync mode ticks a WaitForTick's frames inside one."""
@@ -120,12 +126,10 @@ class BridgeContext:
     def header(self, frame_id: str = MAP_FRAME) -> Any:
         return header(self.profile, self.stamp(), frame_id)
 
-    def warn_once(self, key: str, text: str) -> None:
-        """Log `text` the first time `key` comes up, so a 50 Hz stream of the same bad
-        input does not flood the log."""
-        if key not in self.session.warned:
-            self.session.warned.add(key)
-            log.warning(text)
+    def warn_throttled(self, key: str, text: str) -> None:
+        """Log `text` when `key` comes up, at most once per window with a count of the
+        rest, so a 50 Hz stream of the same bad input does not flood the log."""
+        throttle.log(logging.WARNING, key, "%s", text)
 
     def settings_of(self, unique_id: int) -> EgoSettings:
         return self.session.ego_settings.setdefault(unique_id, EgoSettings())

@@ -16,8 +16,16 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any, Protocol, TypeVar
 
+from ..logthrottle import LogThrottle
 from ..msgs import MessageType, MsgsError, get_profile
-from ..ros1 import ConnectionRefusedByPeerError, Node, Publisher, Subscriber
+from ..ros1 import (
+    BadRequestError,
+    ConnectionRefusedByPeerError,
+    Node,
+    Publisher,
+    ServiceServer,
+    Subscriber,
+)
 from ..ros1.types import TopicType
 from .context import BridgeContext
 from .network import NetworkSettings
@@ -35,6 +43,7 @@ from .releases import (
 from .table import Direction, Row
 
 log = logging.getLogger(__name__)
+throttle = LogThrottle(log)
 
 T = TypeVar("T")
 
@@ -47,6 +56,9 @@ RequestHandler = Callable[[BridgeContext, Row, Any], Any]  # (context, row, requ
 # (context, row, request as the client sent it): applies a request field only one
 # release has, before the row's handler answers
 ReleaseAdapter = Callable[[BridgeContext, Row, Any], None]
+# (context, row, message or request) -> what the row's handler gets instead: work done on
+# the transport's thread, such as reading a user's file, so the loop never waits on it
+Preparer = Callable[[BridgeContext, Row, Any], Any]
 
 
 class Inbox(Protocol):
@@ -65,6 +77,7 @@ class Handlers:
     # (service row key, release) -> what to do with a request field that only that
     # release has, before the row's handler answers
     release_adapters: dict[tuple[str, str], ReleaseAdapter] = field(default_factory=dict)
+    preparers: dict[str, Preparer] = field(default_factory=dict)
 
     def __contains__(self, key: str) -> bool:
         return key in self.publishers or key in self.subscribers or key in self.services
@@ -111,6 +124,8 @@ class Bridge:
         self.outlets: list[Outlet] = []
         self.taps: list[Tap] = []
         self._context: BridgeContext | None = None
+        # What unbinds each row of the table that is bound (not namespaced copies).
+        self._unbinders: dict[str, Callable[[], None]] = {}
 
     @property
     def context(self) -> BridgeContext:
@@ -122,12 +137,46 @@ class Bridge:
         """Advertise, subscribe and serve every enabled row, handled with `context`."""
         self._context = context
         for row in self.settings.enabled_rows():
-            if row.direction is Direction.PUBLISH:
-                self._advertise(row, self.handlers.publishers[row.key])
-            elif row.direction is Direction.SUBSCRIBE:
-                self._subscribe(row, self.handlers.subscribers[row.key])
-            else:
-                self._serve(row)
+            self._bind(row)
+
+    def apply_settings(self, settings: NetworkSettings) -> list[str]:
+        """Make `settings` the table in force, changing only the rows that changed: a
+        renamed or disabled row is withdrawn, a new or renamed one opened, a re-rated one
+        keeps its connections and publishes at its new rate; clients of unchanged rows
+        keep theirs. What changed, for the log."""
+        before = {row.key: row for row in self.settings.enabled_rows()}
+        after = {row.key: row for row in settings.enabled_rows()}
+        changes = []
+        for key, row in before.items():
+            if key not in after or after[key].name != row.name:
+                self._unbinders.pop(key)()
+                changes.append(f"{row.name} withdrawn")
+        self.settings = settings
+        for key, row in after.items():
+            old = before.get(key)
+            if old is None or old.name != row.name:
+                self._bind(row)
+                changes.append(f"{row.name} opened")
+            elif old.rate_hz != row.rate_hz:
+                outlet = next(o for o in self.outlets if o.row.key == key and o.row == old)
+                outlet.row, outlet.period = row, 1.0 / row.rate_hz if row.rate_hz else None
+                changes.append(f"{row.name} at {row.rate_hz:g} Hz")
+        return changes
+
+    def _bind(self, row: Row) -> None:
+        if row.direction is Direction.PUBLISH:
+            outlet = self._advertise(row, self.handlers.publishers[row.key])
+            self._unbinders[row.key] = lambda: self._withdraw(outlet)
+        elif row.direction is Direction.SUBSCRIBE:
+            self._unbinders[row.key] = self._subscribe(
+                row, self.handlers.subscribers[row.key]
+            ).close
+        else:
+            self._unbinders[row.key] = self._serve(row).close
+
+    def _withdraw(self, outlet: Outlet) -> None:
+        self.outlets.remove(outlet)
+        outlet.publisher.close()
 
     def open_row(
         self, key: str, namespace: str, handler: Callable[..., Any]
@@ -144,12 +193,7 @@ class Bridge:
         if row.direction is not Direction.PUBLISH:
             raise ValueError(f"{row.name}: only topics are opened at run time")
         outlet = self._advertise(row, handler)
-
-        def close() -> None:
-            self.outlets.remove(outlet)
-            outlet.publisher.close()
-
-        return close
+        return lambda: self._withdraw(outlet)
 
     def publish_due(self, now: float) -> None:
         """Build and publish every outlet whose period has elapsed at loop time `now` (s)."""
@@ -207,7 +251,9 @@ class Bridge:
             caller = header.get("callerid", "?")
             release = release_for_md5(releases, header.get("md5sum", ""))
             if release is None:
-                log.error(
+                throttle.log(
+                    logging.ERROR,
+                    (row.name, caller, "md5sum"),
                     "%s from %s: md5sum %s is no release of %s; message dropped",
                     row.name,
                     caller,
@@ -220,15 +266,24 @@ class Bridge:
                     release.message_type.deserialize(data), release.message_type, message_type
                 )
             except MsgsError as exc:
-                log.error("%s from %s: %s", row.name, caller, exc)
+                throttle.log(
+                    logging.ERROR,
+                    (row.name, caller, "undecodable"),
+                    "%s from %s: message dropped: %s",
+                    row.name,
+                    caller,
+                    exc,
+                )
                 return
             self._tap(row.name, release.message_type, data)
-            self.inbox.post(lambda: handle(self.context, row, message))
+            prepare = self.handlers.preparers.get(row.key)
+            prepared = message if prepare is None else prepare(self.context, row, message)
+            self.inbox.post(lambda: handle(self.context, row, prepared))
 
         any_release = TopicType(row.type_name, "*", releases[0].message_type.definition)
         return self.node.subscribe(row.name, any_release, received)
 
-    def _serve(self, row: Row) -> None:
+    def _serve(self, row: Row) -> ServiceServer:
         """Serve the row to clients of any release, each answered in its own."""
         releases = service_releases_of(row.type_name, self.default_release)
         canonical_type = get_profile(CANONICAL_PROFILE).service(row.type_name)
@@ -244,21 +299,26 @@ class Bridge:
         def serve(data: bytes, header: Any) -> bytes:
             release = release_of(header)
             served = release.service_type
-            sent = served.request.deserialize(data)
+            try:
+                sent = served.request.deserialize(data)
+            except MsgsError as exc:
+                raise BadRequestError(f"undecodable {served.request.name}: {exc}") from None
             request = convert(sent, served.request, canonical_type.request)
             adapt = self.handlers.release_adapters.get((row.key, release.profile_name))
+            prepare = self.handlers.preparers.get(row.key)
+            prepared = request if prepare is None else prepare(self.context, row, request)
 
             def answer() -> Any:
                 if adapt is not None:
                     adapt(self.context, row, sent)
-                return handle(self.context, row, request)
+                return handle(self.context, row, prepared)
 
             response = self.inbox.call(answer)
             return served.response.serialize(
                 convert(response, canonical_type.response, served.response)
             )
 
-        self.node.advertise_service(
+        return self.node.advertise_service(
             row.name,
             releases[0].service_type,
             serve,

@@ -16,7 +16,7 @@ import re
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from ..yamltext import Problems, YamlDocument, parse_yaml
+from ..yamltext import Problems, YamlDocument, YamlFileError, parse_yaml
 from .sensor_settings import SensorSettings, parse_sensor_settings
 from .table import DEFAULT_EGO_INPUT, EGO_INPUT_ROWS, ROWS, ROWS_BY_KEY, Direction, Row
 
@@ -56,7 +56,20 @@ def settings_for(ego_input: str, overrides: dict[str, Row]) -> NetworkSettings:
 
 def parse_network_settings(text: str, label: str) -> NetworkSettings:
     """Settings from a YAML text; errors name the file, line and field, all at once."""
-    document = parse_yaml(text, label)
+    return network_settings_of(parse_yaml(text, label))
+
+
+def section_of(document: YamlDocument, key: str) -> YamlDocument:
+    """The part of `document` under `key` (a scenario's `network:`), as a document of its
+    own whose errors still name the file's lines."""
+    data = document.data.get(key) if isinstance(document.data, dict) else None
+    lines = {path[1:]: line for path, line in document.lines.items() if path[:1] == (key,)}
+    return YamlDocument(document.label, data, lines, document.error_type)
+
+
+def network_settings_of(document: YamlDocument) -> NetworkSettings:
+    """Settings from a parsed document; errors name the file, line and field, and every
+    problem of the document is reported at once."""
     data = document.data if document.data is not None else {}
     if not isinstance(data, dict):
         raise document.error((), "expected a mapping with 'ego_input', 'rows' and/or 'sensors'")
@@ -121,13 +134,22 @@ def _check_rate(
         raise document.error((*path, "rate_hz"), "only publishers have a rate")
     if isinstance(rate, bool) or not isinstance(rate, int | float):
         raise document.error((*path, "rate_hz"), "expected a number of Hz")
-    if not (math.isfinite(rate) and rate > 0):
-        raise document.error((*path, "rate_hz"), "must be a positive number of Hz")
+    if not (math.isfinite(rate) and 0 < rate <= MAX_RATE_HZ):
+        raise document.error((*path, "rate_hz"), f"must be in 0..{MAX_RATE_HZ:g} Hz (above 0)")
+
+
+#: No row publishes faster than this (the physics runs at 100 Hz by default).
+MAX_RATE_HZ = 1000.0
 
 
 def load_network_settings(path: str | None) -> NetworkSettings:
     """The settings of the file at `path`, or the defaults when no file is given."""
     if path is None:
         return default_network_settings()
-    with open(path, encoding="utf-8") as file:
-        return parse_network_settings(file.read(), path)
+    with open(path, "rb") as file:
+        data = file.read()
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise YamlFileError(path, None, "", f"not UTF-8 text ({error.reason})") from None
+    return parse_network_settings(text, path)
