@@ -6,6 +6,8 @@ npcs[2].speed" is worth more to them than a traceback.
 
 from __future__ import annotations
 
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -28,15 +30,61 @@ def field_name(path: FieldPath) -> str:
 
 
 class YamlFileError(ValueError):
-    """A YAML file that cannot be used, located by file label, line and field."""
+    """A YAML file that cannot be used, located by file label, line and field.
+
+    One error may report several problems of the same file (`problems`, in file order;
+    its message has one line each); its own label, line and field are the first one's.
+    """
 
     def __init__(self, label: str, line: int | None, field: str, message: str) -> None:
         self.label = label
         self.line = line
         self.field = field
         self.message = message
+        self.problems: tuple[YamlFileError, ...] = (self,)
         where = label if line is None else f"{label}:{line}"
         super().__init__(f"{where}: {field + ': ' if field else ''}{message}")
+
+    @classmethod
+    def of_all(cls, errors: Sequence[YamlFileError]) -> YamlFileError:
+        """One error reporting every problem of `errors` (each once), in file order."""
+        unique: dict[str, YamlFileError] = {}
+        for error in errors:
+            for problem in error.problems:
+                unique.setdefault(str(problem), problem)
+        ordered = sorted(unique.values(), key=lambda p: (p.line is None, p.line or 0))
+        if len(ordered) == 1:
+            return ordered[0]
+        first = ordered[0]
+        combined = type(first)(first.label, first.line, first.field, first.message)
+        combined.problems = tuple(ordered)
+        combined.args = ("\n".join(str(problem) for problem in ordered),)
+        return combined
+
+
+class Problems:
+    """Collects the problems found in a file, so that they are all reported at once.
+
+    Each independent check runs in its own `with problems.collecting():` block, which
+    keeps the YamlFileError it raises and carries on after the block.
+    """
+
+    def __init__(self) -> None:
+        self.found: list[YamlFileError] = []
+
+    def add(self, error: YamlFileError) -> None:
+        self.found.append(error)
+
+    @contextmanager
+    def collecting(self) -> Iterator[None]:
+        try:
+            yield
+        except YamlFileError as error:
+            self.found.append(error)
+
+    def raise_any(self) -> None:
+        if self.found:
+            raise YamlFileError.of_all(self.found)
 
 
 @dataclass(frozen=True)

@@ -13,11 +13,11 @@ from ..bridge import HANDLERS, Bridge, ClockMode, simulation_context
 from ..bridge.context import BridgeContext
 from ..bridge.network import load_network_settings
 from ..bridge.pipeline import Stage
-from ..maps import MapLoadError, load_map
+from ..maps import MapLoadError, load_map, scenario_map_location
 from ..replay import RecorderError
 from ..ros1 import Node, Ros1Error
 from ..world import World
-from ..world.scenario import ScenarioError, load_default_scenario, parse_scenario
+from ..world.scenario import Scenario, ScenarioError, load_default_scenario, parse_scenario
 from ..yamltext import YamlFileError
 from .inbox import Inbox
 from .loop import SimulationLoop
@@ -31,6 +31,7 @@ NODE_NAME = "egosim"
 EXIT_OK = 0
 EXIT_BAD_INPUT = 2
 EXIT_ROS_FAILED = 3
+DEFAULT_MAP = "town"
 
 
 class StartupError(Exception):
@@ -42,22 +43,42 @@ class StartupError(Exception):
 
 
 def build_world(options: RunOptions) -> World:
+    """The world of `options`: the scenario's own map unless --map names one (which must
+    then be the map the scenario is for); no scenario: --map (default town)."""
+    scenario = _read_scenario(options.scenario) if options.scenario is not None else None
+    if options.map is not None:
+        source = options.map
+    elif scenario is not None and options.scenario is not None:
+        source = scenario_map_location(scenario.map_reference, options.scenario.parent)
+    else:
+        source = DEFAULT_MAP
     try:
-        lane_map = load_map(options.map)
+        lane_map = load_map(source)
     except MapLoadError as error:
         raise StartupError(f"map: {error}") from error
-    try:
-        if options.scenario is not None:
-            scenario = parse_scenario(
-                options.scenario.read_text(encoding="utf-8"), str(options.scenario)
+    if scenario is None and lane_map.name == DEFAULT_MAP:
+        scenario = load_default_scenario()
+    if scenario is not None and scenario.map_name != lane_map.name:
+        raise StartupError(
+            str(
+                scenario.error(
+                    ("map",),
+                    f"the scenario is for map {scenario.map_name!r}, --map gives "
+                    f"{lane_map.name!r} (leave --map out to run the scenario's own map)",
+                )
             )
-        elif lane_map.name == "town":
-            scenario = load_default_scenario()
-        else:
-            scenario = None
+        )
+    try:
         return World(lane_map, scenario, physics_step_s=options.physics_dt)
+    except ScenarioError as error:
+        raise StartupError(str(error)) from error
+
+
+def _read_scenario(path: Path) -> Scenario:
+    try:
+        return parse_scenario(path.read_text(encoding="utf-8"), str(path))
     except (OSError, UnicodeDecodeError) as error:
-        raise StartupError(f"cannot read scenario {options.scenario}: {error}") from error
+        raise StartupError(f"cannot read scenario {path}: {error}") from error
     except ScenarioError as error:
         raise StartupError(str(error)) from error
 

@@ -39,12 +39,16 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument(
         "--map",
-        default="town",
         metavar="NAME|PATH",
-        help="built-in map (town, straight, loop), MGeo folder or OpenDRIVE .xodr file",
+        help="built-in map (town, straight, loop, mgeo_sample), MGeo folder or OpenDRIVE "
+        ".xodr file (default: the scenario's map, else town); with --scenario it must be "
+        "the map the scenario is for",
     )
     parser.add_argument(
-        "--scenario", type=Path, metavar="PATH", help="scenario YAML (the town has a default)"
+        "--scenario",
+        type=Path,
+        metavar="PATH",
+        help="scenario YAML; runs on the map it names (the town has a default scenario)",
     )
     parser.add_argument("--network", type=Path, metavar="PATH", help="network settings YAML")
     parser.add_argument("--clock", choices=[m.value for m in ClockMode], default="real")

@@ -60,6 +60,7 @@ from egosim.world.traffic.ghosts import GhostPlacement, NpcGhosts
 from egosim.world.traffic.npc_vehicles import NpcSpawn
 from egosim.world.traffic.object_list import ObjectList
 from egosim.world.traffic.obstacles import ObstacleSpawn
+from egosim.world.traffic.pedestrians import PedestrianSpawn
 from egosim.world.vehicle import (
     DEFAULT_EGO_MODEL,
     EgoVehicle,
@@ -70,6 +71,7 @@ from egosim.world.vehicle import (
     ego_vehicle,
 )
 from egosim.world.vehicle.catalogue import VEHICLE_CATALOGUE
+from egosim.yamltext import Problems
 
 DEFAULT_PHYSICS_STEP_S = 0.01
 DEFAULT_OBJECT_LIST_SIZE = 20
@@ -555,11 +557,26 @@ class World:
         options = options or ScenarioLoadOptions()
         check_map(scenario, self.map)
         ids = self._allocate_ids()
-        signals = self._signals_for(scenario)
-        ego = ego_placement(scenario, self.map) if options.load_ego_vehicle_data else None
-        npcs = npc_spawns(scenario, self.map, ids) if options.load_surrounding_vehicle_data else []
-        walkers = pedestrian_spawns(scenario, self.map, ids) if options.load_pedestrian_data else []
-        things = obstacle_spawns(scenario, ids) if options.load_object_data else []
+        # Every section is checked, so that a file's mistakes are all reported at once.
+        problems = Problems()
+        signals = ego = None
+        npcs: list[NpcSpawn] = []
+        walkers: list[PedestrianSpawn] = []
+        things: list[ObstacleSpawn] = []
+        with problems.collecting():
+            signals = self._signals_for(scenario)
+        with problems.collecting():
+            ego = ego_placement(scenario, self.map) if options.load_ego_vehicle_data else None
+        with problems.collecting():
+            if options.load_surrounding_vehicle_data:
+                npcs = npc_spawns(scenario, self.map, ids)
+        with problems.collecting():
+            if options.load_pedestrian_data:
+                walkers = pedestrian_spawns(scenario, self.map, ids)
+        with problems.collecting():
+            things = obstacle_spawns(scenario, ids) if options.load_object_data else []
+        problems.raise_any()
+        assert signals is not None
 
         self._next_id = next(ids)
         self.signals = signals

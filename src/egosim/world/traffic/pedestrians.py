@@ -229,6 +229,16 @@ class CrosswalkLights:
 CROSSWALK_SAMPLE_STEP_M = 0.5
 
 
+def _holding_lights(lane_map: LaneMap, lane_id: str) -> set[str | None]:
+    """The lights that hold the traffic on a lane: its own, or for a junction connector
+    those of the lanes leading into it (where a map ends its lanes at the stop line, as
+    MGeo does, a crossing at the junction's mouth lies over connectors)."""
+    lane = lane_map.lanes[lane_id]
+    if lane.traffic_light_id is not None or not lane.is_junction:
+        return {lane.traffic_light_id}
+    return {lane_map.lanes[p].traffic_light_id for p in lane.predecessors}
+
+
 def crossed_lights(lane_map: LaneMap, light_index: Mapping[str, int]) -> list[tuple[int, ...]]:
     """Per crosswalk (map order): the lights of its junction governing the lanes it lies
     across (the traffic that must be held for it)."""
@@ -240,8 +250,9 @@ def crossed_lights(lane_map: LaneMap, light_index: Mapping[str, int]) -> list[tu
         projection = lane_map.project_many(points)
         inside = np.abs(projection.lateral) <= projection.width / 2.0
         lights = {
-            lane_map.lanes[lane_map.lane_ids[k]].traffic_light_id
-            for k in projection.lane_index[inside]
+            light
+            for k in set(projection.lane_index[inside].tolist())
+            for light in _holding_lights(lane_map, lane_map.lane_ids[k])
         }
         # A road's lanes away from this junction carry the far junction's light.
         own = [
