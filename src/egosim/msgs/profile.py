@@ -129,7 +129,8 @@ class Profile:
         self._own_texts[store_name] = text
         return parsed
 
-    def _own_text(self, store_name: str) -> str:
+    def own_text(self, store_name: str) -> str:
+        """The definition of `store_name` alone (`pkg/msg/Name`), as its .msg file has it."""
         if store_name in self._own_texts:
             return self._own_texts[store_name]
         return self.store.gendefhash(store_name, {})[0]
@@ -146,7 +147,7 @@ class Profile:
             self._messages[ros_name] = MessageType(
                 name=ros_name,
                 md5sum=self.store.generate_msgdef(store_name)[1],
-                definition=fulltext.full_text(self.store, store_name, self._own_text),
+                definition=fulltext.full_text(self.store, store_name, self.own_text),
                 store=self.store,
             )
         self._messages[name] = self._messages[ros_name]
@@ -165,6 +166,21 @@ class Profile:
             response=response,
             definition=f"{srv.request}{SERVICE_SEPARATOR}\n{srv.response}",
         )
+
+    def resolve(self, name: str) -> str:
+        """The full name of the message or service type `name`, which may omit its package
+        when only one listed type has that name (`CtrlCmd` -> `morai_msgs/CtrlCmd`)."""
+        if "/" in name:
+            return name
+        listed = [*self.message_names(), *self.service_names()]
+        matches = [full for full in listed if full.rpartition("/")[2] == name]
+        if len(matches) == 1:
+            return matches[0]
+        if matches:
+            raise UnknownTypeError(f"{name!r} is ambiguous: {', '.join(matches)}")
+        similar = [full for full in listed if name.lower() in full.rpartition("/")[2].lower()]
+        hint = f"; did you mean {', '.join(similar)}?" if similar else ""
+        raise UnknownTypeError(f"no message or service type {name!r} in {self.name}{hint}")
 
     def message_names(self) -> list[str]:
         """The package's own message types, then the standard ones, each sorted."""
