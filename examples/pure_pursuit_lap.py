@@ -8,7 +8,8 @@ Run it with ROS 1 and a built morai_msgs package on the Python path:
     egosim run --scenario examples/town_lap_scenario.yaml &
     python3 examples/pure_pursuit_lap.py examples/town_block_lap.csv
 
-It prints the largest distance from the path it saw and exits once the lap is done.
+Every two seconds it prints its progress (distance driven, speed, distance from the
+path); once the lap is done, the largest distance from the path it saw, and it exits.
 """
 
 import csv
@@ -22,6 +23,7 @@ from morai_msgs.srv import MoraiVehicleSpecSrv
 LOOKAHEAD_M = 8.0
 SPEED_KMH = 30.0
 VELOCITY_MODE = 2
+PROGRESS_PERIOD_S = 2.0
 
 
 class PurePursuitLap:
@@ -30,6 +32,10 @@ class PurePursuitLap:
         self.wheelbase = wheelbase
         self.progress = 0  # waypoints passed, counting past the end of the lap
         self.max_off_path = 0.0
+        self.off_path = 0.0
+        self.driven_m = 0.0
+        self.speed_kmh = 0.0
+        self.last_position = None
         self.done = False
         self.command = rospy.Publisher("/ctrl_cmd", CtrlCmd, queue_size=1)
 
@@ -50,7 +56,12 @@ class PurePursuitLap:
             return
         x, y = status.position.x, status.position.y
         yaw = math.radians(status.heading)
-        self.max_off_path = max(self.max_off_path, self.nearest_ahead(x, y))
+        if self.last_position is not None:
+            self.driven_m += math.hypot(x - self.last_position[0], y - self.last_position[1])
+        self.last_position = (x, y)
+        self.speed_kmh = status.velocity.x * 3.6
+        self.off_path = self.nearest_ahead(x, y)
+        self.max_off_path = max(self.max_off_path, self.off_path)
         if self.progress >= len(self.path):
             self.done = True
             self.command.publish(CtrlCmd(longlCmdType=VELOCITY_MODE, velocity=0.0))
@@ -63,6 +74,13 @@ class PurePursuitLap:
         steer = math.atan2(2.0 * self.wheelbase * math.sin(alpha), math.hypot(dx, dy))
         self.command.publish(
             CtrlCmd(longlCmdType=VELOCITY_MODE, velocity=SPEED_KMH, front_steer=steer)
+        )
+
+    def progress_line(self):
+        return (
+            f"driven {self.driven_m:6.1f} m ({min(self.progress, len(self.path))}/"
+            f"{len(self.path)} waypoints), speed {self.speed_kmh:4.1f} km/h, "
+            f"{self.off_path:.2f} m from the path"
         )
 
     def offset(self, index, x, y):
@@ -80,8 +98,12 @@ def main():
     wheelbase = spec(VehicleSpecIndex(unique_id=status.unique_id)).response.wheel_base
     driver = PurePursuitLap(path, wheelbase)
     rospy.Subscriber("/Ego_topic", EgoVehicleStatus, driver.on_status, queue_size=1)
+    next_report = rospy.get_time() + PROGRESS_PERIOD_S
     while not driver.done and not rospy.is_shutdown():
         rospy.sleep(0.1)
+        if rospy.get_time() >= next_report:
+            print(driver.progress_line(), flush=True)
+            next_report += PROGRESS_PERIOD_S
     print(
         f"lap complete: {len(path)} waypoints, largest distance from the path "
         f"{driver.max_off_path:.2f} m",
