@@ -33,6 +33,7 @@ def scenario_text(options: RunOptions, world: World) -> str:
 def ready_summary(world: World, options: RunOptions) -> str:
     """A few lines beside `egosim: ready`: map, scenario, the ego, the traffic, the clock."""
     ego = world.ego_status().pose
+    heading = heading_deg(ego.yaw)
     lane = world.ego_lane_state().lane_id
     rate = f" at {options.rtf:g}x" if options.clock is ClockMode.SIM and options.rtf else ""
     if options.clock is ClockMode.SIM and not options.rtf:
@@ -41,7 +42,7 @@ def ready_summary(world: World, options: RunOptions) -> str:
         [
             f"egosim: map {world.map.name}, scenario {scenario_text(options, world)}, "
             f"clock {CLOCK_TEXT[options.clock]}{rate}",
-            f"egosim: ego at x={ego.x:.1f} y={ego.y:.1f} m, heading {heading_deg(ego.yaw):.1f} deg, "
+            f"egosim: ego at x={ego.x:.1f} y={ego.y:.1f} m, heading {heading:.1f} deg, "
             f"lane {lane or '-'}; {plural(len(world.npcs), 'NPC')}, "
             f"{plural(len(world.pedestrians), 'pedestrian')}, "
             f"{plural(len(world.obstacles), 'obstacle')}, "

@@ -20,6 +20,9 @@ from .definitions import (
 )
 from .errors import DefinitionError, SerializationError, UnknownTypeError
 
+# rosbags' stand-ins for ROS 1's time and duration built-ins: not types a user names.
+ROSBAGS_INTERNAL = "builtin_interfaces/"
+
 # Standard types egosim publishes or that morai_msgs embeds; listed by `egosim msgs`.
 STANDARD_TYPES: tuple[str, ...] = (
     "std_msgs/Header",
@@ -169,18 +172,17 @@ class Profile:
 
     def resolve(self, name: str) -> str:
         """The full name of the message or service type `name`, which may omit its package
-        when only one listed type has that name (`CtrlCmd` -> `morai_msgs/CtrlCmd`)."""
+        when only one type has that name (`CtrlCmd` -> `morai_msgs/CtrlCmd`)."""
         if "/" in name:
             return name
-        listed = [*self.message_names(), *self.service_names()]
-        matches = [full for full in listed if full.rpartition("/")[2] == name]
-        if len(matches) == 1:
-            return matches[0]
-        if matches:
-            raise UnknownTypeError(f"{name!r} is ambiguous: {', '.join(matches)}")
-        similar = [full for full in listed if name.lower() in full.rpartition("/")[2].lower()]
-        hint = f"; did you mean {', '.join(similar)}?" if similar else ""
-        raise UnknownTypeError(f"no message or service type {name!r} in {self.name}{hint}")
+        halves = {f"{srv}{half}" for srv in self._services for half in ("Request", "Response")}
+        known = [
+            ros_name
+            for store_name in self.store.fielddefs
+            if not store_name.startswith(ROSBAGS_INTERNAL)
+            and (ros_name := denormalize_msgtype(store_name)) not in halves
+        ]
+        return resolve_short_name(name, [*known, *self._services], self.name)
 
     def message_names(self) -> list[str]:
         """The package's own message types, then the standard ones, each sorted."""
@@ -189,6 +191,20 @@ class Profile:
 
     def service_names(self) -> list[str]:
         return sorted(self._services)
+
+
+def resolve_short_name(name: str, full_names: list[str], profile: str) -> str:
+    """The one full name among `full_names` whose type name is `name`."""
+    matches = sorted({full for full in full_names if full.rpartition("/")[2] == name})
+    if len(matches) == 1:
+        return matches[0]
+    if matches:
+        raise UnknownTypeError(f"{name!r} is ambiguous in {profile}: {', '.join(matches)}")
+    similar = sorted(
+        {full for full in full_names if name.lower() in full.rpartition("/")[2].lower()}
+    )
+    hint = f"; did you mean {', '.join(similar)}?" if similar else ""
+    raise UnknownTypeError(f"no message or service type {name!r} in {profile}{hint}")
 
 
 @functools.cache
