@@ -3,10 +3,11 @@
 
 An ordinary rospy node for MORAI SIM: it reads /Ego_topic, asks
 /Service_MoraiVehicleSpec for the wheelbase, and sends /ctrl_cmd in velocity mode.
-Run it with ROS 1 and a built morai_msgs package on the Python path:
+Run it under the ROS Python with morai_msgs on the Python path (`egosim msgs
+--export-python ~/morai_py`, or a catkin workspace's devel/setup.bash):
 
-    egosim run --scenario examples/town_lap_scenario.yaml &
-    python3 examples/pure_pursuit_lap.py examples/town_block_lap.csv
+    .venv/bin/egosim run --scenario examples/town_lap_scenario.yaml &
+    PYTHONPATH=~/morai_py /usr/bin/python3 examples/pure_pursuit_lap.py examples/town_block_lap.csv
 
 Every two seconds it prints its progress (distance driven, speed, distance from the
 path); once the lap is done, the largest distance from the path it saw, and it exits.
