@@ -6,6 +6,7 @@ write_python_modules(profile, directory)     # directory/morai_msgs/msg/_CtrlCmd
 
 from __future__ import annotations
 
+import shutil
 import subprocess
 import tempfile
 from importlib import resources
@@ -133,25 +134,33 @@ def write_python_modules(
     profile: Profile, directory: Path, ros_python: str = DEFAULT_ROS_PYTHON
 ) -> list[str]:
     """Generate morai_msgs and the standard packages it embeds into `directory` with genpy,
-    run by `ros_python`; the packages written."""
+    run by `ros_python`; the packages written. Each package's folder is replaced whole, so
+    no module of an earlier export (another release) is left behind."""
     packages = [PACKAGE, *dependency_packages(profile)]
-    with tempfile.TemporaryDirectory(prefix="egosim-msgs-") as source:
-        write_files(Path(source, PACKAGE), package_files(profile))
+    with tempfile.TemporaryDirectory(prefix="egosim-msgs-") as work:
+        source, generated = Path(work, "source"), Path(work, "generated")
+        write_files(source / PACKAGE, package_files(profile))
         for package in packages[1:]:
-            write_files(Path(source, package), dependency_sources(profile, package))
+            write_files(source / package, dependency_sources(profile, package))
         script = resources.files(__package__).joinpath(GENPY_BUILD)
-        command = [ros_python, str(script), source, str(directory), *packages]
+        command = [ros_python, str(script), str(source), str(generated), *packages]
         try:
-            directory.mkdir(parents=True, exist_ok=True)
             result = subprocess.run(
                 command, capture_output=True, text=True, check=False, timeout=GENPY_TIMEOUT_S
             )
         except (OSError, subprocess.TimeoutExpired) as exc:
             raise ExportError(f"cannot run genpy with {ros_python}: {exc}") from exc
-    if result.returncode != 0:
-        lines = (result.stderr or result.stdout).strip().splitlines() or ["no output"]
-        hint = ""
-        if "No module named 'gen" in lines[-1]:
-            hint = " (install python3-genpy, or source your ROS setup.bash; --ros-python PATH)"
-        raise ExportError(f"genpy under {ros_python} failed: {lines[-1]}{hint}")
+        if result.returncode != 0:
+            lines = (result.stderr or result.stdout).strip().splitlines() or ["no output"]
+            hint = ""
+            if "No module named 'gen" in lines[-1]:
+                hint = " (install python3-genpy, or source your ROS setup.bash; --ros-python PATH)"
+            raise ExportError(f"genpy under {ros_python} failed: {lines[-1]}{hint}")
+        try:
+            directory.mkdir(parents=True, exist_ok=True)
+            for package in packages:
+                shutil.rmtree(directory / package, ignore_errors=True)
+                shutil.copytree(generated / package, directory / package)
+        except OSError as exc:
+            raise ExportError(f"cannot write {directory}: {exc}") from exc
     return packages
