@@ -7,7 +7,8 @@ Run it under the ROS Python with morai_msgs on the Python path (`egosim msgs
 --export-python ~/morai_py`, or a catkin workspace's devel/setup.bash):
 
     .venv/bin/egosim run --scenario examples/town_lap_scenario.yaml &
-    PYTHONPATH=~/morai_py /usr/bin/python3 examples/pure_pursuit_lap.py examples/town_block_lap.csv
+    PYTHONPATH=~/morai_py:$PYTHONPATH /usr/bin/python3 examples/pure_pursuit_lap.py \
+        examples/town_block_lap.csv
 
 Every two seconds it prints its progress (distance driven, speed, distance from the
 path); once the lap is done, the largest distance from the path it saw, and it exits.
