@@ -22,7 +22,7 @@ def test_pure_pursuit_example_completes_a_lap(egosim, spawn_ros, built_msg_packa
         PYTHONPATH=str(built_msg_packages),
     )
     # It reports its progress while it drives, not only at the end.
-    progress = example.expect(r"^driven +([\d.]+) m .* speed +([\d.]+) km/h", timeout=60)
+    progress = example.expect(r"^driven +([\d.]+) m .* speed +([\d.]+) km/h", timeout=180)
     assert float(progress.group(1)) > 0.0
     line = example.expect(r"^lap complete", timeout=180)
     assert example.wait(timeout=30) == 0
