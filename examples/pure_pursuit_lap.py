@@ -3,16 +3,20 @@
 
 An ordinary rospy node for MORAI SIM: it reads /Ego_topic, asks
 /Service_MoraiVehicleSpec for the wheelbase, and sends /ctrl_cmd in velocity mode.
-Run it with ROS 1 and a built morai_msgs package on the Python path:
+Run it under the ROS Python with morai_msgs on the Python path (`egosim msgs
+--export-python ~/morai_py`, or a catkin workspace's devel/setup.bash):
 
-    egosim run --scenario examples/town_lap_scenario.yaml &
-    python3 examples/pure_pursuit_lap.py examples/town_block_lap.csv
+    .venv/bin/egosim run --scenario examples/town_lap_scenario.yaml &
+    PYTHONPATH=~/morai_py:$PYTHONPATH /usr/bin/python3 examples/pure_pursuit_lap.py \
+        examples/town_block_lap.csv
 
-With --sync it steps the simulator itself (egosim run --clock sync): one
+With --sync it steps the simulator itself (MORAI's synchronous mode): one
 /SyncModeWaitForTick per control period, its command sent with /SyncModeCtrlCmd
 for the next frame, so the same run gives the same drive every time.
 
-It prints the largest distance from the path it saw and exits once the lap is done.
+Every two seconds (of simulation time) it prints its progress (distance driven,
+speed, distance from the path); once the lap is done, the largest distance from the
+path it saw, and it exits.
 """
 
 import argparse
@@ -39,15 +43,21 @@ LOOKAHEAD_M = 8.0
 SPEED_KMH = 30.0
 VELOCITY_MODE = 2
 SYNC_USER = "pure_pursuit_lap"
+PROGRESS_PERIOD_S = 2.0
 
 
 class PurePursuitLap:
     def __init__(self, path, wheelbase, speed_kmh=SPEED_KMH):
         self.path = path
         self.wheelbase = wheelbase
-        self.speed_kmh = speed_kmh
+        self.target_kmh = speed_kmh
         self.progress = 0  # waypoints passed, counting past the end of the lap
         self.max_off_path = 0.0
+        self.off_path = 0.0
+        self.driven_m = 0.0
+        self.speed_kmh = 0.0
+        self.last_position = None
+        self.next_report_s = None
         self.done = False
 
     def nearest_ahead(self, x, y):
@@ -66,7 +76,7 @@ class PurePursuitLap:
         """The CtrlCmd for this EgoVehicleStatus (a stop once the lap is done)."""
         x, y = status.position.x, status.position.y
         yaw = math.radians(status.heading)
-        self.max_off_path = max(self.max_off_path, self.nearest_ahead(x, y))
+        self.track(status)
         if self.progress >= len(self.path):
             self.done = True
             return CtrlCmd(longlCmdType=VELOCITY_MODE, velocity=0.0)
@@ -76,7 +86,30 @@ class PurePursuitLap:
         dx, dy = self.offset(target, x, y)
         alpha = math.atan2(dy, dx) - yaw
         steer = math.atan2(2.0 * self.wheelbase * math.sin(alpha), math.hypot(dx, dy))
-        return CtrlCmd(longlCmdType=VELOCITY_MODE, velocity=self.speed_kmh, front_steer=steer)
+        return CtrlCmd(longlCmdType=VELOCITY_MODE, velocity=self.target_kmh, front_steer=steer)
+
+    def track(self, status):
+        """Distance driven, speed and distance from the path; a progress line when due."""
+        x, y = status.position.x, status.position.y
+        if self.last_position is not None:
+            self.driven_m += math.hypot(x - self.last_position[0], y - self.last_position[1])
+        self.last_position = (x, y)
+        self.speed_kmh = status.velocity.x * 3.6
+        self.off_path = self.nearest_ahead(x, y)
+        self.max_off_path = max(self.max_off_path, self.off_path)
+        now = status.header.stamp.to_sec()
+        if self.next_report_s is None:
+            self.next_report_s = now + PROGRESS_PERIOD_S
+        elif now >= self.next_report_s:
+            print(self.progress_line(), flush=True)
+            self.next_report_s += PROGRESS_PERIOD_S
+
+    def progress_line(self):
+        return (
+            f"driven {self.driven_m:6.1f} m ({min(self.progress, len(self.path))}/"
+            f"{len(self.path)} waypoints), speed {self.speed_kmh:4.1f} km/h, "
+            f"{self.off_path:.2f} m from the path"
+        )
 
     def offset(self, index, x, y):
         px, py = self.path[index % len(self.path)]
@@ -129,7 +162,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("path", help="CSV of x, y waypoints (m)")
     parser.add_argument("--speed-kmh", type=float, default=SPEED_KMH)
-    parser.add_argument("--sync", action="store_true", help="step the simulator (--clock sync)")
+    parser.add_argument("--sync", action="store_true", help="step the simulator (sync mode)")
     parser.add_argument("--time-step-ms", type=int, default=50, help="sync mode's tick")
     args = parser.parse_args(rospy.myargv()[1:])
     with open(args.path) as file:

@@ -24,6 +24,7 @@ from .loop import SimulationLoop
 from .options import RunOptions
 from .recording import TopicRecorder, open_recorder
 from .signals import stop_on_signals
+from .summary import ready_summary
 
 log = logging.getLogger("egosim")
 
@@ -148,7 +149,7 @@ def _run(options: RunOptions, stages: Sequence[Stage[BridgeContext]], stop: thre
             reason = f"cannot register with the ROS master: {error}"
             raise StartupError(reason, EXIT_ROS_FAILED) from error
         log.info("egosim up: map %s, master %s", world.map.name, node.master_uri)
-        print("egosim: ready", flush=True)
+        print(f"egosim: ready\n{ready_summary(world, options)}", flush=True)
 
         max_steps = None
         if options.duration is not None:
