@@ -6,6 +6,7 @@ import contextlib
 import logging
 import sys
 import threading
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from ..bridge.bindings import HANDLERS
@@ -22,8 +23,9 @@ from ..msgs import get_profile
 from ..replay import RecorderError
 from ..ros1 import Node, Ros1Error
 from ..world import World
-from ..world.scenario import ScenarioError, load_default_scenario, parse_scenario
+from ..world.scenario import Scenario, ScenarioError, load_default_scenario, parse_scenario
 from ..yamltext import YamlFileError
+from .attachments import Attach, Attachment, RunningSimulator
 from .clock import HeaderClock
 from .inbox import Inbox
 from .loop import SimulationLoop
@@ -47,20 +49,24 @@ class StartupError(Exception):
         self.exit_code = exit_code
 
 
+def startup_scenario(options: RunOptions, map_name: str) -> Callable[[], Scenario] | None:
+    """What reads the scenario a run starts with: --scenario, else the town's default."""
+    path = options.scenario
+    if path is not None:
+        return lambda: parse_scenario(path.read_text(encoding="utf-8"), str(path))
+    if map_name == "town":
+        return load_default_scenario
+    return None
+
+
 def build_world(options: RunOptions) -> World:
     try:
         lane_map = load_map(options.map)
     except MapLoadError as error:
         raise StartupError(f"map: {error}") from error
     try:
-        if options.scenario is not None:
-            scenario = parse_scenario(
-                options.scenario.read_text(encoding="utf-8"), str(options.scenario)
-            )
-        elif lane_map.name == "town":
-            scenario = load_default_scenario()
-        else:
-            scenario = None
+        read_scenario = startup_scenario(options, lane_map.name)
+        scenario = read_scenario() if read_scenario is not None else None
         return World(lane_map, scenario, physics_step_s=options.physics_dt)
     except (OSError, UnicodeDecodeError) as error:
         raise StartupError(f"cannot read scenario {options.scenario}: {error}") from error
@@ -68,16 +74,17 @@ def build_world(options: RunOptions) -> World:
         raise StartupError(str(error)) from error
 
 
-def run(options: RunOptions) -> int:
-    """Run the simulator until stopped; the process exit status."""
+def run(options: RunOptions, attach: Sequence[Attach] = ()) -> int:
+    """Run the simulator until stopped; the process exit status. `attach` builds what
+    rides on the loop (the live view) once the simulator is up."""
     try:
-        return _run(options)
+        return _run(options, attach)
     except StartupError as error:
         print(f"egosim: {error}", file=sys.stderr)
         return error.exit_code
 
 
-def _run(options: RunOptions) -> int:
+def _run(options: RunOptions, attach: Sequence[Attach]) -> int:
     # Messages are built in the newest release; peers of others get them converted.
     profile = get_profile(CANONICAL_PROFILE)
     world = build_world(options)
@@ -129,6 +136,17 @@ def _run(options: RunOptions) -> int:
             node.shutdown("startup failed")
             reason = f"cannot register with the ROS master: {error}"
             raise StartupError(reason, EXIT_ROS_FAILED) from error
+        running = RunningSimulator(
+            options, context, settings, inbox, node, startup_scenario(options, world.map.name)
+        )
+        attachments: list[Attachment] = []
+        try:
+            attachments.extend(build(running) for build in attach)
+        except StartupError:
+            for attachment in attachments:
+                attachment.close()
+            node.shutdown("startup failed")
+            raise
         log.info("egosim up: map %s, master %s", world.map.name, node.master_uri)
         print("egosim: ready", flush=True)
 
@@ -143,6 +161,8 @@ def _run(options: RunOptions) -> int:
             clock.tick()
             loop_time += dt
             bridge.publish_due(loop_time)
+            for attachment in attachments:
+                attachment.after_step()
 
         context.step = step
         max_steps = None
@@ -155,6 +175,8 @@ def _run(options: RunOptions) -> int:
             else:
                 loop.run()
         finally:
+            for attachment in attachments:
+                attachment.close()
             inbox.close()
             node.shutdown("egosim stopping")
     return EXIT_OK

@@ -1,0 +1,92 @@
+"""Wiring: the live view of a running simulator (snapshot stage + web server)."""
+
+from __future__ import annotations
+
+import logging
+import sys
+from dataclasses import dataclass
+
+from ..app.attachments import Attach, RunningSimulator
+from ..app.options import ClockMode
+from .controls import ViewControls
+from .hub import FrameHub
+from .server import ViewBackend, ViewServer, ViewServerError
+from .snapshot import encode, map_snapshot
+from .stage import ViewStage
+
+log = logging.getLogger(__name__)
+
+DEFAULT_HOST = "127.0.0.1"
+DEFAULT_PORT = 8765
+
+
+@dataclass(frozen=True)
+class ViewOptions:
+    host: str = DEFAULT_HOST
+    port: int = DEFAULT_PORT
+    readonly: bool = False
+
+
+class LiveView:
+    """The view attached to one run: its tick stage and its server."""
+
+    def __init__(self, stage: ViewStage, server: ViewServer) -> None:
+        self.stage = stage
+        self.server = server
+
+    def after_step(self) -> None:
+        self.stage.after_step()
+
+    def close(self) -> None:
+        self.server.close()
+
+
+class NoView:
+    """What runs when the view could not start: nothing."""
+
+    def after_step(self) -> None:
+        pass
+
+    def close(self) -> None:
+        pass
+
+
+def live_view(options: ViewOptions) -> Attach:
+    def attach(running: RunningSimulator) -> LiveView | NoView:
+        context = running.context
+        clock_mode = running.options.clock
+        hub = FrameHub()
+        controls = ViewControls(context, clock_mode is ClockMode.SYNC, running.startup_scenario)
+        stage = ViewStage(
+            context,
+            hub,
+            controls,
+            clock_mode.value,
+            lidar_on=running.settings.row("lidar").enabled,
+            controls_enabled=not options.readonly,
+        )
+        backend = ViewBackend(
+            hub=hub,
+            inbox=running.inbox,
+            apply=controls.apply,
+            capture=stage.capture,
+            map_json=lambda: encode(map_snapshot(context.world.map)),
+            system_state=running.node.master.get_system_state,
+            hello={
+                "type": "hello",
+                "clock_mode": clock_mode.value,
+                "egosim_node": running.node.name,
+            },
+        )
+        server = ViewServer(backend, options.host, options.port, options.readonly)
+        try:
+            server.start()
+        except ViewServerError as error:
+            # The view is a window on the simulation, not part of it: run on without it.
+            log.error("live view not started: %s (--view-port picks another port)", error)
+            print(f"egosim: no view ({error})", file=sys.stderr, flush=True)
+            return NoView()
+        print(f"egosim: view at {server.url}", flush=True)
+        return LiveView(stage, server)
+
+    return attach
