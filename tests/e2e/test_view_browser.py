@@ -162,10 +162,11 @@ def test_keyboard_driving_moves_the_ego_forward(viewed) -> None:
 
 def test_a_light_set_red_by_ros_is_drawn_red(viewed, rospy_client) -> None:
     simulator, browser = viewed()
-    lights = page(browser, "s.frame.lights")
+    ids = page(browser, "s.map.lights.map((light) => light.id)")
+    aspects = page(browser, "s.frame.light_aspects")
     not_red = [
         light_id
-        for light_id, aspect in zip(lights["id"], lights["aspect"], strict=True)
+        for light_id, aspect in zip(ids, aspects, strict=True)
         if aspect > 0 and not aspect & RED
     ]
     assert not_red, "some light shows something other than red"

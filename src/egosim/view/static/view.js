@@ -319,24 +319,22 @@ function lampColour(aspect) {
 }
 // The colour a light is drawn in now (tests read it).
 window.egosimView.lightColour = (id) => {
-  const lights = state.frame && state.frame.lights;
-  const k = lights ? lights.id.indexOf(id) : -1;
-  return k < 0 ? null : lampColour(lights.aspect[k]);
+  const k = state.map ? state.map.lights.findIndex((light) => light.id === id) : -1;
+  return k < 0 || !state.frame ? null : lampColour(state.frame.light_aspects[k]);
 };
 
 function drawLights(g, frame) {
   const radius = Math.max(0.8, 3.5 / state.view.scale);
-  const aspects = new Map(frame.lights.id.map((id, k) => [id, frame.lights.aspect[k]]));
   const bits = state.map.aspect_bits;
-  for (const light of state.map.lights) {
-    const aspect = aspects.has(light.id) ? aspects.get(light.id) : state.map.aspect_off;
+  state.map.lights.forEach((light, k) => {
+    const aspect = frame.light_aspects[k];
     const [x, y] = light.position;
     g.fillStyle = "#111"; g.beginPath(); g.arc(x, y, radius * 1.35, 0, 2 * Math.PI); g.fill();
     g.fillStyle = lampColour(aspect); g.beginPath(); g.arc(x, y, radius, 0, 2 * Math.PI); g.fill();
     if (aspect > 0 && (aspect & bits.left) && (aspect & (bits.red | bits.yellow))) {
       g.fillStyle = COLOURS.green; g.beginPath(); g.arc(x, y, radius * 0.45, 0, 2 * Math.PI); g.fill();
     }
-  }
+  });
 }
 
 function box(g, x, y, yaw, length, width, fill, outline) {
