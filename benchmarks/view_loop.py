@@ -156,8 +156,10 @@ def main() -> None:
             results[n].append(measure(n, args.seconds, frame_sizes))
     base_step = statistics.median(r["step_ms"] for r in results[0])
     base_cpu = statistics.median(r["other_threads_cpu_percent"] for r in results[0])
-    print(f"town, default scenario, {1 / DT:.0f} Hz real-time loop, {args.seconds:.0f} s x "
-          f"{args.repeats}, medians")
+    print(
+        f"town, default scenario, {1 / DT:.0f} Hz real-time loop, {args.seconds:.0f} s x "
+        f"{args.repeats}, medians"
+    )
     base_cpu_step = statistics.median(r["step_cpu_ms"] for r in results[0])
     print(
         f"{'browsers':>8}{'step ms':>10}{'vs none':>9}{'step CPU ms':>13}{'vs none':>9}"

@@ -4,6 +4,7 @@ with a real rospy node on the ROS side."""
 from __future__ import annotations
 
 import math
+import socket
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -63,7 +64,8 @@ def pixel_at(browser: Any, x: float, y: float) -> tuple[int, int, int]:
             f"""(() => {{
               const [px, py] = s.worldToScreen({x}, {y});
               const c = document.getElementById('world'), r = window.devicePixelRatio || 1;
-              const d = c.getContext('2d').getImageData(Math.round(px * r), Math.round(py * r), 1, 1).data;
+              const g = c.getContext('2d');
+              const d = g.getImageData(Math.round(px * r), Math.round(py * r), 1, 1).data;
               return [d[0], d[1], d[2]];
             }})()""",
         )
@@ -172,9 +174,30 @@ def test_a_light_set_red_by_ros_is_drawn_red(viewed, rospy_client) -> None:
     assert not_red, "some light shows something other than red"
     light_id = not_red[0]
     client = rospy_client(simulator)
-    client.publish(SET_LIGHT[0], SET_LIGHT[1], {"trafficLightIndex": light_id, "trafficLightStatus": RED})
+    client.publish(*SET_LIGHT, {"trafficLightIndex": light_id, "trafficLightStatus": RED})
     wait_for(lambda: page(browser, f"s.lightColour({light_id!r})") == RED_COLOUR, "a red light")
     x, y = page(browser, f"s.map.lights.find((l) => l.id === {light_id!r}).position")
     page(browser, "document.getElementById('layers').hidden = true")
     look_at(browser, x, y, 10)
     assert pixel_at(browser, x, y) == (0xFF, 0x3B, 0x30)
+
+
+def test_a_read_only_view_shows_the_controls_disabled(viewed) -> None:
+    _, browser = viewed("--view-readonly")
+    assert page(browser, "s.hello.readonly")
+    for control in ("pause", "reload", "load", "ctrl-mode"):
+        assert not browser.find_element("id", control).is_enabled(), control
+    page(browser, "(document.getElementById('pause').disabled = false)")
+    browser.find_element("id", "pause").click()
+    wait_for(lambda: "read-only" in browser.find_element("id", "message").text, "the refusal")
+    assert not page(browser, "s.frame.paused")
+
+
+def test_a_taken_view_port_leaves_the_simulator_running(egosim) -> None:
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        simulator = egosim("--view-port", str(port))
+    assert any(line.startswith("egosim: no view") for line in simulator.process.output)
+    assert simulator.process.popen.poll() is None

@@ -14,7 +14,6 @@ from egosim.view.hub import FrameHub
 from egosim.view.stage import ViewStage
 from egosim.world.scenario import load_default_scenario
 from egosim.world.vehicle import Gear
-
 from tests.e2e import scenarios
 
 DT = 0.01
@@ -98,7 +97,7 @@ def test_scenarios_load_from_the_data_roots_only(town: BridgeContext, tmp_path: 
 
 
 def test_reload_puts_the_scenario_back(town: BridgeContext) -> None:
-    controls, stage = controls_of(town)
+    controls, _ = controls_of(town)
     start = town.world.ego_status(0).pose
     town.world.egos[0].vehicle.teleport(type(start)(start.x + 30, start.y, start.z, yaw=start.yaw))
     assert controls.apply({"op": "reload"})["ok"]

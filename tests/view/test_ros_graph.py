@@ -8,7 +8,12 @@ def test_system_state_becomes_one_entry_per_node() -> None:
         [["/Service_MoraiEventCmd", ["/egosim"]]],
     )
     assert nodes_of(state) == [
-        {"name": "/driver", "publishes": ["/ctrl_cmd"], "subscribes": ["/Ego_topic"], "services": []},
+        {
+            "name": "/driver",
+            "publishes": ["/ctrl_cmd"],
+            "subscribes": ["/Ego_topic"],
+            "services": [],
+        },
         {
             "name": "/egosim",
             "publishes": ["/Ego_topic"],

@@ -4,6 +4,7 @@ standing in for browsers (the page itself is tested in Chromium, tests/e2e)."""
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import gzip
 import json
 import socket
@@ -37,6 +38,7 @@ class Running:
         return f"ws://127.0.0.1:{self.server.port}/ws"
 
 
+@contextlib.contextmanager
 def serve(context: BridgeContext, readonly: bool = False, port: int = 0) -> Iterator[Running]:
     inbox = Inbox()
     hub = FrameHub()
@@ -73,7 +75,8 @@ def serve(context: BridgeContext, readonly: bool = False, port: int = 0) -> Iter
 
 @pytest.fixture
 def running(town: BridgeContext) -> Iterator[Running]:
-    yield from serve(town)
+    with serve(town) as served:
+        yield served
 
 
 async def receive_until(ws: aiohttp.ClientWebSocketResponse, kind: str) -> dict:
@@ -136,7 +139,7 @@ def test_a_pause_request_reaches_the_world_through_the_inbox(running: Running) -
                 pass
             return reply, frame
 
-    reply, frame = asyncio.run(pause())
+    reply, _ = asyncio.run(pause())
     assert reply == {"type": "reply", "ok": True, "op": "pause"}
     assert running.context.world.paused
     held = running.context.world.sim_time
@@ -145,15 +148,14 @@ def test_a_pause_request_reaches_the_world_through_the_inbox(running: Running) -
 
 
 def test_a_read_only_view_refuses_controls(town: BridgeContext) -> None:
-    for running in serve(town, readonly=True):
+    async def pause(url: str) -> tuple[dict, dict]:
+        async with aiohttp.ClientSession() as session, session.ws_connect(url) as ws:
+            hello = await receive_until(ws, "hello")
+            await ws.send_str(json.dumps({"op": "pause"}))
+            return hello, await receive_until(ws, "reply")
 
-        async def pause() -> tuple[dict, dict]:
-            async with aiohttp.ClientSession() as session, session.ws_connect(running.ws_url) as ws:
-                hello = await receive_until(ws, "hello")
-                await ws.send_str(json.dumps({"op": "pause"}))
-                return hello, await receive_until(ws, "reply")
-
-        hello, reply = asyncio.run(pause())
+    with serve(town, readonly=True) as running:
+        hello, reply = asyncio.run(pause(running.ws_url))
         assert hello["readonly"] is True
         assert reply["ok"] is False
         assert "read-only" in reply["error"]
@@ -178,6 +180,8 @@ def test_a_taken_port_is_a_clear_error(town: BridgeContext) -> None:
     with socket.socket() as taken:
         taken.bind(("127.0.0.1", 0))
         taken.listen()
-        with pytest.raises(ViewServerError, match="cannot serve"):
-            for _ in serve(town, port=taken.getsockname()[1]):
-                pass
+        with (
+            pytest.raises(ViewServerError, match="cannot serve"),
+            serve(town, port=taken.getsockname()[1]),
+        ):
+            pass

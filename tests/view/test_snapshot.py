@@ -146,9 +146,8 @@ def test_frame_has_lidar_points_and_sensor_images_when_given(straight: BridgeCon
     image = SensorImage("front", "image/jpeg", b"\xff\xd8jpeg", 1.5)
     frame = frame_json(straight, lidar=points, images=[lambda: image, lambda: None])
     assert frame["lidar"] == [1.23, -2.0, 3.0, 4.0]
-    assert frame["images"] == [
-        {"name": "front", "mime": "image/jpeg", "data": base64.b64encode(b"\xff\xd8jpeg").decode(), "stamp": 1.5}
-    ]
+    data = base64.b64encode(b"\xff\xd8jpeg").decode()
+    assert frame["images"] == [{"name": "front", "mime": "image/jpeg", "data": data, "stamp": 1.5}]
     assert frame_json(straight)["lidar"] is None
 
 

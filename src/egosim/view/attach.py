@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import logging
-import sys
 from dataclasses import dataclass
 
 from ..app.attachments import Attach, RunningSimulator
@@ -84,7 +83,7 @@ def live_view(options: ViewOptions) -> Attach:
         except ViewServerError as error:
             # The view is a window on the simulation, not part of it: run on without it.
             log.error("live view not started: %s (--view-port picks another port)", error)
-            print(f"egosim: no view ({error})", file=sys.stderr, flush=True)
+            print(f"egosim: no view ({error})", flush=True)
             return NoView()
         print(f"egosim: view at {server.url}", flush=True)
         return LiveView(stage, server)
