@@ -8,13 +8,18 @@ browsers, and leaving it out makes the view's share look larger, not smaller).
 Browsers are websocket clients in a child process that read every frame sent.
 Configurations are interleaved and repeated; medians are reported.
 
-Run: .venv/bin/python benchmarks/view_loop.py [--seconds 8] [--repeats 3]
+First, the loop thread's own share, free of thread and machine noise: blocks of 100
+steps with frames due at 30/s (a browser watching) alternate with blocks without, on
+one thread; the minimum and median block times compare.
+
+Run: .venv/bin/python benchmarks/view_loop.py [--seconds 8] [--repeats 3] [--blocks 100]
 """
 
 from __future__ import annotations
 
 import argparse
 import gzip
+import os
 import resource
 import statistics
 import subprocess
@@ -143,11 +148,48 @@ def measure(clients: int, seconds: float, frame_sizes: list[int]) -> dict[str, f
     }
 
 
+def loop_share(blocks: int) -> tuple[float, float, float, float]:
+    """(min without, min with, median without, median with) ms per step."""
+    world = World(build_builtin_map("town"), load_default_scenario())
+    context = BridgeContext(get_profile("26.r1"), world, lambda: world.sim_time)
+    now = [0.0]
+    hub = FrameHub(monotonic=lambda: now[0])
+    controls = ViewControls(context, False, None)
+    stage = ViewStage(context, hub, controls, "real", monotonic=lambda: now[0])
+
+    def block(watched: bool) -> float:
+        hub.clients = int(watched)
+        start = time.perf_counter()
+        for _ in range(100):
+            world.step(DT)
+            stage.after_step()
+            now[0] += DT
+        return (time.perf_counter() - start) * 10  # ms per step
+
+    for _ in range(10):
+        block(False)
+    without, with_frames = [], []
+    for _ in range(blocks):
+        without.append(block(False))
+        with_frames.append(block(True))
+    return (
+        min(without),
+        min(with_frames),
+        statistics.median(without),
+        statistics.median(with_frames),
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seconds", type=float, default=8.0)
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--blocks", type=int, default=100)
     args = parser.parse_args()
+    lo0, lo1, med0, med1 = loop_share(args.blocks)
+    print(f"loop thread, {args.blocks} blocks of 100 steps each way, ms per step:")
+    print(f"  min    {lo0:.3f} without frames, {lo1:.3f} with: {100 * (lo1 / lo0 - 1):+.1f}%")
+    print(f"  median {med0:.3f} without frames, {med1:.3f} with: {100 * (med1 / med0 - 1):+.1f}%")
     configurations = (CLIENTS[0], CAPTURE_ONLY, *CLIENTS[1:])
     results: dict[int, list[dict[str, float]]] = {n: [] for n in configurations}
     frame_sizes: list[int] = []
@@ -157,8 +199,8 @@ def main() -> None:
     base_step = statistics.median(r["step_ms"] for r in results[0])
     base_cpu = statistics.median(r["other_threads_cpu_percent"] for r in results[0])
     print(
-        f"town, default scenario, {1 / DT:.0f} Hz real-time loop, {args.seconds:.0f} s x "
-        f"{args.repeats}, medians"
+        f"real-time loop at {1 / DT:.0f} Hz, {args.seconds:.0f} s x {args.repeats}, medians; "
+        f"load average {os.getloadavg()[0]:.1f}"
     )
     base_cpu_step = statistics.median(r["step_cpu_ms"] for r in results[0])
     print(

@@ -45,6 +45,8 @@ GRAPH_WAKE_S = 0.25
 #: Time the loop may take to answer a request from the page, s.
 REQUEST_TIMEOUT_S = 10.0
 STARTUP_TIMEOUT_S = 10.0
+#: What closing a browser's socket, or the server, may take before it is cut, s.
+CLOSE_TIMEOUT_S = 1.0
 #: Requests the page sends often and needs no answer to (posted, not awaited).
 FIRE_AND_FORGET = frozenset({"keys"})
 
@@ -152,7 +154,9 @@ class ViewServer:
         app.router.add_get("/ws", self._websocket)
         app.router.add_get("/map.json", self._map)
         app.router.add_static("/static/", STATIC_DIR, follow_symlinks=False)
-        self._runner = web.AppRunner(app, access_log=None, handle_signals=False)
+        self._runner = web.AppRunner(
+            app, access_log=None, handle_signals=False, shutdown_timeout=CLOSE_TIMEOUT_S
+        )
         await self._runner.setup()
         site = web.TCPSite(self._runner, self.host, self.port, reuse_address=True)
         await site.start()
@@ -165,8 +169,7 @@ class ViewServer:
         while not self._stopped.is_set():
             await asyncio.sleep(0.1)
         graph.cancel()
-        for client in list(self._clients):
-            await client.ws.close()
+        await asyncio.gather(*(client.ws.close() for client in list(self._clients)))
         assert self._runner is not None
         await self._runner.cleanup()
 
@@ -192,7 +195,14 @@ class ViewServer:
     async def _websocket(self, request: web.Request) -> web.StreamResponse:
         if len(self._clients) >= MAX_CLIENTS:
             return web.Response(status=503, text=f"at most {MAX_CLIENTS} browsers at once")
-        ws = web.WebSocketResponse(heartbeat=HEARTBEAT_S, max_msg_size=MAX_REQUEST_BYTES)
+        # No per-message compression: deflating every frame for every browser costs the
+        # server far more CPU than the bytes it saves on loopback.
+        ws = web.WebSocketResponse(
+            heartbeat=HEARTBEAT_S,
+            max_msg_size=MAX_REQUEST_BYTES,
+            compress=False,
+            timeout=CLOSE_TIMEOUT_S,
+        )
         await ws.prepare(request)
         client = _Client(ws)
         self._clients.add(client)
