@@ -8,11 +8,10 @@ browsers, and leaving it out makes the view's share look larger, not smaller).
 Browsers are websocket clients in a child process that read every frame sent.
 Configurations are interleaved and repeated; medians are reported.
 
-First, the loop thread's own share, free of thread and machine noise: blocks of 100
-steps with frames due at 30/s (a browser watching) alternate with blocks without, on
-one thread; the minimum and median block times compare.
+First, the loop thread's own share, free of thread and machine noise: the minimum
+time of taking one frame against the minimum time of one step.
 
-Run: .venv/bin/python benchmarks/view_loop.py [--seconds 8] [--repeats 3] [--blocks 100]
+Run: .venv/bin/python benchmarks/view_loop.py [--seconds 8] [--repeats 3] [--samples 300]
 """
 
 from __future__ import annotations
@@ -32,9 +31,9 @@ from egosim.app.loop import SimulationLoop
 from egosim.bridge.context import BridgeContext
 from egosim.msgs import get_profile
 from egosim.view.controls import ViewControls
-from egosim.view.hub import FrameHub
+from egosim.view.hub import MAX_FRAME_RATE_HZ, FrameHub
 from egosim.view.server import ViewBackend, ViewServer
-from egosim.view.snapshot import encode, map_snapshot
+from egosim.view.snapshot import FrameInfo, capture_frame, encode, map_snapshot
 from egosim.view.stage import ViewStage
 from egosim.world import World
 from egosim.world.map import build_builtin_map
@@ -148,35 +147,27 @@ def measure(clients: int, seconds: float, frame_sizes: list[int]) -> dict[str, f
     }
 
 
-def loop_share(blocks: int) -> tuple[float, float, float, float]:
-    """(min without, min with, median without, median with) ms per step."""
+def loop_share(samples: int) -> None:
+    """What taking a frame costs the loop thread, against what a step costs: minima of
+    many tries on the first seconds of the scenario, i.e. on a quiet core."""
     world = World(build_builtin_map("town"), load_default_scenario())
     context = BridgeContext(get_profile("26.r1"), world, lambda: world.sim_time)
-    now = [0.0]
-    hub = FrameHub(monotonic=lambda: now[0])
-    controls = ViewControls(context, False, None)
-    stage = ViewStage(context, hub, controls, "real", monotonic=lambda: now[0])
-
-    def block(watched: bool) -> float:
-        hub.clients = int(watched)
+    info = FrameInfo("real", 1.0, True)
+    steps, captures = [], []
+    for _ in range(samples):
         start = time.perf_counter()
-        for _ in range(100):
+        for _ in range(10):
             world.step(DT)
-            stage.after_step()
-            now[0] += DT
-        return (time.perf_counter() - start) * 10  # ms per step
-
-    for _ in range(10):
-        block(False)
-    without, with_frames = [], []
-    for _ in range(blocks):
-        without.append(block(False))
-        with_frames.append(block(True))
-    return (
-        min(without),
-        min(with_frames),
-        statistics.median(without),
-        statistics.median(with_frames),
+        steps.append((time.perf_counter() - start) / 10)
+        start = time.perf_counter()
+        for _ in range(10):
+            capture_frame(context, info)
+        captures.append((time.perf_counter() - start) / 10)
+    capture, step = min(captures), min(steps)
+    print(
+        f"one frame taken: {1e6 * capture:.0f} us; one step: {1e3 * step:.3f} ms (minima of "
+        f"{samples}); at {MAX_FRAME_RATE_HZ:.0f} frames/s on a {1 / DT:.0f} Hz loop: "
+        f"{100 * capture * MAX_FRAME_RATE_HZ * DT / step:.1f}% of the step time"
     )
 
 
@@ -184,12 +175,11 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seconds", type=float, default=8.0)
     parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--blocks", type=int, default=100)
+    parser.add_argument("--samples", type=int, default=300)
     args = parser.parse_args()
-    lo0, lo1, med0, med1 = loop_share(args.blocks)
-    print(f"loop thread, {args.blocks} blocks of 100 steps each way, ms per step:")
-    print(f"  min    {lo0:.3f} without frames, {lo1:.3f} with: {100 * (lo1 / lo0 - 1):+.1f}%")
-    print(f"  median {med0:.3f} without frames, {med1:.3f} with: {100 * (med1 / med0 - 1):+.1f}%")
+    loop_share(args.samples)
+    if args.repeats == 0:
+        return
     configurations = (CLIENTS[0], CAPTURE_ONLY, *CLIENTS[1:])
     results: dict[int, list[dict[str, float]]] = {n: [] for n in configurations}
     frame_sizes: list[int] = []
