@@ -28,8 +28,7 @@ import time
 
 from egosim.app.inbox import Inbox
 from egosim.app.loop import SimulationLoop
-from egosim.bridge.context import BridgeContext
-from egosim.msgs import get_profile
+from egosim.bridge import BridgeContext, simulation_context
 from egosim.view.controls import ViewControls
 from egosim.view.hub import MAX_FRAME_RATE_HZ, FrameHub
 from egosim.view.server import ViewBackend, ViewServer
@@ -90,9 +89,9 @@ def process_cpu() -> float:
 
 def measure(clients: int, seconds: float, frame_sizes: list[int]) -> dict[str, float]:
     world = World(build_builtin_map("town"), load_default_scenario())
-    context = BridgeContext(get_profile("26.r1"), world, lambda: world.sim_time)
+    context = simulation_context(world)
     hub = FrameHub()
-    controls = ViewControls(context, False, None)
+    controls = ViewControls(context, None)
     stage = ViewStage(context, hub, controls, "real")
     backend = ViewBackend(
         hub=hub,
@@ -151,7 +150,7 @@ def loop_share(samples: int) -> None:
     """What taking a frame costs the loop thread, against what a step costs: minima of
     many tries on the first seconds of the scenario, i.e. on a quiet core."""
     world = World(build_builtin_map("town"), load_default_scenario())
-    context = BridgeContext(get_profile("26.r1"), world, lambda: world.sim_time)
+    context = simulation_context(world)
     info = FrameInfo("real", 1.0, True)
     steps, captures = [], []
     for _ in range(samples):

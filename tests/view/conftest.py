@@ -6,8 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from egosim.bridge.context import BridgeContext
-from egosim.msgs import get_profile
+from egosim.bridge import BridgeContext, simulation_context
 from egosim.world import World
 from egosim.world.map import build_builtin_map
 from egosim.world.scenario import load_default_scenario
@@ -18,7 +17,7 @@ STRAIGHT = build_builtin_map("straight")
 
 def context_of(world: World, data_root: Path | None = None) -> BridgeContext:
     roots = (data_root,) if data_root is not None else ()
-    return BridgeContext(get_profile("26.r1"), world, lambda: world.sim_time, data_roots=roots)
+    return simulation_context(world, data_roots=roots)
 
 
 @pytest.fixture

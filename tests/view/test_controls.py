@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from egosim.bridge.context import CTRL_MODE_EXTERNAL, CTRL_MODE_KEYBOARD, BridgeContext
+from egosim.bridge import BridgeContext, ControlMode
 from egosim.view.controls import ViewControls
 from egosim.view.hub import FrameHub
 from egosim.view.stage import ViewStage
@@ -20,8 +20,8 @@ DT = 0.01
 KEY_PERIOD_S = 0.1
 
 
-def controls_of(context: BridgeContext, sync: bool = False) -> tuple[ViewControls, ViewStage]:
-    controls = ViewControls(context, sync, load_default_scenario)
+def controls_of(context: BridgeContext) -> tuple[ViewControls, ViewStage]:
+    controls = ViewControls(context, load_default_scenario)
     return controls, ViewStage(context, FrameHub(), controls, "real")
 
 
@@ -60,7 +60,8 @@ def test_single_step_advances_one_step_and_pauses_again(town: BridgeContext) -> 
 
 
 def test_sync_mode_refuses_the_time_controls(town: BridgeContext) -> None:
-    controls, _ = controls_of(town, sync=True)
+    town.sync.start("client", 10)
+    controls, _ = controls_of(town)
     for op in ("pause", "resume", "step"):
         reply = controls.apply({"op": op})
         assert not reply["ok"]
@@ -109,10 +110,10 @@ def test_keys_need_keyboard_control_mode(straight: BridgeContext) -> None:
     reply = controls.apply({"op": "keys", "throttle": True})
     assert not reply["ok"]
     assert "keyboard control mode" in reply["error"]
-    assert controls.apply({"op": "ctrl_mode", "mode": CTRL_MODE_KEYBOARD})["ok"]
-    assert straight.settings_of(straight.world.egos[0].unique_id).ctrl_mode == CTRL_MODE_KEYBOARD
+    assert controls.apply({"op": "ctrl_mode", "mode": 1})["ok"]
+    assert straight.settings_of(straight.world.egos[0].unique_id).ctrl_mode == ControlMode.KEYBOARD
     assert controls.apply({"op": "keys", "throttle": True})["ok"]
-    assert controls.apply({"op": "ctrl_mode", "mode": CTRL_MODE_EXTERNAL})["ok"]
+    assert controls.apply({"op": "ctrl_mode", "mode": 3})["ok"]
 
 
 def heading_progress(context: BridgeContext, start) -> float:
@@ -122,7 +123,7 @@ def heading_progress(context: BridgeContext, start) -> float:
 
 def test_throttle_drives_forward_and_brake_stops(straight: BridgeContext) -> None:
     controls, _ = controls_of(straight)
-    controls.apply({"op": "ctrl_mode", "mode": CTRL_MODE_KEYBOARD})
+    controls.apply({"op": "ctrl_mode", "mode": 1})
     start = straight.world.ego_status(0).pose
     drive(straight, controls, 3.0, throttle=True)
     status = straight.world.ego_status(0)
@@ -135,7 +136,7 @@ def test_throttle_drives_forward_and_brake_stops(straight: BridgeContext) -> Non
 
 def test_brake_held_at_rest_reverses(straight: BridgeContext) -> None:
     controls, _ = controls_of(straight)
-    controls.apply({"op": "ctrl_mode", "mode": CTRL_MODE_KEYBOARD})
+    controls.apply({"op": "ctrl_mode", "mode": 1})
     start = straight.world.ego_status(0).pose
     drive(straight, controls, 2.0, brake=True)
     assert straight.world.egos[0].vehicle.gear is Gear.REVERSE
@@ -146,7 +147,7 @@ def test_brake_held_at_rest_reverses(straight: BridgeContext) -> None:
 
 def test_left_key_turns_left_and_the_wheel_returns(straight: BridgeContext) -> None:
     controls, _ = controls_of(straight)
-    controls.apply({"op": "ctrl_mode", "mode": CTRL_MODE_KEYBOARD})
+    controls.apply({"op": "ctrl_mode", "mode": 1})
     drive(straight, controls, 2.0, throttle=True)
     yaw = straight.world.ego_status(0).pose.yaw
     drive(straight, controls, 1.5, throttle=True, left=True)
@@ -159,7 +160,7 @@ def test_left_key_turns_left_and_the_wheel_returns(straight: BridgeContext) -> N
 
 def test_a_silent_page_leaves_the_ego_to_its_command_timeout(straight: BridgeContext) -> None:
     controls, stage = controls_of(straight)
-    controls.apply({"op": "ctrl_mode", "mode": CTRL_MODE_KEYBOARD})
+    controls.apply({"op": "ctrl_mode", "mode": 1})
     drive(straight, controls, 3.0, throttle=True)
     run(straight, stage, 8.0)  # no more key messages: the page was closed
     status = straight.world.ego_status(0)

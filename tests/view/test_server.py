@@ -42,7 +42,7 @@ class Running:
 def serve(context: BridgeContext, readonly: bool = False, port: int = 0) -> Iterator[Running]:
     inbox = Inbox()
     hub = FrameHub()
-    controls = ViewControls(context, False, None)
+    controls = ViewControls(context, None)
     stage = ViewStage(context, hub, controls, "real")
     backend = ViewBackend(
         hub=hub,

@@ -1,5 +1,6 @@
-"""What a layer above the app (the live view) gets of a running simulator, and the hooks
-it gives back: the app knows nothing of what is attached."""
+"""What a layer above the app (the live view) gets of a running simulator: the app
+knows nothing of what is attached. An attachment that works per tick adds a stage to
+`context.pipeline` (TickPipeline.with_stage) when it is built, before the loop runs."""
 
 from __future__ import annotations
 
@@ -7,8 +8,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Protocol
 
-from ..bridge.context import BridgeContext
-from ..bridge.network import NetworkSettings
+from ..bridge import BridgeContext
 from ..ros1 import Node
 from ..world.scenario import Scenario
 from .inbox import Inbox
@@ -19,7 +19,6 @@ from .options import RunOptions
 class RunningSimulator:
     options: RunOptions
     context: BridgeContext
-    settings: NetworkSettings
     inbox: Inbox
     node: Node
     startup_scenario: Callable[[], Scenario] | None
@@ -27,9 +26,6 @@ class RunningSimulator:
 
 
 class Attachment(Protocol):
-    def after_step(self) -> None:
-        """Run on the loop thread after every tick; must not wait on anything."""
-
     def close(self) -> None:
         """Stop (the simulator is stopping)."""
 

@@ -2,9 +2,11 @@
 
 Each row's behaviour is a handler (bridge/bindings.py): a builder for
 publishers, a message handler for subscribers, a request handler for
-services. Builders run on the loop thread after a step; received messages
-and service requests are decoded on the transport's threads and applied on
-the loop thread through the inbox.
+services; every handler gets the context and its effective row (the name in
+use, under its namespace). Builders run on the loop thread in the tick
+pipeline's publish stage; received messages and service requests are decoded
+on the transport's threads and applied on the loop thread through the loop's
+inbox.
 """
 
 from __future__ import annotations
@@ -12,12 +14,12 @@ from __future__ import annotations
 import logging
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import Any, Protocol, TypeVar
 
-from ..app.inbox import Inbox
 from ..msgs import MessageType, MsgsError, get_profile
 from ..ros1 import ConnectionRefusedByPeerError, Node, Publisher, Subscriber
 from ..ros1.types import TopicType
+from .context import BridgeContext
 from .network import NetworkSettings
 from .releases import (
     CANONICAL_PROFILE,
@@ -34,12 +36,25 @@ from .table import Direction, Row
 
 log = logging.getLogger(__name__)
 
-# (context) -> a message, several, or None when there is nothing to say
-Builder = Callable[[Any], Any | Sequence[Any] | None]
-MessageHandler = Callable[[Any, Any], None]  # (context, message)
+T = TypeVar("T")
+
+# (context, row) -> a message, several, or None when there is nothing to say
+Builder = Callable[[BridgeContext, Row], Any | Sequence[Any] | None]
+MessageHandler = Callable[[BridgeContext, Row, Any], None]  # (context, row, message)
 # (topic, message type, serialized bytes, stamp s): sees every message sent or received
 Tap = Callable[[str, MessageType, bytes, float], None]
-RequestHandler = Callable[[Any, Any], Any]  # (context, request) -> response
+RequestHandler = Callable[[BridgeContext, Row, Any], Any]  # (context, row, request) -> response
+# (context, row, request as the client sent it): applies a request field only one
+# release has, before the row's handler answers
+ReleaseAdapter = Callable[[BridgeContext, Row, Any], None]
+
+
+class Inbox(Protocol):
+    """Hands work to the simulation loop's thread (app/inbox.py)."""
+
+    def post(self, work: Callable[[], object]) -> None: ...
+
+    def call(self, work: Callable[[], T], timeout: float | None = ...) -> T: ...
 
 
 @dataclass(frozen=True)
@@ -48,8 +63,8 @@ class Handlers:
     subscribers: dict[str, MessageHandler] = field(default_factory=dict)
     services: dict[str, RequestHandler] = field(default_factory=dict)
     # (service row key, release) -> what to do with a request field that only that
-    # release has, before the row's handler answers (the request as the client sent it)
-    release_adapters: dict[tuple[str, str], MessageHandler] = field(default_factory=dict)
+    # release has, before the row's handler answers
+    release_adapters: dict[tuple[str, str], ReleaseAdapter] = field(default_factory=dict)
 
     def __contains__(self, key: str) -> bool:
         return key in self.publishers or key in self.subscribers or key in self.services
@@ -78,12 +93,13 @@ class Outlet:
 
 
 class Bridge:
+    """The rows of the protocol table bound to a ROS node; `open` binds them to a context."""
+
     def __init__(
         self,
         node: Node,
         settings: NetworkSettings,
         handlers: Handlers,
-        context: Any,
         inbox: Inbox,
         default_release: str = CANONICAL_PROFILE,
     ) -> None:
@@ -91,13 +107,20 @@ class Bridge:
         self.default_release = default_release
         self.settings = settings
         self.handlers = handlers
-        self.context = context
         self.inbox = inbox
         self.outlets: list[Outlet] = []
         self.taps: list[Tap] = []
+        self._context: BridgeContext | None = None
 
-    def open(self) -> None:
-        """Advertise, subscribe and serve every enabled row."""
+    @property
+    def context(self) -> BridgeContext:
+        if self._context is None:
+            raise RuntimeError("the bridge is not open")
+        return self._context
+
+    def open(self, context: BridgeContext) -> None:
+        """Advertise, subscribe and serve every enabled row, handled with `context`."""
+        self._context = context
         for row in self.settings.enabled_rows():
             if row.direction is Direction.PUBLISH:
                 self._advertise(row, self.handlers.publishers[row.key])
@@ -107,7 +130,7 @@ class Bridge:
                 self._serve(row)
 
     def open_row(
-        self, key: str, namespace: str, handler: Builder | MessageHandler
+        self, key: str, namespace: str, handler: Callable[..., Any]
     ) -> Callable[[], None] | None:
         """Advertise or subscribe the topic row `key` under `namespace` at run time (loop
         thread) with `handler`, e.g. the topics of an ego that appears; returns what
@@ -140,7 +163,7 @@ class Bridge:
     def publish(self, outlet: Outlet) -> None:
         if outlet.publisher.num_subscribers == 0 and not self.taps:
             return
-        built = outlet.build(self.context)
+        built = outlet.build(self.context, outlet.row)
         if built is None:
             return
         variants = []
@@ -200,7 +223,7 @@ class Bridge:
                 log.error("%s from %s: %s", row.name, caller, exc)
                 return
             self._tap(row.name, release.message_type, data)
-            self.inbox.post(lambda: handle(self.context, message))
+            self.inbox.post(lambda: handle(self.context, row, message))
 
         any_release = TopicType(row.type_name, "*", releases[0].message_type.definition)
         return self.node.subscribe(row.name, any_release, received)
@@ -227,8 +250,8 @@ class Bridge:
 
             def answer() -> Any:
                 if adapt is not None:
-                    adapt(self.context, sent)
-                return handle(self.context, request)
+                    adapt(self.context, row, sent)
+                return handle(self.context, row, request)
 
             response = self.inbox.call(answer)
             return served.response.serialize(

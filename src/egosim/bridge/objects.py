@@ -16,6 +16,7 @@ from ..msgs import Profile
 from ..world.traffic import ObjectState
 from .context import BridgeContext
 from .messages import vector3
+from .table import Row
 from .units import heading_deg, kmh, swap_length_width
 
 
@@ -40,9 +41,9 @@ def object_status(profile: Profile, state: ObjectState) -> Any:
     )
 
 
-def publish_object_list(context: BridgeContext) -> Any:
+def publish_object_list(context: BridgeContext, row: Row) -> Any:
     """/Object_topic: counts of everything spawned; the N closest objects, closest first."""
-    listing = context.world.object_list(context.camera_index)
+    listing = context.world.object_list(context.session.camera_index)
     profile = context.profile
     return profile.message("morai_msgs/ObjectStatusList").new(
         header=context.header(),
@@ -55,7 +56,7 @@ def publish_object_list(context: BridgeContext) -> Any:
     )
 
 
-def publish_collision(context: BridgeContext) -> Any:
+def publish_collision(context: BridgeContext, row: Row) -> Any:
     """/CollisionData: the main ego's collisions that began since the last message.
 
     An empty collision_object list means no new collision; global_offset_* is the
@@ -80,7 +81,7 @@ def publish_collision(context: BridgeContext) -> Any:
     )
 
 
-def publish_vehicle_collisions(context: BridgeContext) -> Any:
+def publish_vehicle_collisions(context: BridgeContext, row: Row) -> Any:
     """/VehicleCollisionData: NPC-NPC collisions that began since the last message."""
     profile = context.profile
     collision_type = profile.message("morai_msgs/VehicleCollision")

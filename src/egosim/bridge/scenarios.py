@@ -13,6 +13,7 @@ from typing import Any
 from ..datapaths import PathOutsideRootsError, resolve_in_roots
 from ..world.scenario import ScenarioError, ScenarioLoadOptions, parse_scenario
 from .context import BridgeContext
+from .table import Row
 
 log = logging.getLogger(__name__)
 
@@ -68,20 +69,20 @@ def load_requested_scenario(context: BridgeContext, request: Any) -> None:
         )
 
 
-def on_scenario_load(context: BridgeContext, request: Any) -> None:
+def on_scenario_load(context: BridgeContext, row: Row, request: Any) -> None:
     try:
         load_requested_scenario(context, request)
     except ScenarioRequestError as error:
-        log.error("/ScenarioLoad: %s", error)
+        log.error("%s: %s", row.name, error)
 
 
-def serve_scenario_load(context: BridgeContext, request: Any) -> Any:
+def serve_scenario_load(context: BridgeContext, row: Row, request: Any) -> Any:
     """/Service_MoraiSL: MoraiSrvResponse.result true when the scenario was loaded."""
     try:
         load_requested_scenario(context, request.request)
         result = True
     except ScenarioRequestError as error:
-        log.error("/Service_MoraiSL: %s", error)
+        log.error("%s: %s", row.name, error)
         result = False
     return context.profile.message("morai_msgs/MoraiScenarioLoadSrvResponse").new(
         response=context.profile.message("morai_msgs/MoraiSrvResponse").new(result=result)

@@ -6,7 +6,6 @@ import logging
 from dataclasses import dataclass
 
 from ..app.attachments import Attach, RunningSimulator
-from ..app.options import ClockMode
 from .controls import ViewControls
 from .hub import FrameHub
 from .server import ViewBackend, ViewServer, ViewServerError
@@ -27,14 +26,10 @@ class ViewOptions:
 
 
 class LiveView:
-    """The view attached to one run: its tick stage and its server."""
+    """The view attached to one run: its server (its stage is in the tick pipeline)."""
 
-    def __init__(self, stage: ViewStage, server: ViewServer) -> None:
-        self.stage = stage
+    def __init__(self, server: ViewServer) -> None:
         self.server = server
-
-    def after_step(self) -> None:
-        self.stage.after_step()
 
     def close(self) -> None:
         self.server.close()
@@ -42,9 +37,6 @@ class LiveView:
 
 class NoView:
     """What runs when the view could not start: nothing."""
-
-    def after_step(self) -> None:
-        pass
 
     def close(self) -> None:
         pass
@@ -55,13 +47,13 @@ def live_view(options: ViewOptions) -> Attach:
         context = running.context
         clock_mode = running.options.clock
         hub = FrameHub()
-        controls = ViewControls(context, clock_mode is ClockMode.SYNC, running.startup_scenario)
+        controls = ViewControls(context, running.startup_scenario)
         stage = ViewStage(
             context,
             hub,
             controls,
             clock_mode.value,
-            lidar_on=running.settings.row("lidar").enabled,
+            lidar_on=context.row("lidar").enabled,
             controls_enabled=not options.readonly,
         )
         backend = ViewBackend(
@@ -85,7 +77,11 @@ def live_view(options: ViewOptions) -> Attach:
             log.error("live view not started: %s (--view-port picks another port)", error)
             print(f"egosim: no view ({error})", flush=True)
             return NoView()
+        # Last in the tick: the view sees what was published.
+        pipeline = context.pipeline
+        context.pipeline = pipeline.with_stage(stage.stage(), after=pipeline.names[-1])
+        context.pipeline.loop_time = pipeline.loop_time
         print(f"egosim: view at {server.url}", flush=True)
-        return LiveView(stage, server)
+        return LiveView(server)
 
     return attach

@@ -13,12 +13,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, ClassVar
 
-from ..bridge.context import (
-    CTRL_MODE_AUTO,
-    CTRL_MODE_EXTERNAL,
-    CTRL_MODE_KEYBOARD,
-    BridgeContext,
-)
+from ..bridge import BridgeContext, ControlMode
 from ..bridge.scenarios import scenario_path
 from ..datapaths import PathOutsideRootsError
 from ..replay.codes import SET_START_TIME, CommandResult, PlaybackStatus, ProcessCommand
@@ -29,7 +24,7 @@ from .keyboard import HeldKeys, KeyboardDriver
 log = logging.getLogger(__name__)
 
 #: Control modes the page offers: keyboard, external (ROS /ctrl_cmd), autopilot.
-PAGE_CTRL_MODES = (CTRL_MODE_KEYBOARD, CTRL_MODE_EXTERNAL, CTRL_MODE_AUTO)
+PAGE_CTRL_MODES = (ControlMode.KEYBOARD, ControlMode.EXTERNAL, ControlMode.AUTO)
 SCENARIO_SUFFIXES = (".yaml", ".yml")
 #: At most this many scenario files are listed (a data root may be a large tree).
 MAX_LISTED_SCENARIOS = 200
@@ -56,7 +51,6 @@ class ViewControls:
     """Applies page requests to the world (loop thread only)."""
 
     context: BridgeContext
-    sync_mode: bool
     reload_source: Callable[[], Scenario] | None
     """The scenario the run started with (None: nothing to reload)."""
     pause_after_step: bool = False
@@ -80,7 +74,7 @@ class ViewControls:
     # -- time -------------------------------------------------------------------------
 
     def _own_time(self, action: str) -> None:
-        if self.sync_mode:
+        if self.context.sync.holds_time:
             raise ControlError(f"cannot {action} in sync mode: the client steps the simulation")
 
     def pause(self, _: dict[str, Any]) -> None:
@@ -154,11 +148,11 @@ class ViewControls:
         if mode not in PAGE_CTRL_MODES:
             raise ControlError(f"control mode {mode!r} is not one of {PAGE_CTRL_MODES}")
         ego = self.context.world.egos[self._ego_index(request)]
-        self.context.settings_of(ego.unique_id).ctrl_mode = int(mode)
+        self.context.settings_of(ego.unique_id).ctrl_mode = ControlMode(mode)
 
     def keys(self, request: dict[str, Any]) -> None:
         ego = self.context.world.egos[self._ego_index(request)]
-        if self.context.settings_of(ego.unique_id).ctrl_mode != CTRL_MODE_KEYBOARD:
+        if self.context.settings_of(ego.unique_id).ctrl_mode is not ControlMode.KEYBOARD:
             raise ControlError("the ego is not in keyboard control mode")
         if not isinstance(ego.vehicle, Vehicle):
             raise ControlError("keyboard driving needs a road vehicle")

@@ -19,7 +19,7 @@ import numpy as np
 import numpy.typing as npt
 import orjson
 
-from ..bridge.context import BridgeContext
+from ..bridge import BridgeContext
 from ..world import World
 from ..world.map import LaneMap
 from ..world.map.lanes import Lane
@@ -179,7 +179,7 @@ def _egos(context: BridgeContext) -> list[dict[str, Any]]:
                 "forward_speed": status.velocity[0],
                 "acceleration": status.acceleration[0],
                 "gear": status.gear.name.lower(),
-                "ctrl_mode": context.settings_of(ego.unique_id).ctrl_mode,
+                "ctrl_mode": int(context.settings_of(ego.unique_id).ctrl_mode),
                 "steer": status.front_steer,
                 "accel_pedal": status.accel_pedal,
                 "brake_pedal": status.brake_pedal,
@@ -241,9 +241,9 @@ def capture_frame(
         "paused": world.paused,
         "clock_mode": info.clock_mode,
         "real_time_factor": info.real_time_factor,
-        "sync_frame": context.sync.frame if context.sync is not None else None,
+        "sync_frame": context.sync.frame if context.sync.holds_time else None,
         "controls": info.controls_enabled,
-        "followed": context.camera_index,
+        "followed": context.session.camera_index,
         "egos": _egos(context),
         # The tables themselves: the world replaces, never edits, their arrays, so the
         # server thread may read them later (see _objects).

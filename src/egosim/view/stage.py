@@ -8,7 +8,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from ..bridge.context import BridgeContext
+from ..bridge import BridgeContext, Stage
 from ..sensors import sensor_in_map
 from ..world.vehicle import Pose
 from .controls import ViewControls
@@ -49,6 +49,10 @@ class ViewStage:
         self._lidar_points: np.ndarray | None = None
         self._lidar_at = -float("inf")
 
+    def stage(self) -> Stage[BridgeContext]:
+        """This as the "view" stage of the tick pipeline."""
+        return Stage("view", lambda context, tick: self.after_step())
+
     def after_step(self) -> None:
         """Run after every tick: the cheap checks, and a frame when the hub wants one."""
         if self.controls.pause_after_step:
@@ -59,7 +63,8 @@ class ViewStage:
 
     def capture(self) -> None:
         """Take a frame now and hand it to the hub (loop thread)."""
-        info = FrameInfo(self._clock_mode, self._real_time_factor(), self._controls_enabled)
+        clock_mode = "sync" if self.context.sync.holds_time else self._clock_mode
+        info = FrameInfo(clock_mode, self._real_time_factor(), self._controls_enabled)
         frame = capture_frame(self.context, info, self._lidar(), self._images)
         self.hub.offer(frame)
 
@@ -78,7 +83,7 @@ class ViewStage:
     def _lidar(self) -> np.ndarray | None:
         """The main ego's LiDAR points in the map frame (x, y), recast at LIDAR_RATE_HZ."""
         rig = self.context.sensors
-        if not (self._lidar_on and self.hub.lidar_wanted and rig is not None):
+        if not (self._lidar_on and self.hub.lidar_wanted):
             self._lidar_points = None
             return None
         now = self._monotonic()

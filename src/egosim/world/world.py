@@ -12,8 +12,8 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
-import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray
 from egosim.world.collision import (
     ContactTracker,
     EgoCollision,
@@ -77,8 +77,6 @@ PEDESTRIAN_LANE_MARGIN_M = 1.0
 PEDESTRIAN_HALF_DEPTH_M = 0.5
 # Length of lane over which the grade under an ego is measured, m.
 GRADE_BASE_M = 1.0
-
-FloatArray = npt.NDArray[np.float64]
 
 
 class UnknownObjectModelError(ValueError):
@@ -505,7 +503,7 @@ class World:
             self._contacts.begin([])
             return
         types = table.object_types
-        kinds = types[pairs] if len(pairs) else np.empty((0, 2), np.int64)
+        kinds = types[pairs]
         ego_pair = np.any(kinds == ObjectType.EGO, axis=1)
         npc_pair = np.all(kinds == ObjectType.NPC_VEHICLE, axis=1)
         relevant = pairs[ego_pair | npc_pair]
