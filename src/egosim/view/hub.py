@@ -32,7 +32,7 @@ class FrameHub:
         self._frame: dict[str, Any] | None = None
         self._sequence = 0
         self._encoded: tuple[int, str] | None = None
-        self._last_offer = -float("inf")
+        self._next_due = -float("inf")
         self.clients = 0
         """Browsers connected (set by the server); no client, no frame is taken."""
         self.lidar_wanted = False
@@ -42,11 +42,15 @@ class FrameHub:
 
     def due(self) -> bool:
         """A frame should be taken now: someone watches and the rate allows it."""
-        return self.clients > 0 and self._monotonic() - self._last_offer >= self._period
+        return self.clients > 0 and self._monotonic() >= self._next_due
 
     def offer(self, frame: dict[str, Any]) -> None:
         """Publish a captured frame (loop thread); replaces any not yet sent."""
-        self._last_offer = self._monotonic()
+        # Due times keep to the rate's grid, so a loop whose ticks do not divide the
+        # period still averages the full rate; after a stall the grid starts afresh.
+        now = self._monotonic()
+        on_grid = now - self._next_due < self._period
+        self._next_due = (self._next_due if on_grid else now) + self._period
         with self._lock:
             self._frame = frame
             self._sequence += 1
