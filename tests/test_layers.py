@@ -28,6 +28,7 @@ LAYERS = (
     "msgs",
     "yamltext",
     "datapaths",
+    "logthrottle",
 )
 # Below in the order, yet out of reach: the pure core knows no ROS, ROS knows no driving.
 PURE = ("evaluation", "maps", "sensors", "world")

@@ -12,9 +12,11 @@ import threading
 import time
 from collections.abc import Callable
 
+from ..logthrottle import LogThrottle
 from .inbox import Inbox
 
 log = logging.getLogger(__name__)
+throttle = LogThrottle(log)
 
 #: Falling this far behind the wall clock (s) resets the pace instead of racing to catch up.
 MAX_LAG_S = 0.25
@@ -74,10 +76,12 @@ class SimulationLoop:
             self._inbox.wait(remaining)
         if -remaining > MAX_LAG_S:
             self.lag_resets += 1
-            if self.lag_resets == 1:
-                log.warning(
-                    "simulation fell %.2f s behind real time; skipping ahead (logged once)",
-                    -remaining,
-                )
+            throttle.log(
+                logging.WARNING,
+                "lag",
+                "simulation fell %.2f s behind real time; skipping ahead (%d times so far)",
+                -remaining,
+                self.lag_resets,
+            )
             return self._monotonic()
         return target

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
 
+from ..logthrottle import LogThrottle
 from ..msgs import Profile
 from ..replay import ReplaySession
 from ..world import World
@@ -30,6 +31,7 @@ if TYPE_CHECKING:
     from ..world.traffic.autopilot import LaneAutopilot
 
 log = logging.getLogger(__name__)
+throttle = LogThrottle(log)
 
 MAP_FRAME = "map"
 
@@ -71,8 +73,6 @@ class SessionState:
     """Control mode and lamps of each ego, by unique id."""
     reported: dict[str, int] = field(default_factory=dict)
     """How many entries of each world log a publisher has already reported."""
-    warned: set[str] = field(default_factory=set)
-    """Warnings already logged, so repeated bad input is reported once."""
     autopilots: dict[int, LaneAutopilot] = field(default_factory=dict)
     """The autopilot of each ego in control mode auto, by unique id."""
     ego_rows: dict[int, list[Callable[[], None]]] = field(default_factory=dict)
@@ -120,12 +120,10 @@ class BridgeContext:
     def header(self, frame_id: str = MAP_FRAME) -> Any:
         return header(self.profile, self.stamp(), frame_id)
 
-    def warn_once(self, key: str, text: str) -> None:
-        """Log `text` the first time `key` comes up, so a 50 Hz stream of the same bad
-        input does not flood the log."""
-        if key not in self.session.warned:
-            self.session.warned.add(key)
-            log.warning(text)
+    def warn_throttled(self, key: str, text: str) -> None:
+        """Log `text` when `key` comes up, at most once per window with a count of the
+        rest, so a 50 Hz stream of the same bad input does not flood the log."""
+        throttle.log(logging.WARNING, key, "%s", text)
 
     def settings_of(self, unique_id: int) -> EgoSettings:
         return self.session.ego_settings.setdefault(unique_id, EgoSettings())

@@ -16,8 +16,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any, Protocol, TypeVar
 
+from ..logthrottle import LogThrottle
 from ..msgs import MessageType, MsgsError, get_profile
-from ..ros1 import ConnectionRefusedByPeerError, Node, Publisher, Subscriber
+from ..ros1 import BadRequestError, ConnectionRefusedByPeerError, Node, Publisher, Subscriber
 from ..ros1.types import TopicType
 from .context import BridgeContext
 from .network import NetworkSettings
@@ -35,6 +36,7 @@ from .releases import (
 from .table import Direction, Row
 
 log = logging.getLogger(__name__)
+throttle = LogThrottle(log)
 
 T = TypeVar("T")
 
@@ -47,6 +49,9 @@ RequestHandler = Callable[[BridgeContext, Row, Any], Any]  # (context, row, requ
 # (context, row, request as the client sent it): applies a request field only one
 # release has, before the row's handler answers
 ReleaseAdapter = Callable[[BridgeContext, Row, Any], None]
+# (context, row, message or request) -> what the row's handler gets instead: work done on
+# the transport's thread, such as reading a user's file, so the loop never waits on it
+Preparer = Callable[[BridgeContext, Row, Any], Any]
 
 
 class Inbox(Protocol):
@@ -65,6 +70,7 @@ class Handlers:
     # (service row key, release) -> what to do with a request field that only that
     # release has, before the row's handler answers
     release_adapters: dict[tuple[str, str], ReleaseAdapter] = field(default_factory=dict)
+    preparers: dict[str, Preparer] = field(default_factory=dict)
 
     def __contains__(self, key: str) -> bool:
         return key in self.publishers or key in self.subscribers or key in self.services
@@ -207,7 +213,9 @@ class Bridge:
             caller = header.get("callerid", "?")
             release = release_for_md5(releases, header.get("md5sum", ""))
             if release is None:
-                log.error(
+                throttle.log(
+                    logging.ERROR,
+                    (row.name, caller, "md5sum"),
                     "%s from %s: md5sum %s is no release of %s; message dropped",
                     row.name,
                     caller,
@@ -220,10 +228,19 @@ class Bridge:
                     release.message_type.deserialize(data), release.message_type, message_type
                 )
             except MsgsError as exc:
-                log.error("%s from %s: %s", row.name, caller, exc)
+                throttle.log(
+                    logging.ERROR,
+                    (row.name, caller, "undecodable"),
+                    "%s from %s: message dropped: %s",
+                    row.name,
+                    caller,
+                    exc,
+                )
                 return
             self._tap(row.name, release.message_type, data)
-            self.inbox.post(lambda: handle(self.context, row, message))
+            prepare = self.handlers.preparers.get(row.key)
+            prepared = message if prepare is None else prepare(self.context, row, message)
+            self.inbox.post(lambda: handle(self.context, row, prepared))
 
         any_release = TopicType(row.type_name, "*", releases[0].message_type.definition)
         return self.node.subscribe(row.name, any_release, received)
@@ -244,14 +261,19 @@ class Bridge:
         def serve(data: bytes, header: Any) -> bytes:
             release = release_of(header)
             served = release.service_type
-            sent = served.request.deserialize(data)
+            try:
+                sent = served.request.deserialize(data)
+            except MsgsError as exc:
+                raise BadRequestError(f"undecodable {served.request.name}: {exc}") from None
             request = convert(sent, served.request, canonical_type.request)
             adapt = self.handlers.release_adapters.get((row.key, release.profile_name))
+            prepare = self.handlers.preparers.get(row.key)
+            prepared = request if prepare is None else prepare(self.context, row, request)
 
             def answer() -> Any:
                 if adapt is not None:
                     adapt(self.context, row, sent)
-                return handle(self.context, row, request)
+                return handle(self.context, row, prepared)
 
             response = self.inbox.call(answer)
             return served.response.serialize(

@@ -106,7 +106,7 @@ def drive_with_ctrl_cmd(context: BridgeContext, row: Row, index: int, ctrl_cmd: 
         return
     verdict = ego.vehicle.command(control_command(ctrl_cmd))
     if not verdict.accepted:
-        context.warn_once(
+        context.warn_throttled(
             f"{row.name}: {verdict.reason}",
             f"{row.name} rejected (last valid command kept): {verdict.reason}",
         )

@@ -46,7 +46,7 @@ def commanded_ego(
     if context.settings_of(ego.unique_id).ctrl_mode is not ControlMode.EXTERNAL:
         return None
     if not isinstance(ego.vehicle, kind):
-        context.warn_once(
+        context.warn_throttled(
             f"{row.name}: kind",
             f"{row.name} ignored: the ego's model {ego.vehicle.model.name} does not take it "
             f"(ground vehicle models take webot_cmd, gv_direct_cmd, gv_state_cmd; "
@@ -64,7 +64,7 @@ def _drive(
         return
     verdict = ego.vehicle.command(command)
     if not verdict.accepted:
-        context.warn_once(
+        context.warn_throttled(
             f"{row.name}: {verdict.reason}",
             f"{row.name} rejected (last valid command kept): {verdict.reason}",
         )
@@ -73,7 +73,7 @@ def _drive(
 def on_gv_direct_cmd(context: BridgeContext, row: Row, message: Any) -> None:
     """/gv_direct_cmd: throttle, skid steering and brake of the two sides (steerType 0)."""
     if message.steerType != STEER_TYPE_SKID:
-        context.warn_once(
+        context.warn_throttled(
             f"{row.name}: steerType {message.steerType}",
             f"{row.name} ignored: steerType {message.steerType} is not supported "
             f"(0 skid steering; 1 wheel steering angles needs steered wheels)",
@@ -93,7 +93,7 @@ def on_gv_direct_cmd(context: BridgeContext, row: Row, message: Any) -> None:
 def on_gv_state_cmd(context: BridgeContext, row: Row, message: Any) -> None:
     """/gv_state_cmd: target forward speed (m/s) and yaw rate (rad/s) (latCtrlType 0)."""
     if message.latCtrlType != LAT_CTRL_ANGULAR_VELOCITY:
-        context.warn_once(
+        context.warn_throttled(
             f"{row.name}: latCtrlType {message.latCtrlType}",
             f"{row.name} ignored: latCtrlType {message.latCtrlType} is not supported "
             f"(0 angular velocity; 1 steering angles needs steered wheels)",

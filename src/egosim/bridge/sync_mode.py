@@ -37,7 +37,7 @@ from ..world.vehicle import Gear
 from .context import BridgeContext
 from .ego import ego_status_of, on_ctrl_cmd
 from .releases import canonical, convert
-from .scenarios import ScenarioRequestError, load_requested_scenario
+from .scenarios import ScenarioRequest, ScenarioRequestError, load_requested_scenario
 from .sync_session import MAX_PENDING_ACTIONS, Action, SyncSession
 from .table import Row
 
@@ -210,19 +210,18 @@ def serve_set_gear(context: BridgeContext, row: Row, request: Any) -> Any:
     return service_response(context, "MoraiSyncModeSetGearSrv", result_message(context, ok))
 
 
-def serve_scenario_load(context: BridgeContext, row: Row, request: Any) -> Any:
+def serve_scenario_load(context: BridgeContext, row: Row, prepared: ScenarioRequest) -> Any:
     """/SyncModeScenarioLoad: ScenarioLoad (same fields and file roots) at a frame."""
-    load = request.request
 
     def apply(context: BridgeContext) -> bool:
         try:
-            load_requested_scenario(context, load)
+            load_requested_scenario(context, prepared)
         except ScenarioRequestError as error:
             log.error("%s: %s", row.name, error)
             return False
         return True
 
-    ok = at_frame(context, row, int(load.frame), apply)
+    ok = at_frame(context, row, int(prepared.request.frame), apply)
     return service_response(context, "MoraiSyncModeSLSrv", result_message(context, ok))
 
 

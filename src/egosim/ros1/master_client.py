@@ -77,6 +77,9 @@ class MasterClient:
     def get_uri(self, timeout: float | None = None) -> str:
         return self._call("getUri", timeout=timeout)
 
+    def get_pid(self, timeout: float | None = None) -> int:
+        return int(self._call("getPid", timeout=timeout))
+
     def lookup_service(self, service: str) -> str:
         return self._call("lookupService", service)
 
