@@ -96,6 +96,7 @@ def measure(clients: int, seconds: float, frame_sizes: list[int]) -> dict[str, f
     backend = ViewBackend(
         hub=hub,
         inbox=Inbox(),
+        prepare=controls.prepare,
         apply=controls.apply,
         capture=stage.capture,
         map_json=lambda: encode(map_snapshot(world.map)),

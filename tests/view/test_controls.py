@@ -166,3 +166,16 @@ def test_a_silent_page_leaves_the_ego_to_its_command_timeout(straight: BridgeCon
     status = straight.world.ego_status(0)
     assert status.speed < 0.05
     assert status.brake_pedal == 1.0
+
+
+def test_prepared_loads_read_their_file_before_the_loop_applies_them(
+    town: BridgeContext, tmp_path: Path
+) -> None:
+    controls, _ = controls_of(town)
+    path = scenarios.write(tmp_path, "two.yaml", scenarios.TWO_NPCS)
+    prepared = controls.prepare({"op": "load", "name": "two"})
+    path.unlink()  # the loop never touches the file
+    assert controls.apply(prepared)["ok"]
+    assert len(town.world.npcs.unique_ids) == 2
+    refused = controls.prepare({"op": "load", "name": "missing"})
+    assert "not loaded" in controls.apply(refused)["error"]

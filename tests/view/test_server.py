@@ -47,6 +47,7 @@ def serve(context: BridgeContext, readonly: bool = False, port: int = 0) -> Iter
     backend = ViewBackend(
         hub=hub,
         inbox=inbox,
+        prepare=controls.prepare,
         apply=controls.apply,
         capture=stage.capture,
         map_json=lambda: encode(map_snapshot(context.world.map)),

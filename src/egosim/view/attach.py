@@ -59,6 +59,7 @@ def live_view(options: ViewOptions) -> Attach:
         backend = ViewBackend(
             hub=hub,
             inbox=running.inbox,
+            prepare=controls.prepare,
             apply=controls.apply,
             capture=stage.capture,
             map_json=lambda: encode(map_snapshot(context.world.map)),

@@ -15,7 +15,7 @@ from typing import Any, ClassVar
 
 from ..bridge import BridgeContext, ControlMode
 from ..bridge.scenarios import scenario_path
-from ..datapaths import PathOutsideRootsError
+from ..datapaths import PathOutsideRootsError, read_regular_file
 from ..replay.codes import SET_START_TIME, CommandResult, PlaybackStatus, ProcessCommand
 from ..world.scenario import Scenario, ScenarioError, parse_scenario
 from ..world.vehicle import Vehicle
@@ -32,6 +32,24 @@ MAX_LISTED_SCENARIOS = 200
 
 class ControlError(Exception):
     """A request the simulation cannot honour; the message says why, for the page."""
+
+
+@dataclass(frozen=True)
+class _Read:
+    """A scenario read from its file, and what reads that file again (reload)."""
+
+    scenario: Scenario
+    again: Callable[[], Scenario]
+
+
+def _read_file(path: Path) -> _Read | ControlError:
+    def parse() -> Scenario:
+        return parse_scenario(read_regular_file(path).decode("utf-8"), str(path))
+
+    try:
+        return _Read(parse(), parse)
+    except (OSError, UnicodeDecodeError, ScenarioError) as error:
+        return ControlError(f"scenario {path.name!r} not loaded: {error}")
 
 
 @dataclass(frozen=True)
@@ -105,35 +123,55 @@ class ViewControls:
                     names.append(path.relative_to(base).as_posix())
         return {"scenarios": names}
 
-    def load(self, request: dict[str, Any]) -> dict[str, Any]:
-        name = request.get("name")
+    def prepare(self, request: Any) -> Any:
+        """`request` with its file work done (server thread): a load or reload reads and
+        parses its scenario here, so the loop only applies it."""
+        op = request.get("op") if isinstance(request, dict) else None
+        if op == "load":
+            return {**request, "read": self._read_named(request.get("name"))}
+        if op == "reload":
+            return {**request, "read": self._read_again()}
+        return request
+
+    def _read_named(self, name: Any) -> _Read | ControlError:
         if not isinstance(name, str) or not name:
-            raise ControlError("load needs a scenario 'name'")
+            return ControlError("load needs a scenario 'name'")
         try:
             path = scenario_path(name, self.context.data_roots)
-            scenario = parse_scenario(path.read_text(encoding="utf-8"), str(path))
-        except (PathOutsideRootsError, OSError, UnicodeDecodeError, ScenarioError) as error:
-            raise ControlError(f"scenario {name!r} not loaded: {error}") from error
-        self._load(scenario, str(path))
-        self.reload_source = lambda: parse_scenario(path.read_text(encoding="utf-8"), str(path))
-        return {"loaded": name}
+        except (PathOutsideRootsError, OSError) as error:
+            return ControlError(f"scenario {name!r} not loaded: {error}")
+        return _read_file(path)
 
-    def reload(self, _: dict[str, Any]) -> None:
-        if self.reload_source is None:
-            raise ControlError("this run started without a scenario: nothing to reload")
+    def _read_again(self) -> _Read | ControlError:
+        source = self.reload_source
+        if source is None:
+            return ControlError("this run started without a scenario: nothing to reload")
         try:
-            scenario = self.reload_source()
+            return _Read(source(), source)
         except (OSError, UnicodeDecodeError, ScenarioError) as error:
-            raise ControlError(f"scenario not reloaded: {error}") from error
-        self._load(scenario, "the scenario")
+            return ControlError(f"scenario not reloaded: {error}")
 
-    def _load(self, scenario: Scenario, what: str) -> None:
+    def load(self, request: dict[str, Any]) -> dict[str, Any]:
+        read = request.get("read") or self._read_named(request.get("name"))
+        if isinstance(read, ControlError):
+            raise read
+        self._load(read.scenario)
+        self.reload_source = read.again
+        return {"loaded": request["name"]}
+
+    def reload(self, request: dict[str, Any]) -> None:
+        read = request.get("read") or self._read_again()
+        if isinstance(read, ControlError):
+            raise read
+        self._load(read.scenario)
+
+    def _load(self, scenario: Scenario) -> None:
         try:
             self.context.world.load_scenario(scenario)
         except ScenarioError as error:
             raise ControlError(str(error)) from error
         self._keyboards.clear()
-        log.info("view: %s loaded", what)
+        log.info("view: scenario %s loaded", scenario.source.label)
 
     # -- driving ----------------------------------------------------------------------
 

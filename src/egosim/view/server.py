@@ -61,6 +61,8 @@ class ViewBackend:
 
     hub: FrameHub
     inbox: Inbox
+    prepare: Callable[[Any], Any]
+    """Does a request's file work on a worker thread (ViewControls.prepare)."""
     apply: Callable[[Any], dict[str, Any]]
     """Runs one page request on the loop thread (ViewControls.apply)."""
     capture: Callable[[], None]
@@ -275,12 +277,14 @@ class ViewServer:
             inbox.post(functools.partial(apply, request))
             return
 
+        loop = asyncio.get_running_loop()
+        prepared = await loop.run_in_executor(None, self.backend.prepare, request)
+
         def run() -> dict[str, Any]:
-            reply = apply(request)
+            reply = apply(prepared)
             capture()  # show the result at once, even paused or in sync mode
             return reply
 
-        loop = asyncio.get_running_loop()
         try:
             reply = await loop.run_in_executor(
                 None, functools.partial(inbox.call, run, REQUEST_TIMEOUT_S)
