@@ -98,17 +98,19 @@ def test_a_browser_gets_hello_frames_and_the_ros_graph(running: Running) -> None
             hello = await receive_until(ws, "hello")
             frame = await receive_until(ws, "frame")
             graph = await receive_until(ws, "graph")
+            # Frames keep to a 30/s grid: over a span, at most its share plus the
+            # frame on each end (and the one taken for a newcomer).
             frames, start = 0, time.monotonic()
-            while time.monotonic() - start < 1.0:
+            while time.monotonic() - start < 2.0:
                 await receive_until(ws, "frame")
                 frames += 1
-            return hello, frame, graph, frames
+            return hello, frame, graph, frames / (time.monotonic() - start)
 
     hello, frame, graph, frames = asyncio.run(browse())
     assert hello["readonly"] is False
     assert frame["egos"][0]["id"] == running.context.world.egos[0].unique_id
     assert graph["nodes"][0]["name"] == "/egosim"
-    assert 0 < frames <= MAX_FRAME_RATE_HZ + 1
+    assert 0 < frames <= MAX_FRAME_RATE_HZ + 1.5
 
 
 def test_the_map_comes_gzipped_and_the_page_from_the_package(running: Running) -> None:
