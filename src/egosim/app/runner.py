@@ -6,19 +6,18 @@ import contextlib
 import logging
 import sys
 import threading
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from ..bridge import HANDLERS, Bridge, ClockMode, simulation_context
-from ..bridge.context import BridgeContext
 from ..bridge.network import load_network_settings
-from ..bridge.pipeline import Stage
 from ..maps import MapLoadError, load_map, scenario_map_location
 from ..replay import RecorderError
 from ..ros1 import Node, Ros1Error
 from ..world import World
 from ..world.scenario import Scenario, ScenarioError, load_default_scenario, parse_scenario
 from ..yamltext import YamlFileError
+from .attachments import Attach, Attachment, RunningSimulator
 from .inbox import Inbox
 from .loop import SimulationLoop
 from .options import RunOptions
@@ -41,6 +40,21 @@ class StartupError(Exception):
     def __init__(self, reason: str, exit_code: int = EXIT_BAD_INPUT) -> None:
         super().__init__(reason)
         self.exit_code = exit_code
+
+
+def read_scenario_file(path: Path) -> Scenario:
+    """The scenario in the file at `path` (OSError, UnicodeDecodeError, ScenarioError)."""
+    return parse_scenario(path.read_text(encoding="utf-8"), str(path))
+
+
+def startup_scenario(options: RunOptions, map_name: str) -> Callable[[], Scenario] | None:
+    """What reads the scenario a run starts with: --scenario, else the town's default."""
+    path = options.scenario
+    if path is not None:
+        return lambda: read_scenario_file(path)
+    if map_name == DEFAULT_MAP:
+        return load_default_scenario
+    return None
 
 
 def build_world(options: RunOptions) -> World:
@@ -77,7 +91,7 @@ def build_world(options: RunOptions) -> World:
 
 def _read_scenario(path: Path) -> Scenario:
     try:
-        return parse_scenario(path.read_text(encoding="utf-8"), str(path))
+        return read_scenario_file(path)
     except (OSError, UnicodeDecodeError) as error:
         raise StartupError(f"cannot read scenario {path}: {error}") from error
     except ScenarioError as error:
@@ -85,23 +99,21 @@ def _read_scenario(path: Path) -> Scenario:
 
 
 def run(
-    options: RunOptions,
-    stages: Sequence[Stage[BridgeContext]] = (),
-    stop: threading.Event | None = None,
+    options: RunOptions, attach: Sequence[Attach] = (), stop: threading.Event | None = None
 ) -> int:
-    """Run the simulator until stopped; the exit status.
+    """Run the simulator until stopped; the process exit status.
 
-    `stages` join the tick pipeline right after the world's step (an evaluator watching
-    the drive); setting `stop` ends the run as Ctrl-C does.
+    `attach` builds what rides on the loop (the live view, a batch case's drive) once the
+    simulator is up; setting `stop` ends the run as Ctrl-C does.
     """
     try:
-        return _run(options, stages, stop or threading.Event())
+        return _run(options, attach, stop or threading.Event())
     except StartupError as error:
         print(f"egosim: {error}", file=sys.stderr)
         return error.exit_code
 
 
-def _run(options: RunOptions, stages: Sequence[Stage[BridgeContext]], stop: threading.Event) -> int:
+def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -> int:
     world = build_world(options)
     try:
         settings = load_network_settings(
@@ -136,8 +148,6 @@ def _run(options: RunOptions, stages: Sequence[Stage[BridgeContext]], stop: thre
             bridge=bridge,
             hold_output=node.holding_output,
         )
-        for stage in reversed(stages):
-            context.pipeline = context.pipeline.with_stage(stage, after="world")
         if recorder is not None:
             bridge.taps.append(recorder.tap())
         try:
@@ -148,6 +158,17 @@ def _run(options: RunOptions, stages: Sequence[Stage[BridgeContext]], stop: thre
             node.shutdown("startup failed")
             reason = f"cannot register with the ROS master: {error}"
             raise StartupError(reason, EXIT_ROS_FAILED) from error
+        running = RunningSimulator(
+            options, context, inbox, node, startup_scenario(options, world.map.name)
+        )
+        attachments: list[Attachment] = []
+        try:
+            attachments.extend(build(running) for build in attach)
+        except StartupError:
+            for attachment in attachments:
+                attachment.close()
+            node.shutdown("startup failed")
+            raise
         log.info("egosim up: map %s, master %s", world.map.name, node.master_uri)
         print(f"egosim: ready\n{ready_summary(world, options)}", flush=True)
 
@@ -166,6 +187,8 @@ def _run(options: RunOptions, stages: Sequence[Stage[BridgeContext]], stop: thre
         try:
             loop.run()
         finally:
+            for attachment in attachments:
+                attachment.close()
             inbox.close()
             node.shutdown("egosim stopping")
     return EXIT_OK

@@ -22,6 +22,7 @@ from pathlib import Path
 
 import yaml
 
+from egosim.app.attachments import RunningSimulator
 from egosim.app.options import RunOptions
 from egosim.app.runner import run
 from egosim.batch.case import CaseSpec
@@ -81,8 +82,14 @@ class CaseDrive:
         self._gate = case.clock == ClockMode.SIM.value
         self.world: World | None = None
 
-    def stage(self) -> Stage[BridgeContext]:
-        return Stage("drive", self.run)
+    def attach(self, running: RunningSimulator) -> CaseDrive:
+        """Ride on the run: the drive stage right after the world's step."""
+        context = running.context
+        context.pipeline = context.pipeline.with_stage(Stage("drive", self.run), after="world")
+        return self
+
+    def close(self) -> None:
+        """Nothing to stop: the stage ends with the run."""
 
     def run(self, context: BridgeContext, tick: Tick) -> None:
         if self.over:  # the loop ends after this tick
@@ -163,7 +170,7 @@ def main(case_dir: Path) -> int:
             physics_rate_hz=PHYSICS_RATE_HZ,
             data_roots=(case_dir,),
         )
-        status = run(options, [drive.stage()], stop)
+        status = run(options, [drive.attach], stop)
         result = {"exit_status": status, **drive.result()}
         (case_dir / SCORE_FILE).write_text(json.dumps(result), encoding="utf-8")
         return status

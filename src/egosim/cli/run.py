@@ -11,6 +11,7 @@ from pathlib import Path
 from ..app.options import ClockMode, RunOptions
 from ..app.runner import run as run_simulator
 from ..msgs import DEFAULT_PROFILE, PROFILES
+from ..view import DEFAULT_HOST, DEFAULT_PORT, ViewOptions, live_view
 
 LOG_LEVELS = ("DEBUG", "INFO", "WARNING", "ERROR")
 
@@ -26,6 +27,13 @@ def positive_float(text: str) -> float:
     value = non_negative_float(text)
     if value == 0:
         raise argparse.ArgumentTypeError("expected a number > 0")
+    return value
+
+
+def port_number(text: str) -> int:
+    value = int(text)
+    if not 0 <= value <= 65535:
+        raise argparse.ArgumentTypeError(f"expected a port 0..65535, got {text}")
     return value
 
 
@@ -91,6 +99,26 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         metavar="HZ",
         help="physics steps per simulated second (default 100)",
     )
+    view = parser.add_argument_group("live view")
+    view.add_argument(
+        "--view-host",
+        default=DEFAULT_HOST,
+        metavar="HOST",
+        help=f"address the browser view listens on (default {DEFAULT_HOST}: this machine only)",
+    )
+    view.add_argument(
+        "--view-port",
+        type=port_number,
+        default=DEFAULT_PORT,
+        metavar="PORT",
+        help=f"port of the browser view (default {DEFAULT_PORT}; 0: any free port)",
+    )
+    view.add_argument("--no-view", action="store_true", help="serve no browser view")
+    view.add_argument(
+        "--view-readonly",
+        action="store_true",
+        help="the view only shows: no pause, scenario loading or keyboard driving",
+    )
     parser.set_defaults(handler=run)
 
 
@@ -118,4 +146,7 @@ def run(args: argparse.Namespace) -> int:
         data_roots=tuple(args.data_root),
         ros_argv=tuple(args.ros_args),
     )
-    return run_simulator(options)
+    attach = []
+    if not args.no_view:
+        attach.append(live_view(ViewOptions(args.view_host, args.view_port, args.view_readonly)))
+    return run_simulator(options, attach)

@@ -269,7 +269,7 @@ class World:
             sizes=np.array([r[6] for r in rows], dtype=np.float64).reshape(-1, 3),
         )
 
-    def _shown_tables(self) -> list[ObjectTable]:
+    def shown_tables(self) -> list[ObjectTable]:
         """NPCs, pedestrians and obstacles in view: the recorded ones where a replay shows
         them, else the simulated ones."""
         recorded = self.recorded
@@ -283,13 +283,13 @@ class World:
 
     def objects(self) -> ObjectTable:
         """Every object: egos, then NPCs, pedestrians and obstacles."""
-        return ObjectTable.concatenate([self._ego_table(), *self._shown_tables()])
+        return ObjectTable.concatenate([self._ego_table(), *self.shown_tables()])
 
     def object_list(self, ego_index: int = 0, size: int | None = None) -> ObjectList:
         """ObjectStatusList: counts of all spawned objects; the `size` (default
         object_list_size) objects closest to the ego, split by kind, closest first. The
         other egos count and appear among the vehicles."""
-        npcs, pedestrians, obstacles = self._shown_tables()
+        npcs, pedestrians, obstacles = self.shown_tables()
         egos = self._ego_table()
         other_egos = egos.select(egos.unique_ids != self.egos[ego_index].unique_id)
         others = ObjectTable.concatenate([other_egos, npcs, pedestrians, obstacles])
