@@ -13,7 +13,7 @@ import pytest
 from PIL import Image
 
 from egosim.cli import main
-from egosim.maps import load_map
+from egosim.maps import load_map, map_names
 
 DATA_MAPS = Path(__file__).parents[1] / "data" / "maps"
 DOCS_MAPS = Path(__file__).parents[2] / "docs" / "maps"
@@ -126,9 +126,11 @@ def test_png_is_written_and_decodes(capsys: pytest.CaptureFixture[str], tmp_path
     assert "4 of 4 light ids labelled" in out
 
 
-def test_docs_show_every_builtin_map(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+def test_docs_show_every_map_egosim_knows_by_name(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
     docs = (DOCS_MAPS.parent / "maps.md").read_text()
-    for name in ("town", "straight", "loop"):
+    for name in map_names():
         assert f"](maps/{name}.png)" in docs
         committed = Image.open(DOCS_MAPS / f"{name}.png")
         fresh = tmp_path / f"{name}.png"
@@ -146,6 +148,7 @@ def test_unknown_map_is_a_one_line_error() -> None:
         check=False,
     )
     assert result.returncode == 2
+    known = ", ".join(map_names())
     assert result.stderr.strip().splitlines() == [
-        "egosim map: no_such_map: no such file or folder, nor a built-in map (town, straight, loop)"
+        f"egosim map: no_such_map: no such file or folder, nor a built-in map ({known})"
     ]

@@ -123,7 +123,7 @@ def test_report_of_a_recorded_drive(
     page.parent.mkdir()
     assert main(["report", str(bag), "-o", str(page)]) == 0
     out = capsys.readouterr().out
-    assert "map: town (the built-in map the trajectory fits best" in out
+    assert "map: town (the map egosim knows by name that the trajectory fits best" in out
     text = page.read_text()
     embedded = [base64.b64decode(d) for d in re.findall(r"base64,([^\"]+)\"", text)]
     beside = [page.with_name("report_trajectory.png"), page.with_name("report_series.png")]

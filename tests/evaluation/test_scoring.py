@@ -40,6 +40,13 @@ def straight_world(obstacles: list[dict] | None = None) -> World:
     return World(build_builtin_map("straight"), scenario)
 
 
+def front_ahead_of_pose(world: World) -> float:
+    """How far the main ego's front bumper is ahead of its pose's point, m."""
+    status = world.ego_status()
+    x, _ = world.egos[0].box_centre(status)
+    return x - status.pose.x + EGO.length / 2.0  # heading east
+
+
 def kinds(evaluator: DriveEvaluator, **kwargs: bool) -> list[InfractionKind]:
     return [i.kind for i in evaluator.infractions(**kwargs)]
 
@@ -48,11 +55,11 @@ def test_collision_with_a_static_object_at_the_time_it_must_happen() -> None:
     speed, obstacle_x = 10.0, 50.0
     cone = {"model": "Cone", "pose": {"x": obstacle_x, "y": LANE_Y}}
     world = straight_world([cone])
+    front = front_ahead_of_pose(world)
     evaluator = DriveEvaluator(world)
     drive(world, evaluator, straight(0.0, LANE_Y, speed), 6.0)
 
     # The ego's front bumper reaches the cone's near face.
-    front = EGO.bounding_box_center_offset + EGO.length / 2.0
     expected_t = (obstacle_x - 0.4 / 2.0 - front) / speed
     score = evaluator.score()
     (collision,) = score.infractions
@@ -67,10 +74,10 @@ def test_collision_with_a_static_object_at_the_time_it_must_happen() -> None:
 def test_time_to_collision_and_headway_to_the_object_ahead() -> None:
     speed = 10.0
     world = straight_world([{"model": "Cone", "pose": {"x": 80.0, "y": LANE_Y}}])
-    evaluator = DriveEvaluator(world)
+    front = front_ahead_of_pose(world)
+    evaluator = DriveEvaluator(world, settings=EvaluationSettings(safety_period_s=DT))
     drive(world, evaluator, straight(0.0, LANE_Y, speed), 2.0)
 
-    front = EGO.bounding_box_center_offset + EGO.length / 2.0
     gap_at_end = 80.0 - 0.2 - front - speed * 2.0
     # The speed a step leaves (coasting for one step from the held speed).
     speed_at_end = world.ego_status().speed
@@ -234,3 +241,15 @@ def test_criteria_read_and_check() -> None:
     for bad in ("route_completion >> 1", "no_such_thing", "speediness <= 3"):
         with pytest.raises(CriterionError):
             parse_criterion(bad, METRIC_NAMES)
+
+
+def test_a_route_through_lanes_and_its_first_metres() -> None:
+    route = Route.through_lanes(build_builtin_map("straight"), ["R1_E_1"])
+    assert route.length == pytest.approx(1000.0)
+    first = route.first(40.0)
+    assert first.length == pytest.approx(40.0)
+    assert first.points[-1] == pytest.approx((40.0, LANE_Y))
+    world = straight_world()
+    evaluator = DriveEvaluator(world, first)
+    drive(world, evaluator, straight(0.0, LANE_Y, 10.0), 1.0)
+    assert evaluator.score().metrics["route_completion"] == pytest.approx(0.25, abs=0.003)

@@ -12,7 +12,7 @@ inbox.
 from __future__ import annotations
 
 import logging
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any, Protocol, TypeVar
 
@@ -234,13 +234,7 @@ class Bridge:
                 header.seq = outlet.seq
                 outlet.seq += 1
             data = outlet.message_type.serialize(message)
-            variants.append(
-                lambda md5sum, message=message, data=data: (
-                    data
-                    if md5sum == outlet.message_type.md5sum
-                    else outlet.variant(message, md5sum)
-                )
-            )
+            variants.append(_serialized(outlet, message, data))
             self._tap(outlet.row.name, outlet.message_type, data)
         return variants
 
@@ -275,7 +269,7 @@ class Bridge:
         releases = releases_of(row.type_name, self.default_release)
         message_type = canonical(row.type_name)
 
-        def received(data: bytes, header: Any) -> None:
+        def received(data: bytes, header: Mapping[str, str]) -> None:
             caller = header.get("callerid", "?")
             release = release_for_md5(releases, header.get("md5sum", ""))
             if release is None:
@@ -317,14 +311,14 @@ class Bridge:
         canonical_type = get_profile(CANONICAL_PROFILE).service(row.type_name)
         handle = self.handlers.services[row.key]
 
-        def release_of(header: Any) -> ServiceRelease:
+        def release_of(header: Mapping[str, str]) -> ServiceRelease:
             release = service_release_for_md5(releases, header.get("md5sum", "*"))
             if release is None:
                 accepted = [(r.service_type.md5sum, r.profile_name) for r in releases]
                 raise refusal(row.name, row.type_name, header.get("md5sum"), accepted)
             return release
 
-        def serve(data: bytes, header: Any) -> bytes:
+        def serve(data: bytes, header: Mapping[str, str]) -> bytes:
             release = release_of(header)
             served = release.service_type
             try:
@@ -354,10 +348,22 @@ class Bridge:
         )
 
 
-def negotiator(topic: str, releases: tuple[Release, ...]) -> Callable[[Any], MessageType]:
+def _serialized(outlet: Outlet, message: Any, data: bytes) -> Callable[[str], bytes]:
+    """`message` in the release a subscriber's md5sum names: `data` for the canonical one,
+    converted and serialised on demand for another."""
+
+    def serialize(md5sum: str) -> bytes:
+        return data if md5sum == outlet.message_type.md5sum else outlet.variant(message, md5sum)
+
+    return serialize
+
+
+def negotiator(
+    topic: str, releases: tuple[Release, ...]
+) -> Callable[[Mapping[str, str]], MessageType]:
     """Picks the release a subscriber's md5sum asks for (`*`: the default one)."""
 
-    def negotiate(header: Any) -> MessageType:
+    def negotiate(header: Mapping[str, str]) -> MessageType:
         wanted = header.get("md5sum", "*")
         if wanted == "*":
             return releases[0].message_type

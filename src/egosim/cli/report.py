@@ -6,9 +6,8 @@ import argparse
 import sys
 from pathlib import Path
 
-from ..maps import MapLoadError, load_map
+from ..maps import MapLoadError, load_map, map_names
 from ..replay import BagError, ReplayTopics
-from ..world.map import BUILTIN_MAP_NAMES, build_builtin_map
 
 EXIT_BAD_INPUT = 2
 
@@ -29,7 +28,8 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     parser.add_argument(
         "--map",
         metavar="NAME|PATH",
-        help="the map the drive was on (default: the built-in map its trajectory fits best)",
+        help="the map the drive was on (default: the map egosim knows by name that its "
+        "trajectory fits best)",
     )
     parser.add_argument(
         "--ego-topic", default="/Ego_topic", metavar="TOPIC", help="the ego's status topic"
@@ -54,8 +54,8 @@ def run(args: argparse.Namespace) -> int:
             return EXIT_BAD_INPUT
         note = ""
     else:
-        lane_map = best_fitting_map(drive.xy, (build_builtin_map(n) for n in BUILTIN_MAP_NAMES))
-        note = "the built-in map the trajectory fits best; --map names another"
+        lane_map = best_fitting_map(drive.xy, (load_map(name) for name in map_names()))
+        note = "the map egosim knows by name that the trajectory fits best; --map names another"
     if not args.output.parent.is_dir():
         print(f"egosim report: no folder {args.output.parent}", file=sys.stderr)
         return EXIT_BAD_INPUT

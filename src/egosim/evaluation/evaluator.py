@@ -16,6 +16,7 @@ from egosim.evaluation.rules import (
     ExcursionWatch,
     Sample,
     StopLineWatch,
+    in_own_lane,
     lane_departure_m,
     off_road_m,
     wrong_way,
@@ -44,6 +45,9 @@ class EvaluationSettings:
     blocked_after_s: float = DEFAULT_BLOCKED_AFTER_S
     lane_departure_margin_m: float = 0.0
     """The body may reach this far over its lane's boundary before it counts."""
+    safety_period_s: float = 0.05
+    """Time-to-collision and headway are sampled this often (each sample scans every
+    object); everything else is watched at every step."""
 
 
 @dataclass(frozen=True)
@@ -94,12 +98,20 @@ class DriveEvaluator:
         self._min_ttc: float | None = None
         self._min_headway: float | None = None
         self._start_s: float | None = None
+        self._next_safety_s = -math.inf
+
+    @property
+    def finish_reason(self) -> str | None:
+        """Why the drive is over whatever the time ("route_completed", "blocked"), else None."""
+        if self._blocked.record is not None:
+            return "blocked"
+        if self._route is not None and self._route.completed:
+            return "route_completed"
+        return None
 
     @property
     def finished(self) -> bool:
-        """The drive is over whatever the time: route completed, or blocked."""
-        route_done = self._route is not None and self._route.completed
-        return route_done or self._blocked.record is not None
+        return self.finish_reason is not None
 
     def observe(self, world: World) -> None:
         """Take one sample of the main ego (call after each step of the world)."""
@@ -128,7 +140,10 @@ class DriveEvaluator:
         status = world.ego_status(0)
         lane = world.ego_lane_state(0)
         pose = status.pose
-        nearest = world.map.project(pose.x, pose.y)
+        width = lane.distance_left + lane.distance_right
+        # The lane it drives along is the projection the world keeps; another one is
+        # looked for only when the ego is outside that lane.
+        inside = in_own_lane(lane.lateral_offset, width)
         return Sample(
             time_s=world.sim_time,
             x=pose.x,
@@ -138,12 +153,9 @@ class DriveEvaluator:
             lane_id=lane.lane_id,
             s=lane.s,
             lateral_m=lane.lateral_offset,
-            lane_width_m=lane.distance_left + lane.distance_right,
+            lane_width_m=width,
             body_width_m=world.egos[0].vehicle.model.width,
-            nearest_lane_id=nearest.lane_id,
-            nearest_lateral_m=nearest.lateral,
-            nearest_width_m=nearest.width,
-            nearest_heading=nearest.heading,
+            nearest=None if inside else world.map.project(pose.x, pose.y),
         )
 
     def _collisions(self, world: World) -> None:
@@ -170,7 +182,8 @@ class DriveEvaluator:
         if self._wrong_way_since is None:
             self._wrong_way_since = sample.time_s
         lasted = sample.time_s - self._wrong_way_since
-        self._wrong_way.observe(sample, lasted, f"against lane {sample.nearest_lane_id}")
+        against = sample.nearest.lane_id if sample.nearest is not None else sample.lane_id
+        self._wrong_way.observe(sample, lasted, f"against lane {against}")
 
     def _kinematics(self, world: World, sample: Sample) -> None:
         status = world.ego_status(0)
@@ -184,6 +197,9 @@ class DriveEvaluator:
         last = self._trajectory[-1][0] if self._trajectory else -math.inf
         if sample.time_s - last >= TRAJECTORY_PERIOD_S - 1e-9:
             self._trajectory.append((sample.time_s, sample.x, sample.y, sample.speed_mps))
+        if sample.time_s < self._next_safety_s:
+            return
+        self._next_safety_s = sample.time_s + self.settings.safety_period_s - 1e-9
         gap = lead_gap(world.objects(), world.egos[0].unique_id)
         if gap is not None:
             self._min_ttc = _least(self._min_ttc, gap.ttc_s)

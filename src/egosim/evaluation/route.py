@@ -48,6 +48,16 @@ class Route:
             raise RouteError(f"no lane {unknown[0]!r} in map {lane_map.name!r}")
         return cls(np.concatenate([lane_map.lanes[i].centerline[:, :2] for i in lane_ids]))
 
+    def first(self, length_m: float) -> Route:
+        """The route's first `length_m` metres (all of it if shorter)."""
+        if length_m >= self.length:
+            return self
+        end = int(np.searchsorted(self.stations, length_m, side="right"))
+        k = end - 1
+        fraction = (length_m - self.stations[k]) / (self.stations[k + 1] - self.stations[k])
+        cut = self.points[k] + fraction * (self.points[k + 1] - self.points[k])
+        return Route(np.vstack((self.points[:end], cut)))
+
     def locate(self, x: float, y: float, low_s: float, high_s: float) -> tuple[float, float]:
         """(station, distance) of the point of the route between stations low_s and high_s
         nearest to (x, y)."""

@@ -7,7 +7,7 @@ import math
 from dataclasses import dataclass, replace
 
 from egosim.evaluation.infractions import Infraction, InfractionKind
-from egosim.world.map import Lane, LaneMap
+from egosim.world.map import Lane, LaneMap, LaneProjection
 from egosim.world.signals import GREEN, GREEN_LEFT, OFF, RED
 
 STOPPED_SPEED_MPS = 0.1
@@ -38,11 +38,9 @@ class Sample:
     """Reference point from its lane's centre (the lane the ego is driving along)."""
     lane_width_m: float
     body_width_m: float
-    nearest_lane_id: str
-    """The nearest lane whatever its direction."""
-    nearest_lateral_m: float
-    nearest_width_m: float
-    nearest_heading: float
+    nearest: LaneProjection | None
+    """The nearest lane whatever its direction; None while the reference point is inside
+    the lane it drives along (which is then on the road and the right way)."""
 
 
 class StopLineWatch:
@@ -125,19 +123,26 @@ def lane_departure_m(sample: Sample, margin_m: float = 0.0) -> float | None:
     return beyond if beyond > margin_m else None
 
 
+def in_own_lane(lateral_m: float, lane_width_m: float) -> bool:
+    return abs(lateral_m) <= lane_width_m / 2.0
+
+
 def off_road_m(sample: Sample) -> float | None:
     """How far the reference point is outside the nearest lane, None while on a lane."""
-    beyond = abs(sample.nearest_lateral_m) - sample.nearest_width_m / 2.0
+    if sample.nearest is None:
+        return None
+    beyond = abs(sample.nearest.lateral) - sample.nearest.width / 2.0
     return beyond if beyond > 0.0 else None
 
 
 def wrong_way(sample: Sample, lane_map: LaneMap) -> bool:
     """Moving against the lane it stands in (junction lanes, which cross, excepted)."""
-    if sample.speed_mps < WRONG_WAY_MIN_SPEED_MPS or off_road_m(sample) is not None:
+    nearest = sample.nearest
+    if nearest is None or sample.speed_mps < WRONG_WAY_MIN_SPEED_MPS:
         return False
-    if lane_map.lanes[sample.nearest_lane_id].is_junction:
+    if off_road_m(sample) is not None or lane_map.lanes[nearest.lane_id].is_junction:
         return False
-    turn = math.remainder(sample.yaw - sample.nearest_heading, math.tau)
+    turn = math.remainder(sample.yaw - nearest.heading, math.tau)
     return abs(turn) > WRONG_WAY_ANGLE_RAD
 
 

@@ -72,10 +72,7 @@ def red_lights_run(lane_map: LaneMap, drive: RecordedDrive, errors: LaneErrors) 
             lateral_m=float(errors.lateral_m[i]),
             lane_width_m=float(np.interp(s, lane.stations, lane.widths)),
             body_width_m=0.0,
-            nearest_lane_id=nearest[i].lane_id,
-            nearest_lateral_m=float(nearest.lateral[i]),
-            nearest_width_m=float(nearest.width[i]),
-            nearest_heading=float(nearest.heading[i]),
+            nearest=nearest[i],
         )
         if (event := watch.observe(sample, aspects)) is not None:
             found.append(event)

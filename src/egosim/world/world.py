@@ -10,10 +10,11 @@ import itertools
 import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
-from egosim.world.arrays import FloatArray
+from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.collision import (
     ContactTracker,
     EgoCollision,
@@ -59,6 +60,7 @@ from egosim.world.traffic.ghosts import GhostPlacement, NpcGhosts
 from egosim.world.traffic.npc_vehicles import NpcSpawn
 from egosim.world.traffic.object_list import ObjectList
 from egosim.world.traffic.obstacles import ObstacleSpawn
+from egosim.world.traffic.pedestrians import PedestrianSpawn
 from egosim.world.vehicle import (
     DEFAULT_EGO_MODEL,
     EgoVehicle,
@@ -69,6 +71,7 @@ from egosim.world.vehicle import (
     ego_vehicle,
 )
 from egosim.world.vehicle.catalogue import VEHICLE_CATALOGUE
+from egosim.yamltext import Problems
 
 DEFAULT_PHYSICS_STEP_S = 0.01
 DEFAULT_OBJECT_LIST_SIZE = 20
@@ -150,7 +153,7 @@ class World:
         """Every ego collision since the objects were last deleted, oldest first."""
         self.vehicle_collisions: list[VehicleCollision] = []
         """Every NPC-NPC collision since the objects were last deleted, oldest first."""
-        self.network_settings_request: dict | None = None
+        self.network_settings_request: dict[str, Any] | None = None
         """The network settings of the last ScenarioLoad that asked for them."""
         self.recorded = RecordedScene()
         """What a replay shows instead of simulating (nothing by default); see show_recorded."""
@@ -266,7 +269,7 @@ class World:
             sizes=np.array([r[6] for r in rows], dtype=np.float64).reshape(-1, 3),
         )
 
-    def _shown_tables(self) -> list[ObjectTable]:
+    def shown_tables(self) -> list[ObjectTable]:
         """NPCs, pedestrians and obstacles in view: the recorded ones where a replay shows
         them, else the simulated ones."""
         recorded = self.recorded
@@ -280,13 +283,13 @@ class World:
 
     def objects(self) -> ObjectTable:
         """Every object: egos, then NPCs, pedestrians and obstacles."""
-        return ObjectTable.concatenate([self._ego_table(), *self._shown_tables()])
+        return ObjectTable.concatenate([self._ego_table(), *self.shown_tables()])
 
     def object_list(self, ego_index: int = 0, size: int | None = None) -> ObjectList:
         """ObjectStatusList: counts of all spawned objects; the `size` (default
         object_list_size) objects closest to the ego, split by kind, closest first. The
         other egos count and appear among the vehicles."""
-        npcs, pedestrians, obstacles = self._shown_tables()
+        npcs, pedestrians, obstacles = self.shown_tables()
         egos = self._ego_table()
         other_egos = egos.select(egos.unique_ids != self.egos[ego_index].unique_id)
         others = ObjectTable.concatenate([other_egos, npcs, pedestrians, obstacles])
@@ -324,15 +327,15 @@ class World:
         """
         unique_id = self._next_id
         if model_name in OBSTACLE_MODELS:
-            model = OBSTACLE_MODELS[model_name]
-            size = (model.length, model.width, model.height)
+            obstacle = OBSTACLE_MODELS[model_name]
+            size = (obstacle.length, obstacle.width, obstacle.height)
             self.obstacles.spawn([ObstacleSpawn(unique_id, model_name, position, heading, size)])
             self._place_obstacles_on_lanes()
         elif model_name in VEHICLE_CATALOGUE:
             lane = self.map.project(position[0], position[1], heading)
             index = self.map.lane_index(lane.lane_id)
-            model = VEHICLE_CATALOGUE[model_name]
-            self.npcs.spawn([NpcSpawn(unique_id, model, index, lane.s, lane.lateral)])
+            vehicle = VEHICLE_CATALOGUE[model_name]
+            self.npcs.spawn([NpcSpawn(unique_id, vehicle, index, lane.s, lane.lateral)])
         else:
             raise UnknownObjectModelError(model_name)
         self._next_id += 1
@@ -513,8 +516,10 @@ class World:
             return
         slot = {int(uid): k for k, uid in enumerate(ids)}
         # Only simulated agents can be halted; recorded ones go where the recording says.
-        npcs = self.npcs.unique_ids if self.recorded.npcs is None else []
-        walkers = self.pedestrians.unique_ids if self.recorded.pedestrians is None else []
+        npcs: IntArray | list[int] = self.npcs.unique_ids if self.recorded.npcs is None else []
+        walkers: IntArray | list[int] = (
+            self.pedestrians.unique_ids if self.recorded.pedestrians is None else []
+        )
         npc_slot = {int(uid): k for k, uid in enumerate(npcs)}
         walker_slot = {int(uid): k for k, uid in enumerate(walkers)}
         egos = {ego.unique_id: ego for ego in self.egos}
@@ -552,11 +557,26 @@ class World:
         options = options or ScenarioLoadOptions()
         check_map(scenario, self.map)
         ids = self._allocate_ids()
-        signals = self._signals_for(scenario)
-        ego = ego_placement(scenario, self.map) if options.load_ego_vehicle_data else None
-        npcs = npc_spawns(scenario, self.map, ids) if options.load_surrounding_vehicle_data else []
-        walkers = pedestrian_spawns(scenario, self.map, ids) if options.load_pedestrian_data else []
-        things = obstacle_spawns(scenario, ids) if options.load_object_data else []
+        # Every section is checked, so that a file's mistakes are all reported at once.
+        problems = Problems()
+        signals = ego = None
+        npcs: list[NpcSpawn] = []
+        walkers: list[PedestrianSpawn] = []
+        things: list[ObstacleSpawn] = []
+        with problems.collecting():
+            signals = self._signals_for(scenario)
+        with problems.collecting():
+            ego = ego_placement(scenario, self.map) if options.load_ego_vehicle_data else None
+        with problems.collecting():
+            if options.load_surrounding_vehicle_data:
+                npcs = npc_spawns(scenario, self.map, ids)
+        with problems.collecting():
+            if options.load_pedestrian_data:
+                walkers = pedestrian_spawns(scenario, self.map, ids)
+        with problems.collecting():
+            things = obstacle_spawns(scenario, ids) if options.load_object_data else []
+        problems.raise_any()
+        assert signals is not None
 
         self._next_id = next(ids)
         self.signals = signals
