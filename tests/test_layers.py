@@ -17,6 +17,7 @@ LAYERS = (
     "batch",
     "view",
     "app",
+    "render",
     "plots",
     "bridge",
     "replay",

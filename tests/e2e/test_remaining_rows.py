@@ -7,6 +7,7 @@ import math
 
 import pytest
 
+from egosim.world.vehicle import DEFAULT_EGO_MODEL, sensor_mount_origin, vehicle_model
 from tests.waiting import until
 
 pytestmark = pytest.mark.ros
@@ -71,13 +72,16 @@ def test_sensor_pos_control_moves_the_lidar_mount(egosim, rospy_client) -> None:
     }
     client.publish("/SensorPosControl", "morai_msgs/SensorPosControl", command)
 
+    # Mounts are MORAI's: from the rear axle's midpoint at wheel-centre height.
+    origin_x, _, origin_z = sensor_mount_origin(vehicle_model(DEFAULT_EGO_MODEL))
+
     def moved_lidar() -> dict | None:
         transforms = client.next_message(TF[0])["transforms"]
         lidar = next(t for t in transforms if t["child_frame_id"] == "lidar")["transform"]
-        return lidar if lidar["translation"]["x"] == pytest.approx(1.5) else None
+        return lidar if lidar["translation"]["x"] == pytest.approx(1.5 + origin_x) else None
 
-    lidar = until(moved_lidar, "/tf to show the LiDAR at x = 1.5 m")
-    assert lidar["translation"]["z"] == pytest.approx(2.2)
+    lidar = until(moved_lidar, "/tf to show the LiDAR 1.5 m ahead of the mount origin")
+    assert lidar["translation"]["z"] == pytest.approx(2.2 + origin_z)
     assert (lidar["rotation"]["z"], lidar["rotation"]["w"]) == (
         pytest.approx(math.sqrt(0.5)),
         pytest.approx(math.sqrt(0.5)),
