@@ -87,6 +87,7 @@ def _run(options: RunOptions) -> int:
         )
     except (OSError, YamlFileError) as error:
         raise StartupError(f"network settings: {error}") from error
+    world.command_timeout_s = settings.command_timeout_s
 
     recorder = None
     if options.record is not None:

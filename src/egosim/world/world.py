@@ -143,6 +143,7 @@ class World:
         self.obstacles = StaticObstacles()
         self._obstacle_occupants = LaneOccupants.empty()
         self._next_id = 1
+        self._command_timeout_s: float | None = None
         self.egos: list[Ego] = []
         self.add_ego(DEFAULT_EGO_MODEL, self._first_lane_pose())
         self._contacts = ContactTracker()
@@ -175,10 +176,23 @@ class World:
 
     def add_ego(self, model_name: str, pose: Pose) -> Ego:
         """A further ego vehicle (the first one is the main ego)."""
-        ego = Ego(self._next_id, ego_vehicle(ego_model(model_name), pose))
+        vehicle = ego_vehicle(ego_model(model_name), pose, self._command_timeout_s)
+        ego = Ego(self._next_id, vehicle)
         self._next_id += 1
         self.egos.append(ego)
         return ego
+
+    @property
+    def command_timeout_s(self) -> float | None:
+        """Every ego's dead-man timeout: s of simulation time without a command before it
+        brakes (stops); None, the default: the last command holds until the next one."""
+        return self._command_timeout_s
+
+    @command_timeout_s.setter
+    def command_timeout_s(self, seconds: float | None) -> None:
+        self._command_timeout_s = seconds
+        for ego in self.egos:
+            ego.vehicle.command_timeout = seconds
 
     def keep_egos(self, count: int) -> None:
         """Remove the egos after the first `count` (the main ego always stays)."""
@@ -574,7 +588,7 @@ class World:
             model, pose, speed = ego
             main = self.egos[0]
             if main.vehicle.model != model:
-                main.vehicle = ego_vehicle(model, pose)
+                main.vehicle = ego_vehicle(model, pose, self._command_timeout_s)
             main.vehicle.teleport(pose, speed)
         self.npcs.spawn(npcs)
         self.pedestrians.spawn(walkers)

@@ -14,6 +14,8 @@ CommandT = TypeVar("CommandT")
 
 
 class Gate(Protocol[CommandT]):
+    timeout: float | None
+
     def submit(self, command: CommandT, sim_time: float) -> CommandVerdict: ...
 
     def active_command(self, sim_time: float) -> CommandT: ...
@@ -26,6 +28,16 @@ class GatedVehicle(Generic[CommandT]):
         """Seconds of simulation this vehicle has been stepped through."""
         self.max_substep = max_substep
         self._gate = gate
+
+    @property
+    def command_timeout(self) -> float | None:
+        """Dead-man timeout, s of simulation time without a command before the vehicle
+        brakes; None (the default): the last command holds until the next one."""
+        return self._gate.timeout
+
+    @command_timeout.setter
+    def command_timeout(self, seconds: float | None) -> None:
+        self._gate.timeout = seconds
 
     def command(self, command: CommandT) -> CommandVerdict:
         """Hand the vehicle a command, received now (at sim_time)."""

@@ -90,7 +90,7 @@ class Vehicle(GatedVehicle[ControlCommand]):
         pose: Pose | None = None,
         *,
         gear: Gear = Gear.DRIVE,
-        command_timeout: float = DEFAULT_COMMAND_TIMEOUT,
+        command_timeout: float | None = DEFAULT_COMMAND_TIMEOUT,
         max_substep: float = DEFAULT_MAX_SUBSTEP,
     ) -> None:
         super().__init__(CommandGate(model, command_timeout), gear, max_substep)
