@@ -14,6 +14,7 @@ from typing import Any
 
 from ..world.vehicle import Gear
 from .context import BridgeContext, Lamps
+from .control_modes import switch_ctrl_mode
 
 log = logging.getLogger(__name__)
 
@@ -49,7 +50,7 @@ def serve_event_cmd(context: BridgeContext, request: Any) -> Any:
     option = int(event.option) & 0xFF
     if option & OPTION_CTRL_MODE:
         if event.ctrl_mode in CTRL_MODES:
-            settings.ctrl_mode = int(event.ctrl_mode)
+            switch_ctrl_mode(context, ego, int(event.ctrl_mode))
         else:
             log.warning("EventCmd: ctrl_mode %s is not 1..4; ignored", event.ctrl_mode)
     if option & OPTION_GEAR and event.gear != GEAR_NO_CHANGE:

@@ -29,6 +29,7 @@ from .context import (
     CTRL_MODE_KEYBOARD,
     BridgeContext,
 )
+from .control_modes import switch_ctrl_mode
 from .ego import drive_with_ctrl_cmd, ego_status_of
 from .units import mps, rad
 
@@ -155,7 +156,7 @@ def _apply(context: BridgeContext, k: int, entry: dict[str, Any]) -> None:
         vehicle.set_gear(Gear(int(entry["gear"])))
     settings = context.settings_of(ego.unique_id)
     if "ctrl_mode" in entry:
-        settings.ctrl_mode = CTRL_MODES[int(entry["ctrl_mode"])]
+        switch_ctrl_mode(context, ego, CTRL_MODES[int(entry["ctrl_mode"])])
     if "turn_signal" in entry:
         settings.lamps.turn_signal, settings.lamps.emergency = TURN_SIGNAL_LAMPS[
             int(entry["turn_signal"])

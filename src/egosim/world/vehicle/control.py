@@ -114,6 +114,10 @@ class CommandGate:
         self._received_at = sim_time
         return CommandVerdict(True, clamped=tuple(changes))
 
+    def release(self) -> None:
+        """Forget the command in force: the brake is held, steering kept, until the next."""
+        self._received_at = None
+
     def timed_out(self, sim_time: float) -> bool:
         """True before the first command and, with a dead-man timeout, after `timeout` s
         without one."""

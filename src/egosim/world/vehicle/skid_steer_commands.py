@@ -101,6 +101,10 @@ class SkidSteerGate:
         self._received_at = sim_time
         return CommandVerdict(True, clamped=clamped)
 
+    def release(self) -> None:
+        """Forget the command in force: the vehicle stops until the next one."""
+        self._received_at = None
+
     def timed_out(self, sim_time: float) -> bool:
         """True before the first command and, with a dead-man timeout, after `timeout` s
         without one."""

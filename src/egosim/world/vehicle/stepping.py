@@ -20,6 +20,8 @@ class Gate(Protocol[CommandT]):
 
     def active_command(self, sim_time: float) -> CommandT: ...
 
+    def release(self) -> None: ...
+
 
 class GatedVehicle(Generic[CommandT]):
     def __init__(self, gate: Gate[CommandT], gear: Gear, max_substep: float) -> None:
@@ -42,6 +44,10 @@ class GatedVehicle(Generic[CommandT]):
     def command(self, command: CommandT) -> CommandVerdict:
         """Hand the vehicle a command, received now (at sim_time)."""
         return self._gate.submit(command, self.sim_time)
+
+    def release_command(self) -> None:
+        """Drop the command in force (its input stopped driving): brake until the next."""
+        self._gate.release()
 
     def _substeps(self, dt: float) -> Iterator[tuple[CommandT, float]]:
         """The substeps of a step of dt s: the command in force at each and its length;
