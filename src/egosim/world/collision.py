@@ -98,7 +98,7 @@ def _interpolate(
     )
 
 
-def _corners(boxes: Footprints) -> FloatArray:
+def corners(boxes: Footprints) -> FloatArray:
     """(N, 4, 2) corners, counter-clockwise."""
     c, s = np.cos(boxes.headings), np.sin(boxes.headings)
     along = np.stack((c, s), axis=1) * (boxes.lengths / 2.0)[:, None]
@@ -117,7 +117,7 @@ def _corners(boxes: Footprints) -> FloatArray:
 
 def _overlap(a: Footprints, b: Footprints) -> npt.NDArray[np.bool_]:
     """Separating-axis test on the four edge normals of two rectangles, pairwise."""
-    corners_a, corners_b = _corners(a), _corners(b)
+    corners_a, corners_b = corners(a), corners(b)
     separated = np.zeros(len(a.headings), dtype=bool)
     for heading in (a.headings, a.headings + math.pi / 2, b.headings, b.headings + math.pi / 2):
         axis = np.stack((np.cos(heading), np.sin(heading)), axis=1)[:, None, :]

@@ -21,6 +21,7 @@ from egosim.world.collision import (
     VehicleCollision,
     touching_pairs,
 )
+from egosim.world.contact import Bodies, ContactModel, Response, respond
 from egosim.world.map import LaneMap, LaneProjections
 from egosim.world.recorded_scene import RecordedScene
 from egosim.world.scenario import Scenario, ScenarioLoadOptions, ScenarioLoadReport
@@ -77,8 +78,10 @@ PEDESTRIAN_LANE_MARGIN_M = 1.0
 PEDESTRIAN_HALF_DEPTH_M = 0.5
 # Length of lane over which the grade under an ego is measured, m.
 GRADE_BASE_M = 1.0
+PEDESTRIAN_MASS_KG = 75.0
 
 FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.int64]
 
 
 class UnknownObjectModelError(ValueError):
@@ -147,6 +150,8 @@ class World:
         self.egos: list[Ego] = []
         self.add_ego(DEFAULT_EGO_MODEL, self._first_lane_pose())
         self._contacts = ContactTracker()
+        self.contact_model = ContactModel()
+        """Restitution and friction of every contact (world/contact.py)."""
         self.ego_collisions: dict[int, EgoCollision] = {}
         """Most recent collision of each ego, by the ego's unique id."""
         self.ego_collision_log: list[EgoCollision] = []
@@ -504,11 +509,12 @@ class World:
         )
 
     def _collide(self) -> None:
-        """Record contacts that began this step and stop the vehicles involved.
+        """Record the contacts that began this step and answer every contact physically.
 
-        Ego against anything: a CollisionData record, the ego's speed set to zero, a
-        struck NPC or pedestrian halted for good. NPC against NPC: a VehicleCollision
-        record and both halted. Other contacts are not physical events here.
+        Ego against anything: a CollisionData record. NPC against NPC: a VehicleCollision
+        record. A struck NPC brakes to a standstill and stays (crashed); a struck
+        pedestrian stops. Every contact with a vehicle in it gets the response of
+        world/contact.py (see _bodies for who is movable); pedestrians pass each other.
         """
         table = self.objects()
         now = self._current_footprints(table)
@@ -518,8 +524,16 @@ class World:
         if len(pairs) == 0:
             self._contacts.begin([])
             return
-        types = table.object_types
-        kinds = types[pairs] if len(pairs) else np.empty((0, 2), np.int64)
+        kinds = table.object_types[pairs]
+        vehicles = (kinds == ObjectType.EGO) | (kinds == ObjectType.NPC_VEHICLE)
+        self._record_contacts(table, pairs, kinds)
+        bodies = self._bodies(table, now)
+        response = respond(bodies, pairs[np.any(vehicles, axis=1)], self.contact_model)
+        if response.moved.any():
+            self._apply(response)
+            self._footprints = self._current_footprints()
+
+    def _record_contacts(self, table: ObjectTable, pairs: IntArray, kinds: IntArray) -> None:
         ego_pair = np.any(kinds == ObjectType.EGO, axis=1)
         npc_pair = np.all(kinds == ObjectType.NPC_VEHICLE, axis=1)
         relevant = pairs[ego_pair | npc_pair]
@@ -533,7 +547,6 @@ class World:
         walkers = self.pedestrians.unique_ids if self.recorded.pedestrians is None else []
         npc_slot = {int(uid): k for k, uid in enumerate(npcs)}
         walker_slot = {int(uid): k for k, uid in enumerate(walkers)}
-        egos = {ego.unique_id: ego for ego in self.egos}
         for a, b in fresh:
             records = (table.record(slot[a]), table.record(slot[b]))
             if not any(r.object_type == ObjectType.EGO for r in records):
@@ -543,16 +556,54 @@ class World:
                     record = EgoCollision(self.sim_time, me.unique_id, other)
                     self.ego_collisions[me.unique_id] = record
                     self.ego_collision_log.append(record)
-                    self._halt_ego(egos[me.unique_id])
                 elif me.object_type == ObjectType.NPC_VEHICLE and me.unique_id in npc_slot:
                     self.npcs.stop([npc_slot[me.unique_id]])
                 elif me.object_type == ObjectType.PEDESTRIAN and me.unique_id in walker_slot:
                     self.pedestrians.stop([walker_slot[me.unique_id]])
 
-    @staticmethod
-    def _halt_ego(ego: Ego) -> None:
-        status = ego.vehicle.status()
-        ego.vehicle.teleport(status.pose, 0.0, status.front_steer, status.rear_steer)
+    def _bodies(self, table: ObjectTable, footprints: Footprints) -> Bodies:
+        """The objects of `table` (the order of objects()) as contact bodies.
+
+        Movable, with their mass: simulated egos, moving NPCs, pedestrians. Immovable:
+        obstacles, parked NPCs (still waiting to set off), NPC ghosts and whatever a
+        replay shows (its motion is dictated, not simulated).
+        """
+        recorded = self.recorded
+        ego_mass = [ego.vehicle.model.mass for ego in self.egos]
+        ego_inverse = 1.0 / np.array(ego_mass)
+        if recorded.ego is not None:
+            ego_inverse[0] = 0.0
+        others = np.zeros(len(table) - len(self.egos))
+        if recorded.npcs is None:
+            others[: len(self.npcs)] = np.where(self.npcs.parked(), 0.0, 1.0 / self.npcs.mass)
+        if recorded.pedestrians is None:
+            start = self._shown_npc_count()
+            others[start : start + len(self.pedestrians)] = 1.0 / PEDESTRIAN_MASS_KG
+        return Bodies(footprints, table.velocities[:, :2], np.concatenate((ego_inverse, others)))
+
+    def _shown_npc_count(self) -> int:
+        """Rows of vehicles in objects() after the egos: simulated NPCs and ghosts, or the
+        replayed ones."""
+        recorded = self.recorded.npcs
+        return len(self.npcs) + len(self.npc_ghosts) if recorded is None else len(recorded)
+
+    def _apply(self, response: Response) -> None:
+        """Hand each moved simulated body its share of the response."""
+        moved = response.moved
+        displacement, velocity = response.displacements, response.velocities
+        for k, ego in enumerate(self.egos):
+            if moved[k]:
+                ego.vehicle.shove(tuple(displacement[k]), tuple(velocity[k]))
+        start = len(self.egos)
+        if self.recorded.npcs is None:
+            rows = np.flatnonzero(moved[start : start + len(self.npcs)])
+            if rows.size:
+                self.npcs.shove(rows, displacement[start + rows], velocity[start + rows])
+        start += self._shown_npc_count()
+        if self.recorded.pedestrians is None:
+            rows = np.flatnonzero(moved[start : start + len(self.pedestrians)])
+            if rows.size:
+                self.pedestrians.shove(rows, displacement[start + rows])
 
     # -- scenarios ---------------------------------------------------------------------
 

@@ -88,6 +88,8 @@ class PedestrianCrowd:
         self.unique_ids = np.empty(0, np.int64)
         self.s = np.empty(0)
         self.stopped = np.empty(0, bool)
+        self.shoved = np.empty((0, 2))
+        """Per pedestrian: how far contacts pushed them off their path, m (map frame)."""
         self._layout(())
         self.position = np.empty((0, 2))
         self.heading = np.empty(0)
@@ -104,11 +106,13 @@ class PedestrianCrowd:
         self.unique_ids = np.append(self.unique_ids, [p.unique_id for p in spawns])
         self.s = np.append(self.s, [p.start_s for p in spawns])
         self.stopped = np.append(self.stopped, np.zeros(len(spawns), bool))
+        self.shoved = np.vstack((self.shoved, np.zeros((len(spawns), 2))))
         self.velocity = np.vstack((self.velocity, np.zeros((len(spawns), 2))))
         self.acceleration = np.vstack((self.acceleration, np.zeros((len(spawns), 2))))
         self._layout(self._spawns)
         self.s = np.clip(self.s, 0.0, self.length)
-        self.position, self.heading = self._place(self.s)
+        position, self.heading = self._place(self.s)
+        self.position = position + self.shoved
 
     def _layout(self, spawns: Sequence[PedestrianSpawn]) -> None:
         """Flatten every path onto one station axis (keys), with the gates on it."""
@@ -163,8 +167,13 @@ class PedestrianCrowd:
         return xy, self._point_heading[j]
 
     def stop(self, indices: npt.ArrayLike) -> None:
-        """Struck pedestrians stay where they are."""
+        """Struck pedestrians stay where they are (or where a contact pushes them)."""
         self.stopped[indices] = True
+
+    def shove(self, indices: IntArray, displacement: FloatArray) -> None:
+        """A contact's response: push pedestrians `indices` by `displacement` (K, 2) m."""
+        self.shoved[indices] += displacement
+        self.position[indices] += displacement
 
     def step(self, dt: float, walk_allowed: BoolArray) -> None:
         """Advance dt s; walk_allowed[c] says whether crosswalk c may be entered now."""
@@ -189,6 +198,7 @@ class PedestrianCrowd:
         new_s = np.where(self.closed & (new_s > self.length), new_s - self.length, new_s)
         self.s = np.minimum(new_s, self.length)
         position, heading = self._place(self.s)
+        position += self.shoved
         velocity = (position - self.position) / dt
         self.acceleration = (velocity - self.velocity) / dt
         self.velocity = velocity

@@ -15,6 +15,7 @@ effective track B/η.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 from egosim.world.vehicle.catalogue import GRAVITY
@@ -90,6 +91,16 @@ class SkidSteerVehicle(GatedVehicle[SkidSteerCommand]):
         self._pose = pose
         self._left = self._right = speed
         self._speed_rate = 0.0
+
+    def shove(self, displacement: tuple[float, float], velocity: tuple[float, float]) -> None:
+        """A contact's response: move by `displacement` (m) and take the forward part of
+        `velocity` (m/s), both in the map frame; tracks cannot slide sideways."""
+        pose = self._pose
+        forward = velocity[0] * math.cos(pose.yaw) + velocity[1] * math.sin(pose.yaw)
+        change = forward - self.forward_speed
+        self._left += change
+        self._right += change
+        self._pose = replace(pose, x=pose.x + displacement[0], y=pose.y + displacement[1])
 
     def step(self, dt: float, surface: RoadSurface | None = None) -> None:
         """Advance dt seconds; surface, when given, is the ground under the vehicle now."""

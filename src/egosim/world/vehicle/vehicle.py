@@ -134,6 +134,17 @@ class Vehicle(GatedVehicle[ControlCommand]):
         self._acceleration_tracker.reset()
         self._status = None
 
+    def shove(self, displacement: tuple[float, float], velocity: tuple[float, float]) -> None:
+        """A contact's response: move by `displacement` (m) and take `velocity` (m/s),
+        both in the map frame; the yaw rate is kept (contacts act through the centre)."""
+        state = self._state
+        state.x += displacement[0]
+        state.y += displacement[1]
+        cos_yaw, sin_yaw = math.cos(state.yaw), math.sin(state.yaw)
+        state.vx = cos_yaw * velocity[0] + sin_yaw * velocity[1]
+        state.vy = -sin_yaw * velocity[0] + cos_yaw * velocity[1]
+        self._status = None
+
     def step(self, dt: float, surface: RoadSurface | None = None) -> None:
         """Advance dt seconds; surface, when given, is the road under the vehicle now."""
         substeps = self._substeps(dt)
