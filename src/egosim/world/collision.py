@@ -130,21 +130,22 @@ def _overlap(a: Footprints, b: Footprints) -> npt.NDArray[np.bool_]:
 
 
 class ContactTracker:
-    """Remembers which pairs (by unique id) touched at the last step, so a contact is
-    reported once, when it begins, not at every step it lasts."""
+    """Remembers which pairs (by unique id) touched at the last step, and since when, so
+    a collision is recorded once, when it begins, and a lasting contact is known as one."""
 
     def __init__(self) -> None:
-        self._touching: set[tuple[int, int]] = set()
+        self.began_at: dict[tuple[int, int], float] = {}
+        """Each pair touching at the last call: the time (s) its contact began."""
 
-    def begin(self, pairs: list[tuple[int, int]]) -> list[tuple[int, int]]:
-        """The pairs of `pairs` (touching now) that were not touching at the last call."""
-        current = set(pairs)
-        fresh = [p for p in pairs if p not in self._touching]
-        self._touching = current
+    def begin(self, pairs: list[tuple[int, int]], now: float = 0.0) -> list[tuple[int, int]]:
+        """The pairs of `pairs` (touching at time `now`, s) that were not touching at the
+        last call."""
+        fresh = [p for p in pairs if p not in self.began_at]
+        self.began_at = {p: self.began_at.get(p, now) for p in pairs}
         return fresh
 
     def clear(self) -> None:
-        self._touching.clear()
+        self.began_at.clear()
 
 
 @dataclass(frozen=True)

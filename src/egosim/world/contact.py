@@ -40,7 +40,7 @@ RESTING_SPEED_MPS = 0.5
 PENETRATION_SLOP_M = 0.005
 """Overlap left in place: bodies resting against each other stay in contact."""
 ITERATIONS = 8
-"""Passes over the contacts: a body in several contacts settles within a few."""
+"""Sweeps over the contacts at most: a body in several contacts settles within a few."""
 
 
 @dataclass(frozen=True)
@@ -125,26 +125,57 @@ def respond(bodies: Bodies, pairs: IntArray, model: ContactModel | None = None) 
 
     approach = np.einsum("kd,kd->k", velocities[b] - velocities[a], normals)
     restitution = np.where(-approach > model.resting_speed_mps, model.restitution, 0.0)
-    for _ in range(ITERATIONS):
-        relative = velocities[b] - velocities[a]
-        closing = np.einsum("kd,kd->k", relative, normals)
-        hitting = closing < 0.0
-        if not hitting.any():
+    batches = _batches(a, b, inverse)
+    for sweep in range(ITERATIONS):
+        hit = False
+        for batch in batches:
+            ia, ib, n = a[batch], b[batch], normals[batch]
+            relative = velocities[ib] - velocities[ia]
+            closing = np.einsum("kd,kd->k", relative, n)
+            hitting = closing < 0.0
+            if not hitting.any():
+                continue
+            hit = True
+            # The restitution acts on a contact's first exchange only; later sweeps only
+            # stop bodies that a neighbour's impulse sent back into a contact.
+            bounce = restitution[batch] if sweep == 0 else 0.0
+            normal_impulse = np.where(hitting, -(1.0 + bounce) * closing / total[batch], 0.0)
+            sliding = relative - closing[:, None] * n
+            slide_speed = np.hypot(sliding[:, 0], sliding[:, 1])
+            tangent = sliding / np.maximum(slide_speed, 1e-12)[:, None]
+            friction_impulse = np.minimum(
+                slide_speed / total[batch], model.friction * normal_impulse
+            )
+            impulse = normal_impulse[:, None] * n - friction_impulse[:, None] * tangent
+            np.add.at(velocities, ia, -impulse * inverse[ia][:, None])
+            np.add.at(velocities, ib, impulse * inverse[ib][:, None])
+        if not hit:
             break
-        normal_impulse = np.where(hitting, -(1.0 + restitution) * closing / total, 0.0)
-        sliding = relative - closing[:, None] * normals
-        slide_speed = np.hypot(sliding[:, 0], sliding[:, 1])
-        tangent = sliding / np.maximum(slide_speed, 1e-12)[:, None]
-        friction_impulse = np.minimum(slide_speed / total, model.friction * normal_impulse)
-        impulse = normal_impulse[:, None] * normals + friction_impulse[:, None] * tangent
-        np.add.at(velocities, a, -impulse * inverse[a][:, None])
-        np.add.at(velocities, b, impulse * inverse[b][:, None])
-        # The restitution applies to the first exchange only; later passes only stop
-        # bodies that a neighbour's impulse sent back into a contact.
-        restitution = np.zeros_like(restitution)
     np.logical_or.at(moved, a, inverse[a] > 0.0)
     np.logical_or.at(moved, b, inverse[b] > 0.0)
     return Response(displacements, velocities, moved)
+
+
+def _batches(a: IntArray, b: IntArray, inverse: FloatArray) -> list[IntArray]:
+    """Contacts split into batches in which no movable body appears twice, in order:
+    impulses within a batch are independent, batch after batch they are sequential
+    (Gauss-Seidel), so every exchange conserves momentum and gives back no more energy
+    than the restitution allows."""
+    remaining = list(range(len(a)))
+    batches = []
+    while remaining:
+        used: set[int] = set()
+        batch, rest = [], []
+        for k in remaining:
+            bodies = [int(i) for i in (a[k], b[k]) if inverse[i] > 0.0]
+            if used.intersection(bodies):
+                rest.append(k)
+            else:
+                batch.append(k)
+                used.update(bodies)
+        batches.append(np.array(batch, dtype=np.int64))
+        remaining = rest
+    return batches
 
 
 def _rows(footprints: Footprints, index: IntArray) -> Footprints:

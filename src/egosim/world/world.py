@@ -158,6 +158,10 @@ class World:
         """Every ego collision since the objects were last deleted, oldest first."""
         self.vehicle_collisions: list[VehicleCollision] = []
         """Every NPC-NPC collision since the objects were last deleted, oldest first."""
+        self.ego_contacts: dict[int, list[ObjectState]] = {}
+        """What each ego (by unique id) touches now, as it is now: contacts that last."""
+        self.vehicle_contacts: list[VehicleCollision] = []
+        """The NPC-NPC contacts of now, time-stamped when they began."""
         self.network_settings_request: dict | None = None
         """The network settings of the last ScenarioLoad that asked for them."""
         self.recorded = RecordedScene()
@@ -521,6 +525,7 @@ class World:
         before = self._footprints if len(self._footprints.headings) == len(table) else now
         self._footprints = now
         pairs = touching_pairs(before, now)
+        self.ego_contacts, self.vehicle_contacts = {}, []
         if len(pairs) == 0:
             self._contacts.begin([])
             return
@@ -538,10 +543,19 @@ class World:
         npc_pair = np.all(kinds == ObjectType.NPC_VEHICLE, axis=1)
         relevant = pairs[ego_pair | npc_pair]
         ids = table.unique_ids
-        fresh = self._contacts.begin([(int(ids[i]), int(ids[j])) for i, j in relevant])
+        touching = [(int(ids[i]), int(ids[j])) for i, j in relevant]
+        fresh = self._contacts.begin(touching, self.sim_time)
+        slot = {int(uid): k for k, uid in enumerate(ids)}
+        for a, b in touching:
+            records = (table.record(slot[a]), table.record(slot[b]))
+            for me, other in (records, records[::-1]):
+                if me.object_type == ObjectType.EGO:
+                    self.ego_contacts.setdefault(me.unique_id, []).append(other)
+            if not any(r.object_type == ObjectType.EGO for r in records):
+                began = self._contacts.began_at.get((a, b), self.sim_time)
+                self.vehicle_contacts.append(VehicleCollision(began, records))
         if not fresh:
             return
-        slot = {int(uid): k for k, uid in enumerate(ids)}
         # Only simulated agents can be halted; recorded ones go where the recording says.
         npcs = self.npcs.unique_ids if self.recorded.npcs is None else []
         walkers = self.pedestrians.unique_ids if self.recorded.pedestrians is None else []
@@ -646,6 +660,7 @@ class World:
         self.obstacles.spawn(things)
         self._place_obstacles_on_lanes()
         self._contacts.clear()
+        self.ego_contacts, self.vehicle_contacts = {}, []
         self._footprints = self._current_footprints()
         self.paused = options.set_pause
         network = scenario.network if options.load_network_connection_data else None
