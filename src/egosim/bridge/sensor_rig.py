@@ -36,7 +36,8 @@ MAIN_EGO = 0
 def ego_kinematics(status: VehicleStatus) -> EgoKinematics:
     """The IMU's input from the vehicle: body-frame velocity and its time derivative.
 
-    VehicleStatus.acceleration is the CG's acceleration (ax = v̇x - r·vy, ay = v̇y + r·vx);
+    VehicleStatus.acceleration is base_link's (the reference point's) acceleration
+    (ax = v̇x - r·vy, ay = v̇y + r·vx);
     the IMU model adds ω × v itself, so it takes the components' derivatives. The yaw
     acceleration is not reported by the vehicle and is taken as 0 (it only matters for
     an IMU mounted off base_link).

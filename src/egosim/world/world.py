@@ -101,7 +101,7 @@ class Ego:
 
     def box_centre(self, status: VehicleStatus) -> tuple[float, float]:
         """Footprint centre, m: the reference point moved to the middle of the body."""
-        offset = self.vehicle.model.bounding_box_center_offset
+        offset = self.vehicle.model.box_centre_ahead_of_reference
         yaw = status.pose.yaw
         return status.pose.x + offset * math.cos(yaw), status.pose.y + offset * math.sin(yaw)
 
@@ -535,7 +535,7 @@ class World:
         bodies = self._bodies(table, now)
         response = respond(bodies, pairs[np.any(vehicles, axis=1)], self.contact_model)
         if response.moved.any():
-            self._apply(response)
+            self._apply(response, bodies)
             self._footprints = self._current_footprints()
 
     def _record_contacts(self, table: ObjectTable, pairs: IntArray, kinds: IntArray) -> None:
@@ -601,13 +601,14 @@ class World:
         recorded = self.recorded.npcs
         return len(self.npcs) + len(self.npc_ghosts) if recorded is None else len(recorded)
 
-    def _apply(self, response: Response) -> None:
+    def _apply(self, response: Response, bodies: Bodies) -> None:
         """Hand each moved simulated body its share of the response."""
         moved = response.moved
         displacement, velocity = response.displacements, response.velocities
+        change = velocity - bodies.velocities
         for k, ego in enumerate(self.egos):
             if moved[k]:
-                ego.vehicle.shove(tuple(displacement[k]), tuple(velocity[k]))
+                ego.vehicle.shove(tuple(displacement[k]), tuple(change[k]))
         start = len(self.egos)
         if self.recorded.npcs is None:
             rows = np.flatnonzero(moved[start : start + len(self.npcs)])

@@ -92,14 +92,14 @@ class SkidSteerVehicle(GatedVehicle[SkidSteerCommand]):
         self._left = self._right = speed
         self._speed_rate = 0.0
 
-    def shove(self, displacement: tuple[float, float], velocity: tuple[float, float]) -> None:
-        """A contact's response: move by `displacement` (m) and take the forward part of
-        `velocity` (m/s), both in the map frame; tracks cannot slide sideways."""
+    def shove(self, displacement: tuple[float, float], change: tuple[float, float]) -> None:
+        """A contact's response: move by `displacement` (m) and change the forward speed
+        by the forward part of `change` (m/s), both in the map frame; tracks do not slide
+        sideways."""
         pose = self._pose
-        forward = velocity[0] * math.cos(pose.yaw) + velocity[1] * math.sin(pose.yaw)
-        change = forward - self.forward_speed
-        self._left += change
-        self._right += change
+        forward = change[0] * math.cos(pose.yaw) + change[1] * math.sin(pose.yaw)
+        self._left += forward
+        self._right += forward
         self._pose = replace(pose, x=pose.x + displacement[0], y=pose.y + displacement[1])
 
     def step(self, dt: float, surface: RoadSurface | None = None) -> None:
