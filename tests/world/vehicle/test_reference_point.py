@@ -32,9 +32,12 @@ def test_constant_steer_traces_the_rear_axle_circle_of_radius_wheelbase_over_tan
         points.append((pose.x, pose.y))
     cx, cy, radius = _circle(np.array(points[1000:]))
     wheelbase = niro.model.wheelbase
-    assert radius == pytest.approx(wheelbase / math.tan(steer), rel=1e-3)
+    turning_radius = wheelbase / math.tan(steer)
+    assert radius == pytest.approx(turning_radius, rel=1e-3)
+    # Started at the origin facing east: the centre lies on the rear axle's line, left.
+    assert (cx, cy) == pytest.approx((0.0, turning_radius), abs=1e-3 * turning_radius)
     # The CG would run on a wider circle: the test tells the two points apart.
-    cg_radius = math.hypot(wheelbase / math.tan(steer), niro.model.cg_to_rear_axle)
+    cg_radius = math.hypot(turning_radius, niro.model.cg_to_rear_axle)
     assert cg_radius != pytest.approx(radius, rel=1e-3)
     # The rear axle moves along the body's x axis: no lateral velocity.
     assert niro.status().velocity[1] == pytest.approx(0.0, abs=1e-9)
