@@ -84,7 +84,8 @@ def main() -> None:
         print(
             f"{count:5d} NPCs: median {statistics.median(durations_ms):.2f} ms, "
             f"p95 {sorted(durations_ms)[int(0.95 * len(durations_ms))]:.2f} ms, "
-            f"min {min(durations_ms):.2f} ms per step"
+            f"min {min(durations_ms):.2f} ms per step; "
+            f"{len(world.vehicle_collisions)} NPC-NPC collisions"
         )
 
 

@@ -105,9 +105,8 @@ def respond(bodies: Bodies, pairs: IntArray, model: ContactModel | None = None) 
     total = inverse[a] + inverse[b]
     live = total > 0.0
     a, b, total = a[live], b[live], total[live]
-    moved = np.zeros(len(inverse), bool)
     if a.size == 0:
-        return Response(displacements, velocities, moved)
+        return Response(displacements, velocities, np.zeros(len(inverse), bool))
     foot = bodies.footprints
     normals, depths = penetration(_rows(foot, a), _rows(foot, b))
     touching = depths >= 0.0
@@ -151,8 +150,7 @@ def respond(bodies: Bodies, pairs: IntArray, model: ContactModel | None = None) 
             np.add.at(velocities, ib, impulse * inverse[ib][:, None])
         if not hit:
             break
-    np.logical_or.at(moved, a, inverse[a] > 0.0)
-    np.logical_or.at(moved, b, inverse[b] > 0.0)
+    moved = np.any(displacements != 0.0, axis=1) | np.any(velocities != bodies.velocities, axis=1)
     return Response(displacements, velocities, moved)
 
 

@@ -536,23 +536,24 @@ class World:
         response = respond(bodies, pairs[np.any(vehicles, axis=1)], self.contact_model)
         if response.moved.any():
             self._apply(response, bodies)
-            self._footprints = self._current_footprints()
+            # Contacts move bodies, never turn them: the next sweep starts from here.
+            self._footprints = replace(now, centres=now.centres + response.displacements)
 
     def _record_contacts(self, table: ObjectTable, pairs: IntArray, kinds: IntArray) -> None:
         ego_pair = np.any(kinds == ObjectType.EGO, axis=1)
         npc_pair = np.all(kinds == ObjectType.NPC_VEHICLE, axis=1)
         relevant = pairs[ego_pair | npc_pair]
         ids = table.unique_ids
-        touching = [(int(ids[i]), int(ids[j])) for i, j in relevant]
+        rows = {(int(ids[i]), int(ids[j])): (int(i), int(j)) for i, j in relevant}
+        touching = list(rows)
         fresh = self._contacts.begin(touching, self.sim_time)
-        slot = {int(uid): k for k, uid in enumerate(ids)}
-        for a, b in touching:
-            records = (table.record(slot[a]), table.record(slot[b]))
+        for pair, (i, j) in rows.items():
+            records = (table.record(i), table.record(j))
             for me, other in (records, records[::-1]):
                 if me.object_type == ObjectType.EGO:
                     self.ego_contacts.setdefault(me.unique_id, []).append(other)
             if not any(r.object_type == ObjectType.EGO for r in records):
-                began = self._contacts.began_at.get((a, b), self.sim_time)
+                began = self._contacts.began_at.get(pair, self.sim_time)
                 self.vehicle_contacts.append(VehicleCollision(began, records))
         if not fresh:
             return
@@ -561,8 +562,9 @@ class World:
         walkers = self.pedestrians.unique_ids if self.recorded.pedestrians is None else []
         npc_slot = {int(uid): k for k, uid in enumerate(npcs)}
         walker_slot = {int(uid): k for k, uid in enumerate(walkers)}
-        for a, b in fresh:
-            records = (table.record(slot[a]), table.record(slot[b]))
+        for pair in fresh:
+            i, j = rows[pair]
+            records = (table.record(i), table.record(j))
             if not any(r.object_type == ObjectType.EGO for r in records):
                 self.vehicle_collisions.append(VehicleCollision(self.sim_time, records))
             for me, other in (records, records[::-1]):

@@ -198,7 +198,7 @@ class NpcFleet:
         )
         self.lateral[indices] += np.einsum("kd,kd->k", displacement, left)
         self.speed[indices] = np.maximum(np.einsum("kd,kd->k", velocity, along), 0.0)
-        self.pose[indices] = self._poses()[indices]
+        self.pose[indices] = self._poses(indices)
 
     def step(self, dt: float, lights: LightsView, others: LaneOccupants) -> None:
         """Advance dt s among `others` (ego, pedestrians, obstacles placed on lanes)."""
@@ -325,11 +325,11 @@ class NpcFleet:
                 self.next_lanes[i, -1] = self._choose_successor(i, int(self.next_lanes[i, -2]))
                 self.yellow[i] = _YELLOW_UNDECIDED
 
-    def _poses(self) -> FloatArray:
-        pose = self.graph.lane_map.poses_at(self.lane, self.s)
+    def _poses(self, indices: IntArray | slice = slice(None)) -> FloatArray:
+        pose = self.graph.lane_map.poses_at(self.lane[indices], self.s[indices])
         heading = pose[:, 3]
-        pose[:, 0] -= self.lateral * np.sin(heading)
-        pose[:, 1] += self.lateral * np.cos(heading)
+        pose[:, 0] -= self.lateral[indices] * np.sin(heading)
+        pose[:, 1] += self.lateral[indices] * np.cos(heading)
         return pose
 
     def table(self) -> ObjectTable:
