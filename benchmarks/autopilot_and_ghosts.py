@@ -16,9 +16,8 @@ import statistics
 import time
 from collections.abc import Callable
 
-from egosim.bridge.context import CTRL_MODE_AUTO, BridgeContext
+from egosim.bridge import ControlMode, simulation_context
 from egosim.bridge.control_modes import drive_autopilots
-from egosim.msgs import get_profile
 from egosim.world import World
 from egosim.world.map import build_builtin_map
 from egosim.world.scenario import load_default_scenario
@@ -64,8 +63,8 @@ def main() -> None:
     lane_map = build_builtin_map("town")
 
     world = World(lane_map, load_default_scenario())
-    context = BridgeContext(get_profile("26.r1"), world, lambda: 0.0)
-    context.settings_of(world.egos[0].unique_id).ctrl_mode = CTRL_MODE_AUTO
+    context = simulation_context(world)
+    context.settings_of(world.egos[0].unique_id).ctrl_mode = ControlMode.AUTO
     for _ in range(WARMUP_STEPS):
         drive_autopilots(context)
         world.step()

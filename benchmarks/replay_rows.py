@@ -16,6 +16,7 @@ import time
 from pathlib import Path
 
 from egosim.app.recording import TopicRecorder, open_recorder
+from egosim.bridge import simulation_context
 from egosim.bridge.context import BridgeContext
 from egosim.bridge.ego import publish_ego_status
 from egosim.bridge.objects import publish_object_list
@@ -33,7 +34,7 @@ DT = 0.01
 
 def town_context(data_root: Path) -> BridgeContext:
     world = World(build_builtin_map("town"), load_default_scenario(), physics_step_s=DT)
-    return BridgeContext(PROFILE, world, lambda: world.sim_time, data_roots=(data_root,))
+    return simulation_context(world, data_roots=(data_root,))
 
 
 def median_us(samples: list[float]) -> float:
@@ -65,7 +66,7 @@ def play(context: BridgeContext, name: str) -> None:
         sim_process_status=1, replay_option=0x0001, rosbag_file_name=name, replay_speed=1
     )
     request = PROFILE.service("morai_msgs/MoraiSimProcSrv").request.new(request=handle)
-    assert serve_sim_proc(context, request).response.result
+    assert serve_sim_proc(context, context.row("sim_proc"), request).response.result
 
 
 def step_costs(context: BridgeContext, steps: int, replaying: bool) -> list[float]:
@@ -99,7 +100,7 @@ def main() -> None:
         info = [0.0] * 200
         for k in range(len(info)):
             start = time.perf_counter()
-            publish_replay_info(context)
+            publish_replay_info(context, context.row("replay_info"))
             info[k] = time.perf_counter() - start
         print(f"ReplayInfo build (8 NPCs, 6 pedestrians, 4 obstacles): {median_us(info):.0f} us")
 

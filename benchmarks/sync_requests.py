@@ -11,9 +11,9 @@ from __future__ import annotations
 import argparse
 import time
 
+from egosim.bridge import simulation_context
 from egosim.bridge.context import BridgeContext
-from egosim.bridge.sync_mode import SyncSession, at_frame
-from egosim.msgs import get_profile
+from egosim.bridge.sync_mode import at_frame
 from egosim.world import World
 from egosim.world.map import build_builtin_map
 
@@ -25,17 +25,18 @@ def main() -> None:
     args = parser.parse_args()
 
     world = World(build_builtin_map("straight"))
-    session = SyncSession(active=True, user_id="benchmark", time_step_ms=10)
-    context = BridgeContext(get_profile("26.r1"), world, lambda: world.sim_time, sync=session)
+    context = simulation_context(world)
+    context.sync.start("benchmark", time_step_ms=10)
+    row = context.row("sync_mode_ctrl_cmd")
 
     def nothing(_: BridgeContext) -> bool:
         return True
 
     for k in range(args.waiting):
-        at_frame(context, "/benchmark", 2 + k, nothing)
+        at_frame(context, row, 2 + k, nothing)
     began = time.perf_counter()
     for k in range(args.requests):
-        at_frame(context, "/benchmark", 2 + args.waiting + k, nothing)
+        at_frame(context, row, 2 + args.waiting + k, nothing)
     per_request = (time.perf_counter() - began) / args.requests
     print(f"{per_request * 1e6:.2f} us per request with {args.waiting} or more waiting")
 

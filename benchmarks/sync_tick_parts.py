@@ -1,9 +1,11 @@
-"""Where a sync-mode tick's time goes, in-process and without ROS: `World.step` on the
-town with its default scenario, then building and serialising every published row of
-the default network settings that is due at its rate (as the bridge does after each
-step); no sockets, so sending is not included (benchmarks/sync_mode.py measures it).
-A second run times the parts of `World.step` (each wrapped in a timer, about 0.2 us
-each of overhead) on a fresh world.
+"""Where a sync-mode tick's time goes, in-process: the simulator's own tick pipeline
+(replay, autopilots, world, clock, publish) on the town with its default scenario and
+the default network settings, each stage timed, and each published row's building and
+serialising timed within the publish stage. The bridge is bound to a real node (on an
+embedded master at a free loopback port) with a recording tap, so every row is built
+and serialised as if it had a subscriber; nothing is sent (benchmarks/sync_mode.py
+measures sending). A second run times the parts of `World.step` (each wrapped in a
+timer, about 0.2 us each of overhead) on a fresh world.
 
 Usage: .venv/bin/python benchmarks/sync_tick_parts.py [--ticks 2000] [--warmup 200]
 """
@@ -15,17 +17,24 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from egosim.app.clock import HeaderClock
-from egosim.app.options import ClockMode, RunOptions
+from loopback import free_port
+
+from egosim.app.inbox import Inbox
+from egosim.app.options import RunOptions
 from egosim.app.runner import build_world
-from egosim.bridge.bindings import HANDLERS
-from egosim.bridge.context import BridgeContext
-from egosim.bridge.network import default_network_settings
-from egosim.bridge.releases import CANONICAL_PROFILE, canonical
-from egosim.bridge.sensor_rig import SensorRig
-from egosim.bridge.sync_mode import SyncSession
-from egosim.bridge.table import Direction
-from egosim.msgs import get_profile
+from egosim.bridge import (
+    HANDLERS,
+    Bridge,
+    BridgeContext,
+    ClockMode,
+    Stage,
+    Tick,
+    TickPipeline,
+    default_network_settings,
+    simulation_context,
+)
+from egosim.msgs import MessageType
+from egosim.ros1 import Node
 from egosim.world import World
 
 TICK_S = 0.01
@@ -79,6 +88,20 @@ def timed(
     return run
 
 
+def timed_stages(pipeline: TickPipeline[BridgeContext], spent: dict[str, float]) -> None:
+    """Wrap every stage of `pipeline` in a timer adding to spent[stage name]."""
+
+    def timed_stage(stage: Stage[BridgeContext]) -> Stage[BridgeContext]:
+        def run(context: BridgeContext, tick: Tick) -> None:
+            began = time.perf_counter()
+            stage.run(context, tick)
+            spent[stage.name] += time.perf_counter() - began
+
+        return Stage(stage.name, run)
+
+    pipeline.stages = tuple(timed_stage(stage) for stage in pipeline.stages)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--ticks", type=int, default=2000)
@@ -87,58 +110,50 @@ def main() -> None:
 
     world = build_world(RunOptions(clock=ClockMode.SYNC))
     settings = default_network_settings()
-    context = BridgeContext(
-        get_profile(CANONICAL_PROFILE),
-        world,
-        HeaderClock(ClockMode.SYNC, world),
-        data_roots=(Path.cwd(),),
-        sensors=SensorRig(settings.sensors, world.map.georef),
-        sync=SyncSession(),
-        publishes_clock=True,
-    )
-    rows = [row for row in settings.enabled_rows() if row.direction is Direction.PUBLISH]
-    periods = [1.0 / row.rate_hz if row.rate_hz else None for row in rows]
-    next_due = [0.0] * len(rows)
-    spent = [0.0] * len(rows)
-    built = [0] * len(rows)
-    world_s = 0.0
-    for tick in range(args.warmup + args.ticks):
-        measured = tick >= args.warmup
+    with Node(
+        "tick_parts", master_uri=f"http://127.0.0.1:{free_port()}/", rosout_logger=None
+    ) as node:
+        bridge = Bridge(node, settings, HANDLERS, Inbox())
+        context = simulation_context(
+            world,
+            settings=settings,
+            clock_mode=ClockMode.SYNC,
+            data_roots=(Path.cwd(),),
+            bridge=bridge,
+        )
+        bridge.open(context)
+        built: dict[str, int] = {}
+
+        def count(topic: str, message_type: MessageType, data: bytes, stamp: float) -> None:
+            built[topic] = built.get(topic, 0) + 1
+
+        bridge.taps.append(count)  # every row is built as if it had a subscriber
+        row_spent = {outlet.row.name: 0.0 for outlet in bridge.outlets}
+        for outlet in bridge.outlets:
+            outlet.build = timed(outlet.build, outlet.row.name, row_spent)  # type: ignore[assignment]
+        stage_spent = dict.fromkeys(context.pipeline.names, 0.0)
+        timed_stages(context.pipeline, stage_spent)
+        for _ in range(args.warmup):
+            context.tick(TICK_S)
+        for spent in (stage_spent, row_spent):
+            spent.update(dict.fromkeys(spent, 0.0))
+        built.clear()
         began = time.perf_counter()
-        world.step(TICK_S)
-        stepped = time.perf_counter()
-        if measured:
-            world_s += stepped - began
-        now = (tick + 1) * TICK_S
-        for k, row in enumerate(rows):
-            period = periods[k]
-            if period is not None and now + 1e-9 < next_due[k]:
-                continue
-            if period is not None:
-                next_due[k] = max(next_due[k] + period, now)
-            start = time.perf_counter()
-            messages = HANDLERS.publishers[row.key](context)
-            if messages is None:
-                continue
-            message_type = canonical(row.type_name)
-            for message in messages if isinstance(messages, list | tuple) else (messages,):
-                message_type.serialize(message)
-            if measured:
-                spent[k] += time.perf_counter() - start
-                built[k] += 1
+        for _ in range(args.ticks):
+            context.tick(TICK_S)
+        whole = time.perf_counter() - began
 
     print(f"town + default scenario, {args.ticks} ticks of {TICK_S * 1000:.0f} ms")
-    print(f"{'World.step':44s} {world_s / args.ticks * 1e6:8.0f} us per tick")
-    total = 0.0
-    for k, row in enumerate(rows):
-        if built[k]:
-            per_tick = spent[k] / args.ticks * 1e6
-            total += per_tick
+    print(f"{'tick (every stage)':44s} {whole / args.ticks * 1e6:8.0f} us per tick")
+    for name, seconds in stage_spent.items():
+        print(f"  stage {name:36s} {seconds / args.ticks * 1e6:8.0f} us per tick")
+    print("publish stage, building each row (serialising is the rest of the stage):")
+    for topic, seconds in row_spent.items():
+        if built.get(topic):
             print(
-                f"{row.name:44s} {spent[k] / built[k] * 1e6:8.0f} us per publish "
-                f"{per_tick:8.1f} us per tick"
+                f"  {topic:42s} {seconds / built[topic] * 1e6:8.0f} us per publish "
+                f"{seconds / args.ticks * 1e6:8.1f} us per tick"
             )
-    print(f"{'building + serialising, all rows':44s} {total:8.0f} us per tick")
     time_world_parts(args.ticks, args.warmup)
 
 

@@ -7,6 +7,8 @@ write anywhere the simulator can.
 
 from __future__ import annotations
 
+import os
+import stat
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -38,3 +40,28 @@ def resolve_in_roots(name: str, roots: Sequence[Path], *, must_exist: bool = Tru
     if refused is not None:
         raise PathOutsideRootsError(f"{name!r} resolves outside the data roots ({refused})")
     raise FileNotFoundError(f"{name!r} not found in the data roots {[str(r) for r in real_roots]}")
+
+
+class NotARegularFileError(OSError):
+    """A name that resolves to a pipe, device, socket or directory, not a file."""
+
+
+#: The largest file a network request may make the simulator read (a scenario, ...).
+MAX_READ_BYTES = 16 * 1024 * 1024
+
+
+def read_regular_file(path: Path, max_bytes: int = MAX_READ_BYTES) -> bytes:
+    """The bytes of the regular file at `path`, at most `max_bytes`.
+
+    The file is opened without blocking and checked before anything is read, so a named
+    pipe or a device never stalls the reader waiting for data that may never come.
+    """
+    descriptor = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    with os.fdopen(descriptor, "rb") as file:
+        mode = os.fstat(file.fileno()).st_mode
+        if not stat.S_ISREG(mode):
+            raise NotARegularFileError(f"{path} is not a regular file")
+        data = file.read(max_bytes + 1)
+    if len(data) > max_bytes:
+        raise OSError(f"{path} is larger than {max_bytes} bytes")
+    return data

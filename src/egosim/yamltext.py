@@ -61,6 +61,20 @@ class YamlDocument:
         return self.error_type(self.label, self.line_of(path), field_name(path), message)
 
 
+def check_nesting(text: str, label: str, error_type: type[YamlFileError]) -> None:
+    """Refuse collections nested deeper than MAX_DEPTH before the (recursive) composer
+    builds them: it would exhaust Python's stack on a few kilobytes of brackets."""
+    depth = 0
+    for event in yaml.parse(text, Loader=yaml.SafeLoader):
+        if isinstance(event, yaml.CollectionStartEvent):
+            depth += 1
+            if depth > MAX_DEPTH:
+                line = event.start_mark.line + 1
+                raise error_type(label, line, "", f"nested deeper than {MAX_DEPTH} levels")
+        elif isinstance(event, yaml.CollectionEndEvent):
+            depth -= 1
+
+
 def parse_yaml(
     text: str, label: str, error_type: type[YamlFileError] = YamlFileError
 ) -> YamlDocument:
@@ -69,6 +83,7 @@ def parse_yaml(
     Syntax errors, repeated keys and values YAML cannot build raise `error_type`.
     """
     try:
+        check_nesting(text, label, error_type)
         root = yaml.compose(text, Loader=yaml.SafeLoader)
     except yaml.MarkedYAMLError as error:
         mark = error.problem_mark or error.context_mark

@@ -5,14 +5,11 @@ from __future__ import annotations
 
 import pytest
 
-from egosim.bridge.context import CTRL_MODE_EXTERNAL, CTRL_MODE_KEYBOARD, BridgeContext
-from egosim.bridge.ego import on_ctrl_cmd
-from egosim.bridge.events import OPTION_CTRL_MODE, serve_event_cmd
-from egosim.msgs import get_profile
+from egosim.bridge import HANDLERS, ControlMode, simulation_context
+from egosim.bridge.context import BridgeContext
+from egosim.bridge.events import OPTION_CTRL_MODE
 from egosim.world import World
 from egosim.world.map import build_builtin_map
-
-PROFILE = get_profile("26.r1")
 
 
 def steps(context: BridgeContext, seconds: float) -> None:
@@ -20,32 +17,37 @@ def steps(context: BridgeContext, seconds: float) -> None:
         context.world.step()
 
 
-def set_ctrl_mode(context: BridgeContext, mode: int) -> None:
-    event = PROFILE.message("morai_msgs/EventInfo").new(
-        option=OPTION_CTRL_MODE, ctrl_mode=mode, gear=-1
+def set_ctrl_mode(context: BridgeContext, mode: ControlMode) -> None:
+    profile = context.profile
+    event = profile.message("morai_msgs/EventInfo").new(
+        option=OPTION_CTRL_MODE, ctrl_mode=int(mode), gear=-1
     )
-    request = PROFILE.message("morai_msgs/MoraiEventCmdSrvRequest").new(request=event)
-    serve_event_cmd(context, request)
+    request = profile.message("morai_msgs/MoraiEventCmdSrvRequest").new(request=event)
+    HANDLERS.services["event_cmd"](context, context.row("event_cmd"), request)
+
+
+def drive(context: BridgeContext, message: object) -> None:
+    HANDLERS.subscribers["ctrl_cmd"](context, context.row("ctrl_cmd"), message)
 
 
 def test_one_command_holds_and_a_mode_change_releases_it() -> None:
-    context = BridgeContext(PROFILE, World(build_builtin_map("straight")), lambda: 0.0)
-    throttle = PROFILE.message("morai_msgs/CtrlCmd").new(longlCmdType=1, accel=0.5)
-    on_ctrl_cmd(context, throttle)
+    context = simulation_context(World(build_builtin_map("straight")))
+    throttle = context.profile.message("morai_msgs/CtrlCmd").new(longlCmdType=1, accel=0.5)
+    drive(context, throttle)
     steps(context, 5.0)
     status = context.world.ego_status()
     assert (status.accel_pedal, status.brake_pedal) == (0.5, 0.0)
     assert status.speed > 5.0
 
-    set_ctrl_mode(context, CTRL_MODE_KEYBOARD)
+    set_ctrl_mode(context, ControlMode.KEYBOARD)
     steps(context, 0.01)
     assert context.world.ego_status().brake_pedal == 1.0
-    set_ctrl_mode(context, CTRL_MODE_EXTERNAL)
+    set_ctrl_mode(context, ControlMode.EXTERNAL)
     steps(context, 10.0)
     status = context.world.ego_status()
     assert status.brake_pedal == 1.0
     assert status.speed == pytest.approx(0.0)
 
-    on_ctrl_cmd(context, throttle)
+    drive(context, throttle)
     steps(context, 0.5)
     assert context.world.ego_status().accel_pedal == 0.5

@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from egosim.bridge.context import BridgeContext
+from egosim.bridge import simulation_context
 from egosim.bridge.ego import control_command, ego_vehicle_status, on_ctrl_cmd
 from egosim.bridge.messages import header
 from egosim.bridge.specs import map_spec, vehicle_spec
@@ -96,11 +96,19 @@ def test_map_spec_of_a_map_in_a_transverse_mercator_grid_is_tm() -> None:
 
 def test_a_stream_of_rejected_commands_is_logged_once_and_the_valid_one_stays(caplog) -> None:
     world = World(build_builtin_map("straight"))
-    context = BridgeContext(PROFILE, world, lambda: world.sim_time)
+    context = simulation_context(world)
     ctrl = PROFILE.message("morai_msgs/CtrlCmd")
-    on_ctrl_cmd(context, ctrl.new(longlCmdType=2, velocity=36.0))
+    on_ctrl_cmd(
+        context,
+        context.row("ctrl_cmd"),
+        ctrl.new(longlCmdType=2, velocity=36.0),
+    )
     for _ in range(50):
-        on_ctrl_cmd(context, ctrl.new(longlCmdType=2, velocity=math.nan))
+        on_ctrl_cmd(
+            context,
+            context.row("ctrl_cmd"),
+            ctrl.new(longlCmdType=2, velocity=math.nan),
+        )
     rejections = [r for r in caplog.records if "rejected" in r.getMessage()]
     assert len(rejections) == 1
     for _ in range(40):  # within the 0.5 s command timeout

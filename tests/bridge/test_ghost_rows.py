@@ -11,10 +11,8 @@ import math
 import numpy as np
 import pytest
 
+from egosim.bridge import ControlMode, simulation_context
 from egosim.bridge.context import (
-    CTRL_MODE_AUTO,
-    CTRL_MODE_EXTERNAL,
-    CTRL_MODE_KEYBOARD,
     BridgeContext,
 )
 from egosim.bridge.control_modes import drive_autopilots
@@ -32,7 +30,7 @@ MODEL = "2016_Kia_Niro(HEV)"
 
 
 def _context() -> BridgeContext:
-    return BridgeContext(PROFILE, World(build_builtin_map("straight")), lambda: 0.0)
+    return simulation_context(World(build_builtin_map("straight")))
 
 
 def _vector(x: float = 0.0, y: float = 0.0, z: float = 0.0):
@@ -90,7 +88,7 @@ def test_ghost_message_angles_are_degrees_and_speed_km_per_hour() -> None:
         velocity=72.0,
         steering_angle=-3.0,
     )
-    on_ghost_ctrl_cmd(context, message)
+    on_ghost_ctrl_cmd(context, context.row("ghost_ctrl_cmd"), message)
     status = context.world.ego_status()
     assert (status.pose.x, status.pose.y, status.pose.z) == (50.0, -1.75, 0.5)
     assert (status.pose.roll, status.pose.pitch, status.pose.yaw) == pytest.approx(
@@ -107,18 +105,18 @@ def test_a_bad_ghost_message_leaves_the_ego_where_it_is(velocity: float) -> None
     message = PROFILE.message("morai_msgs/GhostMessage").new(
         position=_vector(50.0, 0.0, 0.0), rotation=_vector(), velocity=velocity
     )
-    on_ghost_ctrl_cmd(context, message)
+    on_ghost_ctrl_cmd(context, context.row("ghost_ctrl_cmd"), message)
     assert context.world.ego_status().pose == before
 
 
 def test_ghost_message_is_ignored_unless_the_ego_is_external() -> None:
     context = _context()
-    context.settings_of(context.world.egos[0].unique_id).ctrl_mode = CTRL_MODE_KEYBOARD
+    context.settings_of(context.world.egos[0].unique_id).ctrl_mode = ControlMode.KEYBOARD
     before = context.world.ego_status().pose
     message = PROFILE.message("morai_msgs/GhostMessage").new(
         position=_vector(50.0, 0.0, 0.0), rotation=_vector()
     )
-    on_ghost_ctrl_cmd(context, message)
+    on_ghost_ctrl_cmd(context, context.row("ghost_ctrl_cmd"), message)
     assert context.world.ego_status().pose == before
 
 
@@ -128,6 +126,7 @@ def test_npc_ghost_info_units_codes_and_refusals() -> None:
     ego_id = world.egos[0].unique_id
     on_npc_ghost(
         context,
+        context.row("npc_ghost"),
         _npc_ghost_cmd(
             {
                 "unique_id": 40,
@@ -159,6 +158,7 @@ def test_multi_ego_setting_adds_and_configures_egos() -> None:
     world = context.world
     on_multi_ego_setting(
         context,
+        context.row("multi_ego_setting"),
         _multi_ego(
             3,
             camera=2,
@@ -173,7 +173,7 @@ def test_multi_ego_setting_adds_and_configures_egos() -> None:
         ),
     )
     assert len(world.egos) == 3
-    assert context.camera_index == 2
+    assert context.session.camera_index == 2
     second, third = world.egos[1], world.egos[2]
     assert (third.vehicle.status().pose.x, third.vehicle.status().pose.yaw) == pytest.approx(
         (200.0, math.pi)
@@ -181,19 +181,19 @@ def test_multi_ego_setting_adds_and_configures_egos() -> None:
     assert third.vehicle.status().velocity[0] == pytest.approx(10.0)
     assert third.vehicle.gear is Gear.REVERSE
     assert second.vehicle.gear is Gear.DRIVE
-    assert context.settings_of(third.unique_id).ctrl_mode == CTRL_MODE_AUTO
-    assert context.settings_of(second.unique_id).ctrl_mode == CTRL_MODE_KEYBOARD
+    assert context.settings_of(third.unique_id).ctrl_mode == ControlMode.AUTO
+    assert context.settings_of(second.unique_id).ctrl_mode == ControlMode.KEYBOARD
     lamps = context.settings_of(third.unique_id).lamps
     assert (lamps.turn_signal, lamps.emergency) == (0, 1)
     lamps = context.settings_of(second.unique_id).lamps
     assert (lamps.turn_signal, lamps.emergency) == (1, 0)
 
     drive_autopilots(context)
-    assert list(context.autopilots) == [third.unique_id]
-    on_multi_ego_setting(context, _multi_ego(1))
+    assert list(context.session.autopilots) == [third.unique_id]
+    on_multi_ego_setting(context, context.row("multi_ego_setting"), _multi_ego(1))
     drive_autopilots(context)
     assert len(world.egos) == 1
-    assert context.autopilots == {}
+    assert context.session.autopilots == {}
 
 
 @pytest.mark.parametrize(
@@ -215,15 +215,19 @@ def test_multi_ego_setting_adds_and_configures_egos() -> None:
 )
 def test_a_bad_multi_ego_setting_changes_nothing(message) -> None:
     context = _context()
-    on_multi_ego_setting(context, message)
+    on_multi_ego_setting(context, context.row("multi_ego_setting"), message)
     assert len(context.world.egos) == 1
-    assert context.camera_index == 0
-    assert context.settings_of(context.world.egos[0].unique_id).ctrl_mode == CTRL_MODE_EXTERNAL
+    assert context.session.camera_index == 0
+    assert context.settings_of(context.world.egos[0].unique_id).ctrl_mode == ControlMode.EXTERNAL
 
 
 def test_a_ghost_npc_has_the_vehicle_spec_of_its_model() -> None:
     context = _context()
-    on_npc_ghost(context, _npc_ghost_cmd({"unique_id": 500, "position": (20.0, -1.75, 0.0)}))
+    on_npc_ghost(
+        context,
+        context.row("npc_ghost"),
+        _npc_ghost_cmd({"unique_id": 500, "position": (20.0, -1.75, 0.0)}),
+    )
     model = vehicle_model_of(context.world, 500)
     assert model is not None and model.name == MODEL
     assert vehicle_model_of(context.world, 501) is None

@@ -9,6 +9,7 @@ from typing import Any
 
 import pytest
 
+from egosim.bridge import simulation_context
 from egosim.bridge.context import BridgeContext
 from egosim.bridge.ego import publish_ego_status
 from egosim.bridge.objects import object_status, publish_object_list
@@ -54,14 +55,14 @@ def bag(tmp_path_factory: pytest.TempPathFactory) -> Path:
 @pytest.fixture
 def context(bag: Path) -> BridgeContext:
     world = World(build_builtin_map("town"), load_default_scenario(), physics_step_s=DT)
-    return BridgeContext(PROFILE, world, lambda: world.sim_time, data_roots=(bag.parent,))
+    return simulation_context(world, data_roots=(bag.parent,))
 
 
 def command(context: BridgeContext, **fields: Any) -> bool:
     fields.setdefault("replay_speed", 1)
     handle = PROFILE.message("morai_msgs/MoraiSimProcHandle").new(**fields)
     request = PROFILE.service("morai_msgs/MoraiSimProcSrv").request.new(request=handle)
-    return bool(serve_sim_proc(context, request).response.result)
+    return bool(serve_sim_proc(context, context.row("sim_proc"), request).response.result)
 
 
 def run(context: BridgeContext, seconds: float) -> None:
@@ -72,12 +73,18 @@ def run(context: BridgeContext, seconds: float) -> None:
 
 
 def status(context: BridgeContext) -> tuple[int, int, int]:
-    message = publish_sim_proc_status(context)
+    message = publish_sim_proc_status(
+        context,
+        context.row("sim_proc_status"),
+    )
     return message.command_result, message.current_mode, message.current_status
 
 
 def listed(context: BridgeContext) -> dict[str, dict[int, Any]]:
-    message = publish_object_list(context)
+    message = publish_object_list(
+        context,
+        context.row("object_status"),
+    )
     return {
         name: {o.unique_id: o for o in getattr(message, name)}
         for name in ("npc_list", "pedestrian_list", "obstacle_list")
@@ -88,9 +95,18 @@ def test_status_before_any_command_is_initial_simulation_running(
     context: BridgeContext,
 ) -> None:
     assert status(context) == (0x00, 0x01, 0x01)
-    latest = publish_sim_proc_status(context).latest_command_time
+    latest = publish_sim_proc_status(
+        context,
+        context.row("sim_proc_status"),
+    ).latest_command_time
     assert (latest.sec, latest.nanosec) == (0, 0)
-    assert publish_replay_info(context) is None
+    assert (
+        publish_replay_info(
+            context,
+            context.row("replay_info"),
+        )
+        is None
+    )
 
 
 @pytest.mark.parametrize("speed", [1, 4])
@@ -106,7 +122,7 @@ def test_the_ego_and_objects_follow_the_recording(context: BridgeContext, speed:
     assert status(context) == (0x01, 0x10, 0x01)
     run(context, 1.0)
     t = 1.0 * speed
-    ego = publish_ego_status(context)
+    ego = publish_ego_status(context, context.row("ego_status"))
     assert math.dist((ego.position.x, ego.position.y), ego_position(t)[:2]) < 1e-3
     assert math.radians(ego.heading) == pytest.approx(ego_heading(t), abs=1e-4)
     assert ego.velocity.x == pytest.approx(SPEED_MS)
@@ -126,7 +142,7 @@ def test_unselected_targets_keep_being_simulated_and_stop_restores_the_agents(
 ) -> None:
     run(context, 0.5)
     simulated = listed(context)
-    start = publish_ego_status(context).position
+    start = publish_ego_status(context, context.row("ego_status")).position
     assert command(
         context,
         sim_process_status=PLAY,
@@ -135,7 +151,7 @@ def test_unselected_targets_keep_being_simulated_and_stop_restores_the_agents(
         replay_target_option=TARGET_NPC,
     )
     run(context, 1.0)
-    ego = publish_ego_status(context).position
+    ego = publish_ego_status(context, context.row("ego_status")).position
     assert (ego.x, ego.y) == pytest.approx((start.x, start.y), abs=0.05)  # undriven, in place
     lists = listed(context)
     assert lists["npc_list"].keys() == RECORDED_NPCS.keys()
@@ -144,7 +160,13 @@ def test_unselected_targets_keep_being_simulated_and_stop_restores_the_agents(
 
     assert command(context, sim_process_status=STOP)
     assert status(context) == (0x01, 0x01, 0x01)
-    assert publish_replay_info(context) is None
+    assert (
+        publish_replay_info(
+            context,
+            context.row("replay_info"),
+        )
+        is None
+    )
     back = listed(context)
     assert back["npc_list"].keys() == simulated["npc_list"].keys()
     assert back["obstacle_list"].keys() == simulated["obstacle_list"].keys()
@@ -161,7 +183,7 @@ def test_replay_info_reports_recorded_inputs_in_protocol_units(context: BridgeCo
         context, sim_process_status=PLAY, replay_option=LOAD, rosbag_file_name="drive.bag"
     )
     run(context, 2.0)
-    info = publish_replay_info(context)
+    info = publish_replay_info(context, context.row("replay_info"))
     assert info.ego_acc == pytest.approx(ego_pedal(2.0), abs=1e-4)
     assert info.ego_brake == 0.0
     assert info.ego_steer == pytest.approx(math.degrees(math.atan(2.7 / RADIUS_M)))
@@ -189,10 +211,10 @@ def test_pause_holds_the_recorded_scene(context: BridgeContext) -> None:
     )
     run(context, 1.0)
     assert command(context, sim_process_status=PAUSE)
-    held = publish_ego_status(context).position
+    held = publish_ego_status(context, context.row("ego_status")).position
     run(context, 1.0)
     assert status(context) == (0x01, 0x10, 0x10)
-    assert publish_ego_status(context).position == held
+    assert publish_ego_status(context, context.row("ego_status")).position == held
 
 
 @pytest.mark.parametrize("name", ["missing.bag", "../drive.bag", "/etc/hostname"])
@@ -203,9 +225,10 @@ def test_a_bag_that_cannot_load_fails_with_0x20_and_changes_nothing(
     before = listed(context)
     assert not command(context, sim_process_status=PLAY, replay_option=LOAD, rosbag_file_name=name)
     assert status(context) == (0x20, 0x01, 0x01)
-    assert publish_sim_proc_status(context).latest_command_time.nanosec == pytest.approx(
-        0.2e9, abs=1e3
-    )
+    assert publish_sim_proc_status(
+        context,
+        context.row("sim_proc_status"),
+    ).latest_command_time.nanosec == pytest.approx(0.2e9, abs=1e3)
     assert listed(context).keys() == before.keys()
     assert listed(context)["npc_list"].keys() == before["npc_list"].keys()
 

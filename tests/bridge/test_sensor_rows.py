@@ -4,15 +4,23 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 from pathlib import Path
 from types import SimpleNamespace
+from typing import Any
 
 import numpy as np
 import pytest
 
-from egosim.bridge import sensor_files, sensor_rows
+from egosim.bridge import (
+    HANDLERS,
+    default_network_settings,
+    sensor_files,
+    sensor_rows,
+    simulation_context,
+)
 from egosim.bridge.context import BridgeContext
-from egosim.bridge.sensor_rig import LIDAR_INDEX, SensorRig
+from egosim.bridge.sensor_rig import LIDAR_INDEX
 from egosim.bridge.sensor_settings import LidarSettings, SensorSettings
 from egosim.msgs import get_profile
 from egosim.sensors import LidarConfig
@@ -35,14 +43,19 @@ obstacles:
 
 
 def context_for(world: World, lidar: LidarConfig | None = None, roots=()) -> BridgeContext:
-    settings = SensorSettings(lidar=LidarSettings(config=lidar or LidarConfig()))
-    return BridgeContext(
-        PROFILE,
-        world,
-        lambda: world.sim_time,
-        data_roots=tuple(roots),
-        sensors=SensorRig(settings, world.map.georef),
-    )
+    sensors = SensorSettings(lidar=LidarSettings(config=lidar or LidarConfig()))
+    settings = replace(default_network_settings(), sensors=sensors)
+    return simulation_context(world, settings=settings, data_roots=roots)
+
+
+def published(key: str, context: BridgeContext) -> Any:
+    """What the publishing row `key` sends now."""
+    return HANDLERS.publishers[key](context, context.row(key))
+
+
+def save_sensor_data(context: BridgeContext, request: Any) -> None:
+    """/SaveSensorData receives `request`."""
+    sensor_files.on_save_sensor_data(context, context.row("save_sensor_data"), request)
 
 
 def empty_world() -> World:
@@ -60,7 +73,7 @@ def cloud_points(message) -> np.ndarray:
 
 def test_point_count_is_beams_minus_misses_on_open_ground() -> None:
     config = LidarConfig()
-    points = cloud_points(sensor_rows.publish_lidar(context_for(empty_world(), config)))
+    points = cloud_points(published("lidar", context_for(empty_world(), config)))
     # Only beams below the horizon that meet the ground within range return a point.
     elevations = config.elevations_rad
     ground_range = np.where(elevations < 0, LIDAR_HEIGHT_M / np.sin(-elevations), np.inf)
@@ -74,7 +87,7 @@ def test_a_beam_at_a_box_returns_its_distance() -> None:
     world = World(build_builtin_map("straight"), parse_scenario(BOX_SCENARIO, "box.yaml"))
     # 31 channels over -15..15 deg: channel 15 is level; 360 steps: step 0 looks ahead.
     config = LidarConfig(channels=31, horizontal_resolution_deg=1.0)
-    points = cloud_points(sensor_rows.publish_lidar(context_for(world, config)))
+    points = cloud_points(published("lidar", context_for(world, config)))
     level_ahead = points[(np.abs(points[:, 2]) < 1e-4) & (np.abs(points[:, 1]) < 1e-4)]
     assert len(level_ahead) == 1
     assert level_ahead[0, 0] == pytest.approx(BOX_NEAR_FACE_X_M, abs=1e-4)
@@ -82,7 +95,7 @@ def test_a_beam_at_a_box_returns_its_distance() -> None:
 
 
 def test_imu_at_rest_reads_gravity_up_and_no_rotation() -> None:
-    imu = sensor_rows.publish_imu(context_for(empty_world()))
+    imu = published("imu", context_for(empty_world()))
     acceleration, rate = imu.linear_acceleration, imu.angular_velocity
     assert (acceleration.x, acceleration.y) == pytest.approx((0.0, 0.0), abs=1e-9)
     assert acceleration.z == pytest.approx(9.81, abs=0.01)
@@ -92,7 +105,7 @@ def test_imu_at_rest_reads_gravity_up_and_no_rotation() -> None:
 def test_tf_places_base_link_at_the_ego_and_sensors_at_their_mounts() -> None:
     world = empty_world()
     context = context_for(world)
-    message = sensor_rows.publish_tf(context)
+    message = sensor_rows.publish_tf(context, context.row("tf"))
     frames = {(t.header.frame_id, t.child_frame_id): t.transform for t in message.transforms}
     assert set(frames) == {
         ("map", "base_link"),
@@ -124,12 +137,12 @@ def test_sensor_pos_control_moves_the_lidar_and_its_ground_ring() -> None:
         pitch=[0.0],
         yaw=[math.pi / 2],
     )
-    sensor_rows.on_sensor_pos_control(context, command)
-    transforms = sensor_rows.publish_tf(context).transforms
+    sensor_rows.on_sensor_pos_control(context, context.row("sensor_pos_control"), command)
+    transforms = sensor_rows.publish_tf(context, context.row("tf")).transforms
     lidar = next(t.transform for t in transforms if t.child_frame_id == "lidar")
     assert (lidar.translation.x, lidar.translation.z) == pytest.approx((1.0, 1.0))
     assert (lidar.rotation.z, lidar.rotation.w) == pytest.approx((math.sqrt(0.5), math.sqrt(0.5)))
-    points = cloud_points(sensor_rows.publish_lidar(context))
+    points = cloud_points(sensor_rows.publish_lidar(context, context.row("lidar")))
     # At 1 m height a -30 deg beam meets the ground 2 m away along the beam.
     assert np.linalg.norm(points[:, :3], axis=1) == pytest.approx(
         np.full(len(points), 2.0), abs=1e-4
@@ -167,7 +180,7 @@ def test_sensor_pos_control_ignores_bad_entries(caplog) -> None:
         yaw=[0.0],
     )
     for message in (ragged, unknown, not_finite):
-        sensor_rows.on_sensor_pos_control(context, message)
+        sensor_rows.on_sensor_pos_control(context, context.row("sensor_pos_control"), message)
     assert context.sensors.mounts() == before
     assert "differ in length" in caplog.text
     assert "no sensor 7" in caplog.text
@@ -181,13 +194,17 @@ def save_request(file_dir: str, name: str = ""):
 def test_save_sensor_data_writes_the_cloud_and_the_readings(tmp_path: Path) -> None:
     (tmp_path / "out").mkdir()
     context = context_for(empty_world(), roots=[tmp_path])
-    sensor_files.on_save_sensor_data(context, save_request("out", "frame1"))
+    sensor_files.on_save_sensor_data(
+        context,
+        context.row("save_sensor_data"),
+        save_request("out", "frame1"),
+    )
     pcd = (tmp_path / "out" / "frame1.pcd").read_bytes()
     header, _, body = pcd.partition(b"DATA binary\n")
     fields = dict(line.split(" ", 1) for line in header.decode().splitlines())
     count = int(fields["POINTS"])
     assert fields["FIELDS"] == "x y z intensity"
-    assert count == len(cloud_points(sensor_rows.publish_lidar(context)))
+    assert count == len(cloud_points(sensor_rows.publish_lidar(context, context.row("lidar"))))
     assert len(body) == 16 * count
     readings = json.loads((tmp_path / "out" / "frame1.json").read_text())
     assert readings["gps"]["status"] == 1
@@ -197,9 +214,7 @@ def test_save_sensor_data_writes_the_cloud_and_the_readings(tmp_path: Path) -> N
 def test_save_sensor_data_names_files_after_the_sim_time(tmp_path: Path) -> None:
     world = empty_world()
     world.step()
-    sensor_files.on_save_sensor_data(
-        context_for(world, roots=[tmp_path]), save_request(str(tmp_path))
-    )
+    save_sensor_data(context_for(world, roots=[tmp_path]), save_request(str(tmp_path)))
     assert sorted(p.name for p in tmp_path.iterdir()) == [
         "sensor_data_10000.json",
         "sensor_data_10000.pcd",
@@ -222,9 +237,7 @@ def test_save_sensor_data_refuses_paths_outside_the_roots(
 ) -> None:
     root = tmp_path / "root"
     root.mkdir()
-    sensor_files.on_save_sensor_data(
-        context_for(empty_world(), roots=[root]), save_request(file_dir, name)
-    )
+    save_sensor_data(context_for(empty_world(), roots=[root]), save_request(file_dir, name))
     assert list(root.iterdir()) == []
     assert not (tmp_path / "escape.pcd").exists()
     assert reason in caplog.text
@@ -235,8 +248,6 @@ def test_save_sensor_data_does_not_follow_a_link_out_of_the_roots(tmp_path: Path
     root.mkdir()
     outside.mkdir()
     (root / "frame.pcd").symlink_to(outside / "frame.pcd")
-    sensor_files.on_save_sensor_data(
-        context_for(empty_world(), roots=[root]), save_request(".", "frame")
-    )
+    save_sensor_data(context_for(empty_world(), roots=[root]), save_request(".", "frame"))
     assert list(outside.iterdir()) == []
     assert "outside the data roots" in caplog.text

@@ -97,6 +97,31 @@ def test_every_field_of_the_section_is_read() -> None:
             "> 0",
         ),
         ("sensors:\n  lidar:\n    frame_id: a/b\n", 3, "sensors.lidar.frame_id", "tf frame name"),
+        (
+            "sensors:\n  lidar:\n    channels: 1000000000\n",
+            3,
+            "sensors.lidar.channels",
+            "must be <= 256",
+        ),
+        (
+            "sensors:\n  lidar:\n    channels: 256\n    horizontal_resolution_deg: 0.05\n",
+            2,
+            "sensors.lidar",
+            "rays a scan (at most 1000000)",
+        ),
+        (
+            "sensors:\n  gps:\n    mount: {z: 1.0e+300}\n",
+            3,
+            "sensors.gps.mount.z",
+            "must be <= 100",
+        ),
+        (
+            "sensors:\n  imu:\n    noise: {linear_acceleration_bias_m_s2: [0, 0, 1.0e+9]}\n",
+            3,
+            "sensors.imu.noise.linear_acceleration_bias_m_s2.2",
+            "must be <= 1000",
+        ),
+        ("rows:\n  lidar: {rate_hz: 1.0e+9}\n", 2, "rows.lidar.rate_hz", "0..1000 Hz"),
     ],
 )
 def test_errors_name_the_file_line_and_field(text, line, field, problem) -> None:

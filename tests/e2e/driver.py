@@ -11,7 +11,7 @@ import threading
 from pathlib import Path
 from typing import Any
 
-from tests.contract import protocol_dir
+from tests.contract import PROTOCOL_DIR
 from tests.debian_ros import ROS_PYTHON
 
 PEER = Path(__file__).parent / "peers" / "rospy_driver.py"
@@ -29,8 +29,8 @@ class RospyDriver:
             [
                 ROS_PYTHON,
                 str(PEER),
-                str(protocol_dir() / f"morai_msgs-{profile}.json"),
-                str(protocol_dir() / "std_msgs_used.json"),
+                str(PROTOCOL_DIR / f"morai_msgs-{profile}.json"),
+                str(PROTOCOL_DIR / "std_msgs_used.json"),
                 name,
             ],
             env=env,

@@ -62,3 +62,30 @@ def test_the_dead_man_timeout_brakes_after_silence_when_set(egosim, rospy_client
     speeds = _speeds_for(client, 6.0)
     assert max(speeds) < 15.0
     assert speeds[-1] == pytest.approx(0.0, abs=0.01)
+
+
+def test_one_sync_mode_command_holds_through_every_later_tick(egosim, rospy_client) -> None:
+    client = rospy_client(egosim("--map", "straight", "--clock", "sync"))
+    started = client.call(
+        "/SyncModeCmd",
+        "morai_msgs/MoraiSyncModeCmdSrv",
+        {"request": {"user_id": "planner", "start_sync_mode": True, "time_step": 10}},
+    )["response"]
+    frame = started["frame"] + 1
+    command = {"longlCmdType": 1, "accel": 0.5, "brake": 0.0}
+    request = {"frame": frame, "command": command, "sensor_capture": False}
+    control = ("/SyncModeCtrlCmd", "morai_msgs/MoraiSyncModeCtrlCmdSrv")
+    assert client.call(*control, {"request": request})["response"]["result"]
+    # 5 s of ticks, 100 per call, with no further command.
+    statuses = []
+    for k in range(1, 6):
+        reply = client.call(
+            "/SyncModeWaitForTick",
+            "morai_msgs/MoraiWaitForTickSrv",
+            {"request": {"user_id": "planner", "frame": frame + 100 * k}},
+        )["response"]
+        statuses.append(reply["vehicle_status"])
+    assert all(s["accel"] == pytest.approx(0.5) and s["brake"] == 0.0 for s in statuses)
+    speeds = [s["velocity"]["x"] for s in statuses]
+    assert speeds == sorted(speeds)
+    assert speeds[-1] > 10.0

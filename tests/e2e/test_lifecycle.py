@@ -91,6 +91,26 @@ def test_bad_file_is_a_one_line_startup_error(args: list[str], expected: str) ->
     assert "Traceback" not in result.stderr
 
 
+@pytest.mark.parametrize(
+    ("option", "content", "expected"),
+    [
+        ("--network", b"ego_input: \xff\xfe\n", "not UTF-8 text"),
+        ("--network", b"sensors:\n  lidar:\n    channels: 1000000000\n", "must be <= 256"),
+        ("--scenario", b"map: town\nnpcs: " + b"[" * 20000 + b"]" * 20000, "nested deeper"),
+        ("--network", b"rows: " + b"[" * 20000 + b"]" * 20000, "nested deeper"),
+    ],
+)
+def test_unusable_settings_and_scenarios_are_one_line_errors(
+    tmp_path: Path, option: str, content: bytes, expected: str
+) -> None:
+    path = tmp_path / "file.yaml"
+    path.write_bytes(content)
+    result = run_expecting_failure([option, str(path)], f"http://127.0.0.1:{free_port()}/")
+    assert result.returncode == 2
+    assert result.stderr.strip().count("\n") == 0, result.stderr[-2000:]
+    assert result.stderr.startswith("egosim: ") and expected in result.stderr
+
+
 def test_rtf_needs_the_sim_clock() -> None:
     result = run_expecting_failure(["--rtf", "4"], f"http://127.0.0.1:{free_port()}/")
     assert result.returncode == 2

@@ -7,6 +7,8 @@ import math
 
 import pytest
 
+from tests.waiting import until
+
 pytestmark = pytest.mark.ros
 
 OBJECTS = ("/Object_topic", "morai_msgs/ObjectStatusList")
@@ -50,10 +52,12 @@ def test_npc_crash_is_one_vehicle_collision_with_both_vehicles(egosim, rospy_cli
 def test_lamps_topic_sets_the_ego_lamps(egosim, rospy_client) -> None:
     client = rospy_client(egosim("--map", "straight"))
     client.publish("/lamps", "morai_msgs/Lamps", {"turnSignal": 1, "emergencySignal": 1})
-    while True:
+
+    def lamps_on() -> dict | None:
         lamps = client.call(*EVENT, {"request": {"option": 0, "gear": -1}})["response"]["lamps"]
-        if lamps["turnSignal"] == 1:
-            break
+        return lamps if lamps["turnSignal"] == 1 else None
+
+    lamps = until(lamps_on, "EventCmd to report the left turn signal")
     assert lamps["emergencySignal"] == 1
 
 
@@ -70,11 +74,13 @@ def test_sensor_pos_control_moves_the_lidar_mount(egosim, rospy_client) -> None:
         "yaw": [math.pi / 2],
     }
     client.publish("/SensorPosControl", "morai_msgs/SensorPosControl", command)
-    while True:
+
+    def moved_lidar() -> dict | None:
         transforms = client.next_message(TF[0])["transforms"]
         lidar = next(t for t in transforms if t["child_frame_id"] == "lidar")["transform"]
-        if lidar["translation"]["x"] == pytest.approx(1.5):
-            break
+        return lidar if lidar["translation"]["x"] == pytest.approx(1.5) else None
+
+    lidar = until(moved_lidar, "/tf to show the LiDAR at x = 1.5 m")
     assert lidar["translation"]["z"] == pytest.approx(2.2)
     assert (lidar["rotation"]["z"], lidar["rotation"]["w"]) == (
         pytest.approx(math.sqrt(0.5)),

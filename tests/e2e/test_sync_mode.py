@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import time
 from pathlib import Path
 
 import pytest
@@ -97,11 +98,38 @@ def test_ticks_need_sync_mode_started(egosim, rospy_client) -> None:
     assert (reply["tick_status"], reply["frame"], reply["time"]) == (False, 0, "0.000000")
 
 
-def test_sync_mode_is_refused_outside_clock_sync(egosim, rospy_client) -> None:
+def stop_sync_mode(client) -> None:
+    request = {"request": {"user_id": USER, "start_sync_mode": False, "time_step": 0}}
+    assert client.call(*SYNC_CMD, request)["response"]["result"] is True
+
+
+def test_a_real_time_run_switches_into_sync_mode_and_back(egosim, rospy_client) -> None:
     client = rospy_client(egosim("--map", "straight"))
-    request = {"request": {"user_id": USER, "start_sync_mode": True, "time_step": 10}}
-    assert client.call(*SYNC_CMD, request)["response"]["result"] is False
-    assert ctrl(client, 1, 1.0) is False
+    first = start_sync_mode(client)
+    held = float(tick(client, first + 1)["time"])
+    time.sleep(0.5)  # the loop must not step a world the client owns
+    assert float(tick(client, first + 2)["time"]) == pytest.approx(held + 0.01, abs=1e-9)
+    assert ctrl(client, first + 3, 1.0) is True
+
+    stop_sync_mode(client)
+    time.sleep(0.5)  # back in real time, the world moves on its own
+    again = start_sync_mode(client)
+    assert again == first + 2
+    assert float(tick(client, again + 1)["time"]) > held + 0.3
+
+
+def test_stopping_sync_mode_started_with_clock_sync_lets_the_clock_run(
+    egosim, rospy_client
+) -> None:
+    client = rospy_client(egosim("--map", "straight", "--clock", "sync"))
+    client.subscribe("/clock", "rosgraph_msgs/Clock")
+    client.wait_connected("/clock")
+    first = start_sync_mode(client)
+    tick(client, first + 10)
+    stop_sync_mode(client)
+    stamps = [m["clock"] for m in client.messages("/clock", count=30)]
+    assert stamps[-1] > 0.1 + 0.05  # beyond the ticks: the loop steps the world again
+    assert stamps == sorted(stamps)
 
 
 def test_a_command_takes_effect_at_its_frame(egosim, rospy_client) -> None:

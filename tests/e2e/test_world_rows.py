@@ -11,6 +11,7 @@ from egosim.world.map import build_builtin_map
 from egosim.world.traffic.catalogue import OBSTACLE_MODELS, PEDESTRIAN_MODELS
 from egosim.world.vehicle.catalogue import VEHICLE_CATALOGUE
 from tests.e2e import scenarios
+from tests.waiting import until
 
 pytestmark = pytest.mark.ros
 
@@ -106,14 +107,19 @@ def test_red_override_stops_an_npc_before_its_stop_line(egosim, rospy_client) ->
     )
     npc = client.next_message(OBJECTS[0])["npc_list"][0]
     deadline_stamp = None
-    while True:
+
+    def stopped_npc() -> dict | None:
+        nonlocal deadline_stamp
         message = client.next_message(OBJECTS[0])
         npc = message["npc_list"][0]
         stamp = message["header"]["stamp"]
         deadline_stamp = deadline_stamp or stamp + 40.0
-        if npc["velocity"]["x"] < 0.05 and npc["position"]["x"] > stop_line_x - 30:
-            break
         assert stamp < deadline_stamp, f"NPC still moving at {npc}"
+        if npc["velocity"]["x"] < 0.05 and npc["position"]["x"] > stop_line_x - 30:
+            return npc
+        return None
+
+    npc = until(stopped_npc, "the NPC to stop at the red light", timeout_s=60.0)
     front = npc["position"]["x"] + npc["size"]["x"] / 2
     assert front <= stop_line_x + 0.01
     status = client.call(
@@ -133,13 +139,18 @@ def test_intersection_control_sets_phase_and_time(egosim, rospy_client) -> None:
         {"intersection_index": 6, "intersection_status": 1, "intersection_status_time": 2.0},
     )
     since = len(client.messages("/InsnStatus", count=0, timeout=0))
-    while True:
+
+    def controlled_status() -> dict | None:
+        nonlocal since
         batch = client.messages("/InsnStatus", since=since, count=32)
         since += len(batch)
         controlled = [m for m in batch if m["intersection_index"] == 6]
         if controlled and controlled[-1]["intersection_status"] == 1:
-            break
-    assert 2.0 <= controlled[-1]["intersection_status_time"] < 3.0
+            return controlled[-1]
+        return None
+
+    status = until(controlled_status, "intersection 6 to report phase 1")
+    assert 2.0 <= status["intersection_status_time"] < 3.0
 
 
 def test_traffic_light_status_follows_an_override(egosim, rospy_client) -> None:

@@ -7,11 +7,11 @@ import json
 import pytest
 
 from egosim.msgs import get_profile
-from tests.contract import protocol_dir
+from tests.contract import PROTOCOL_DIR
 
 
 def standard_contract() -> dict:
-    return json.loads((protocol_dir() / "std_msgs_used.json").read_text())["types"]
+    return json.loads((PROTOCOL_DIR / "std_msgs_used.json").read_text())["types"]
 
 
 @pytest.mark.parametrize("name", sorted(standard_contract()))

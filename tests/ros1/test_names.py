@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from egosim.ros1 import InvalidNameError, Node
+from egosim.ros1 import InvalidNameError
 from egosim.ros1.names import NameResolver, namespace_of, parse_argv, resolve
 
 
@@ -68,4 +68,4 @@ def test_node_name_and_remapping_from_argv(embedded_master, make_node):
 def test_ros_namespace_environment(embedded_master, make_node):
     node = make_node("sim", master_uri=embedded_master.uri, env={"ROS_NAMESPACE": "/fleet"})
     assert node.name == "/fleet/sim"
-    assert isinstance(node, Node)
+    assert node.resolve_name("Ego_topic") == "/fleet/Ego_topic"

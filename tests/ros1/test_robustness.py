@@ -17,7 +17,7 @@ from xmlrpc.server import SimpleXMLRPCServer
 
 import pytest
 
-from egosim.ros1 import Limits, Node
+from egosim.ros1 import BadRequestError, Limits, Node, ServiceError
 from egosim.ros1.connection_header import encode_header, read_header
 from egosim.ros1.tcpros_server import TcprosServer
 from tests.conftest import EVENT_TIMEOUT_S
@@ -420,3 +420,22 @@ def test_an_xmlrpc_request_without_a_length_is_logged(embedded_master, caplog):
         assert b" 500 " in _drain(sock)
     wait_until(lambda: any('" 500' in r.getMessage() for r in caplog.records))
     assert xmlrpc.client.ServerProxy(embedded_master.uri).getPid("/x")[0] == 1
+
+
+def test_a_flood_of_refused_requests_is_one_line_with_a_count(embedded_master, make_node, caplog):
+    caplog.set_level(logging.INFO, logger="egosim.ros1")
+    node = make_node("srv", master_uri=embedded_master.uri)
+    srv = PROFILE.service("morai_msgs/MoraiEventCmdSrv")
+
+    def refuse(request: bytes, header: object) -> bytes:
+        raise BadRequestError("undecodable request")
+
+    node.advertise_service("/picky", srv, refuse)
+    proxy = node.service_proxy("/picky", srv)
+    for _ in range(300):
+        with pytest.raises(ServiceError):
+            proxy.call(b"\x00")
+    lines = [r for r in caplog.records if "/picky" in r.getMessage()]
+    assert len(lines) == 1
+    assert "refused: undecodable request" in lines[0].getMessage()
+    assert not lines[0].exc_info  # no traceback for a bad request

@@ -12,9 +12,11 @@ import threading
 import time
 from collections.abc import Callable
 
+from ..logthrottle import LogThrottle
 from .inbox import Inbox
 
 log = logging.getLogger(__name__)
+throttle = LogThrottle(log)
 
 #: Falling this far behind the wall clock (s) resets the pace instead of racing to catch up.
 MAX_LAG_S = 0.25
@@ -23,7 +25,9 @@ IDLE_POLL_S = 0.05
 
 
 class SimulationLoop:
-    """Calls `step` every `dt` of simulated time at `rtf` times real time (0: flat out)."""
+    """Calls `step` every `dt` of simulated time at `rtf` times real time (0: flat out),
+    except while `held` says a client owns time (sync mode), when it only runs the work
+    handed over (the client's calls step the world)."""
 
     def __init__(
         self,
@@ -34,8 +38,10 @@ class SimulationLoop:
         stop: threading.Event,
         max_steps: int | None = None,
         monotonic: Callable[[], float] = time.monotonic,
+        held: Callable[[], bool] = lambda: False,
     ) -> None:
         self._step = step
+        self._held = held
         self._inbox = inbox
         self._dt = dt
         self._rtf = rtf
@@ -51,16 +57,16 @@ class SimulationLoop:
         while not self._stop.is_set():
             if self._max_steps is not None and self.steps >= self._max_steps:
                 return
+            if self._held():
+                self._inbox.wait(IDLE_POLL_S)
+                # Time held by a client is not time the loop fell behind.
+                next_wall = self._monotonic()
+                continue
             self._inbox.drain()
             self._step()
             self.steps += 1
             if self._rtf > 0:
                 next_wall = self._pace(next_wall + self._dt / self._rtf)
-
-    def serve(self) -> None:
-        """Run handed-over work only (sync mode: the client's calls step the world)."""
-        while not self._stop.is_set():
-            self._inbox.wait(IDLE_POLL_S)
 
     def _pace(self, target: float) -> float:
         """Serve the inbox until the wall clock reaches `target`; the next target base."""
@@ -70,10 +76,12 @@ class SimulationLoop:
             self._inbox.wait(remaining)
         if -remaining > MAX_LAG_S:
             self.lag_resets += 1
-            if self.lag_resets == 1:
-                log.warning(
-                    "simulation fell %.2f s behind real time; skipping ahead (logged once)",
-                    -remaining,
-                )
+            throttle.log(
+                logging.WARNING,
+                "lag",
+                "simulation fell %.2f s behind real time; skipping ahead (%d times so far)",
+                -remaining,
+                self.lag_resets,
+            )
             return self._monotonic()
         return target

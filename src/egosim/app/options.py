@@ -3,14 +3,9 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from enum import Enum
 from pathlib import Path
 
-
-class ClockMode(Enum):
-    REAL = "real"  # headers carry wall time; the world advances in real time
-    SIM = "sim"  # /clock published, /use_sim_time set, run at --rtf (0: as fast as possible)
-    SYNC = "sync"  # the client steps the world through the SyncMode services
+from ..bridge.clock import ClockMode
 
 
 @dataclass(frozen=True)

@@ -8,26 +8,17 @@ import sys
 import threading
 from pathlib import Path
 
-from ..bridge.bindings import HANDLERS
-from ..bridge.context import BridgeContext
-from ..bridge.control_modes import drive_autopilots
-from ..bridge.core import Bridge
+from ..bridge import HANDLERS, Bridge, ClockMode, simulation_context
 from ..bridge.network import load_network_settings
-from ..bridge.releases import CANONICAL_PROFILE
-from ..bridge.replay_rows import advance_replay, replay_topics
-from ..bridge.sensor_rig import SensorRig
-from ..bridge.sync_mode import SyncSession
 from ..maps import MapLoadError, load_map
-from ..msgs import get_profile
 from ..replay import RecorderError
 from ..ros1 import Node, Ros1Error
 from ..world import World
 from ..world.scenario import ScenarioError, load_default_scenario, parse_scenario
 from ..yamltext import YamlFileError
-from .clock import HeaderClock
 from .inbox import Inbox
 from .loop import SimulationLoop
-from .options import ClockMode, RunOptions
+from .options import RunOptions
 from .recording import TopicRecorder, open_recorder
 from .signals import stop_on_signals
 
@@ -78,8 +69,6 @@ def run(options: RunOptions) -> int:
 
 
 def _run(options: RunOptions) -> int:
-    # Messages are built in the newest release; peers of others get them converted.
-    profile = get_profile(CANONICAL_PROFILE)
     world = build_world(options)
     try:
         settings = load_network_settings(
@@ -87,7 +76,6 @@ def _run(options: RunOptions) -> int:
         )
     except (OSError, YamlFileError) as error:
         raise StartupError(f"network settings: {error}") from error
-    world.command_timeout_s = settings.command_timeout_s
 
     recorder = None
     if options.record is not None:
@@ -106,24 +94,20 @@ def _run(options: RunOptions) -> int:
             raise StartupError(reason, EXIT_ROS_FAILED) from error
         node.on_shutdown(lambda reason: stop.set())
         inbox = Inbox()
-        clock = HeaderClock(options.clock, world)
-        context = BridgeContext(
-            profile,
+        # Messages are built in the newest release; peers of others get them converted.
+        bridge = Bridge(node, settings, HANDLERS, inbox, options.protocol)
+        context = simulation_context(
             world,
-            clock,
+            settings=settings,
+            clock_mode=options.clock,
             data_roots=options.data_roots or (Path.cwd(),),
-            sensors=SensorRig(settings.sensors, world.map.georef),
-            sync=SyncSession() if options.clock is ClockMode.SYNC else None,
-            publishes_clock=options.clock is not ClockMode.REAL,
-            replay_topics=replay_topics(settings),
+            bridge=bridge,
+            hold_output=node.holding_output,
         )
-        bridge = Bridge(node, settings, HANDLERS, context, inbox, options.protocol)
-        context.open_row = bridge.open_row
-        context.holding_output = node.holding_output
         if recorder is not None:
             bridge.taps.append(recorder.tap())
         try:
-            bridge.open()
+            bridge.open(context)
             if options.clock is not ClockMode.REAL:
                 node.set_param("/use_sim_time", True)
         except (OSError, Ros1Error) as error:
@@ -133,28 +117,20 @@ def _run(options: RunOptions) -> int:
         log.info("egosim up: map %s, master %s", world.map.name, node.master_uri)
         print("egosim: ready", flush=True)
 
-        loop_time = 0.0
-
-        def step(dt: float = options.physics_dt) -> None:
-            # Publishing runs on loop time, which advances while the world is paused.
-            nonlocal loop_time
-            advance_replay(context, dt)
-            drive_autopilots(context)
-            world.step(dt)
-            clock.tick()
-            loop_time += dt
-            bridge.publish_due(loop_time)
-
-        context.step = step
         max_steps = None
         if options.duration is not None:
             max_steps = round(options.duration / options.physics_dt)
-        loop = SimulationLoop(step, inbox, options.physics_dt, options.rtf, stop, max_steps)
+        loop = SimulationLoop(
+            lambda: context.tick(options.physics_dt),
+            inbox,
+            options.physics_dt,
+            options.rtf,
+            stop,
+            max_steps,
+            held=lambda: context.sync.holds_time,
+        )
         try:
-            if options.clock is ClockMode.SYNC:
-                loop.serve()
-            else:
-                loop.run()
+            loop.run()
         finally:
             inbox.close()
             node.shutdown("egosim stopping")

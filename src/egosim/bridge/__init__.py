@@ -1,0 +1,97 @@
+"""The MORAI protocol: the topic/service table, its handlers, and the tick pipeline.
+
+`simulation_context` builds what the handlers see; a `Bridge` binds the table's rows
+to a ROS node; `context.tick(dt)` advances the simulation through the pipeline::
+
+    bridge = Bridge(node, settings, HANDLERS, inbox)
+    context = simulation_context(world, settings=settings, bridge=bridge)
+    bridge.open(context)
+    context.tick(0.01)          # replay, autopilots, world, clock, publish
+
+Without a node (tests, benchmarks), leave `bridge` out: the pipeline has no publish
+stage and handlers can be called directly with `context.row(key)`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from contextlib import AbstractContextManager, nullcontext
+from pathlib import Path
+
+from ..msgs import get_profile
+from ..replay import ReplaySession
+from ..world import World
+from .bindings import HANDLERS
+from .clock import ClockMode, HeaderClock
+from .codes import ControlMode
+from .context import BridgeContext, SessionState
+from .core import Bridge, Handlers, Tap
+from .network import NetworkSettings, default_network_settings, load_network_settings
+from .pipeline import Stage, Tick, TickPipeline
+from .releases import CANONICAL_PROFILE
+from .replay_rows import replay_topics
+from .sensor_rig import SensorRig
+from .stages import standard_pipeline
+from .sync_session import SyncSession
+from .table import Direction, Row
+
+__all__ = [
+    "CANONICAL_PROFILE",
+    "HANDLERS",
+    "Bridge",
+    "BridgeContext",
+    "ClockMode",
+    "ControlMode",
+    "Direction",
+    "Handlers",
+    "HeaderClock",
+    "NetworkSettings",
+    "Row",
+    "SessionState",
+    "Stage",
+    "SyncSession",
+    "Tap",
+    "Tick",
+    "TickPipeline",
+    "default_network_settings",
+    "load_network_settings",
+    "simulation_context",
+    "standard_pipeline",
+]
+
+
+def simulation_context(
+    world: World,
+    *,
+    settings: NetworkSettings | None = None,
+    clock_mode: ClockMode = ClockMode.SIM,
+    data_roots: Sequence[Path] = (),
+    bridge: Bridge | None = None,
+    hold_output: Callable[[], AbstractContextManager[None]] = nullcontext,
+    wall_clock: Callable[[], float] | None = None,
+) -> BridgeContext:
+    """Everything the row handlers need around `world`, with the standard tick pipeline.
+
+    With a `bridge` (bound to a ROS node) the pipeline publishes and additional egos'
+    rows open at run time; without one, the simulation runs in-process.
+    """
+    settings = settings or default_network_settings()
+    world.command_timeout_s = settings.command_timeout_s
+    clock = (
+        HeaderClock(clock_mode, world)
+        if wall_clock is None
+        else HeaderClock(clock_mode, world, wall_clock)
+    )
+    return BridgeContext(
+        profile=get_profile(CANONICAL_PROFILE),
+        world=world,
+        clock=clock,
+        pipeline=standard_pipeline(bridge),
+        settings=settings,
+        sensors=SensorRig(settings.sensors, world.map.georef),
+        replay=ReplaySession(data_roots, profile=CANONICAL_PROFILE, topics=replay_topics(settings)),
+        sync=SyncSession(awaiting_client=clock_mode is ClockMode.SYNC),
+        data_roots=tuple(data_roots),
+        rows=bridge,
+        hold_output=hold_output,
+    )

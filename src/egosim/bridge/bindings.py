@@ -71,4 +71,9 @@ HANDLERS = Handlers(
     release_adapters={
         ("sync_mode_wait_for_tick", "2021.08"): sync_mode.apply_tick_command,
     },
+    preparers={
+        "scenario_load": scenarios.prepare_scenario,
+        "scenario_load_srv": scenarios.prepare_scenario_service,
+        "sync_mode_scenario_load": scenarios.prepare_scenario_service,
+    },
 )

@@ -1,5 +1,9 @@
-"""What every row handler sees: the world, the message profile, the clock, and the
-simulator-side state the protocol adds to the world (lamps, control modes, ...)."""
+"""What every row handler sees: the world and the simulator's dependencies (message
+profile, clock, tick pipeline, sensors, replay, sync mode), given at construction, and
+the session state the protocol adds to the world (control modes, lamps, ...).
+
+Build one with `egosim.bridge.simulation_context`.
+"""
 
 from __future__ import annotations
 
@@ -8,27 +12,39 @@ from collections.abc import Callable
 from contextlib import AbstractContextManager, nullcontext
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
+from ..logthrottle import LogThrottle
 from ..msgs import Profile
-from ..replay import DEFAULT_TOPICS, ReplaySession, ReplayTopics
+from ..replay import ReplaySession
 from ..world import World
+from .clock import HeaderClock
+from .codes import ControlMode
 from .messages import header
+from .network import NetworkSettings
+from .pipeline import Tick, TickPipeline
+from .sensor_rig import SensorRig
+from .sync_session import SyncSession
+from .table import Row
 
 if TYPE_CHECKING:
     from ..world.traffic.autopilot import LaneAutopilot
-    from .sensor_rig import SensorRig
-    from .sync_mode import SyncSession
 
 log = logging.getLogger(__name__)
+throttle = LogThrottle(log)
 
 MAP_FRAME = "map"
 
-# EventInfo.ctrl_mode codes.
-CTRL_MODE_KEYBOARD = 1
-CTRL_MODE_GAMEPAD = 2
-CTRL_MODE_EXTERNAL = 3
-CTRL_MODE_AUTO = 4
+# (context, row, ...) handlers opened at run time, e.g. the topics of an added ego.
+RowHandler = Callable[..., Any]
+
+
+class RowOpener(Protocol):
+    """Opens a topic row of the table under a namespace at run time (Bridge.open_row)."""
+
+    def open_row(
+        self, key: str, namespace: str, handler: RowHandler
+    ) -> Callable[[], None] | None: ...
 
 
 @dataclass
@@ -43,71 +59,80 @@ class Lamps:
 class EgoSettings:
     """Per-ego settings set through the protocol rather than by physics."""
 
-    ctrl_mode: int = CTRL_MODE_EXTERNAL
+    ctrl_mode: ControlMode = ControlMode.EXTERNAL
     lamps: Lamps = field(default_factory=Lamps)
+
+
+@dataclass
+class SessionState:
+    """What the protocol has set during this run, beside the world's own state."""
+
+    camera_index: int = 0
+    """The ego /Ego_topic reports (MultiEgoSetting.camera_index)."""
+    ego_settings: dict[int, EgoSettings] = field(default_factory=dict)
+    """Control mode and lamps of each ego, by unique id."""
+    reported: dict[str, int] = field(default_factory=dict)
+    """How many entries of each world log a publisher has already reported."""
+    autopilots: dict[int, LaneAutopilot] = field(default_factory=dict)
+    """The autopilot of each ego in control mode auto, by unique id."""
+    ego_rows: dict[int, list[Callable[[], None]]] = field(default_factory=dict)
+    """What closes the namespaced topics of each additional ego, by unique id."""
 
 
 @dataclass
 class BridgeContext:
     profile: Profile
+    """The release handlers build and read (the newest; releases.py converts)."""
     world: World
-    stamp: Callable[[], float]
-    """The simulator's clock for headers (s): wall time, or sim time with --clock sim/sync."""
+    clock: HeaderClock
+    """The simulator's clock for headers: wall time, or sim time with --clock sim/sync."""
+    pipeline: TickPipeline[BridgeContext]
+    """What one tick does (bridge/stages.py); sync mode ticks through it."""
+    settings: NetworkSettings
+    """The effective protocol table: row names, rates, the ego's command input."""
+    sensors: SensorRig
+    """The main ego's GPS, IMU and LiDAR, as the network settings configure them."""
+    replay: ReplaySession
+    """The rosbag replay system behind /Morai_SimProc; bags resolve in data_roots."""
+    sync: SyncSession
+    """Synchronous mode: whether a client owns time, the frame, requests kept for later."""
     data_roots: tuple[Path, ...] = ()
     """Where file names from the network (scenarios, bags, sensor data) resolve."""
-    camera_index: int = 0
-    """The ego /Ego_topic reports (MultiEgoSetting.camera_index)."""
-    ego_settings: dict[int, EgoSettings] = field(default_factory=dict)
-    reported: dict[str, int] = field(default_factory=dict)
-    """How many entries of each world log a publisher has already reported."""
-    warned: set[str] = field(default_factory=set)
-    """Warnings already logged, so repeated bad input is reported once."""
-    step: Callable[[float], None] | None = None
-    """Advance the world one step of the given dt (s) and publish what is due (set by the
-    app; the sync-mode services call it)."""
-    sensors: SensorRig | None = None
-    """The main ego's GPS, IMU and LiDAR (set by the app from the network settings)."""
-    sync: SyncSession | None = None
-    """Synchronous-mode state; None unless the run uses --clock sync."""
-    publishes_clock: bool = False
-    """Headers carry simulation time and /clock is published (--clock sim and sync)."""
-    replay_topics: ReplayTopics = DEFAULT_TOPICS
-    """Where a replayed bag holds the ego, object and command rows."""
-    autopilots: dict[int, LaneAutopilot] = field(default_factory=dict)
-    """The autopilot of each ego in control mode auto, by unique id."""
-    open_row: Callable[[str, str, Callable[..., Any]], Callable[[], None] | None] | None = None
-    """(row key, namespace, handler): open a topic row under a namespace at run time;
-    returns what closes it, None if the row is disabled (set by the app: Bridge.open_row)."""
-    holding_output: Callable[[], AbstractContextManager[None]] = nullcontext
-    """A block whose topic output reaches subscribers as one burst when it ends (set by
-    the app: Node.holding_output); sync mode ticks a WaitForTick's frames inside one."""
-    ego_rows: dict[int, list[Callable[[], None]]] = field(default_factory=dict)
-    """What closes the namespaced topics of each additional ego, by unique id."""
-    replay: ReplaySession = field(init=False)
-    """The rosbag replay system behind /Morai_SimProc; bags resolve in data_roots."""
+    rows: RowOpener | None = None
+    """Opens rows at run time (the bridge); None in-process, without a ROS node."""
+    hold_output: Callable[[], AbstractContextManager[None]] = nullcontext
+    """A block whose topic output reaches subscribers as one burst when it ends
+    (Node.holding_output); sync mode ticks a WaitForTick's frames inside one."""
+    session: SessionState = field(default_factory=SessionState)
 
-    def __post_init__(self) -> None:
-        self.replay = ReplaySession(
-            self.data_roots, profile=self.profile.name, topics=self.replay_topics
-        )
+    def tick(self, dt: float) -> Tick:
+        """Advance the simulation one tick of `dt` s through the pipeline."""
+        return self.pipeline.run(self, dt)
+
+    def row(self, key: str) -> Row:
+        """The effective row `key` of the protocol table (its name and rate in use)."""
+        return self.settings.row(key)
+
+    def stamp(self) -> float:
+        """The header stamp of this tick, s."""
+        return self.clock()
 
     def header(self, frame_id: str = MAP_FRAME) -> Any:
         return header(self.profile, self.stamp(), frame_id)
 
-    def warn_once(self, key: str, text: str) -> None:
-        """Log `text` the first time `key` comes up, so a 50 Hz stream of the same bad
-        input does not flood the log."""
-        if key not in self.warned:
-            self.warned.add(key)
-            log.warning(text)
+    def warn_throttled(self, key: str, text: str) -> None:
+        """Log `text` when `key` comes up, at most once per window with a count of the
+        rest, so a 50 Hz stream of the same bad input does not flood the log."""
+        throttle.log(logging.WARNING, key, "%s", text)
 
     def settings_of(self, unique_id: int) -> EgoSettings:
-        return self.ego_settings.setdefault(unique_id, EgoSettings())
+        return self.session.ego_settings.setdefault(unique_id, EgoSettings())
 
     def unreported(self, log_name: str, entries: list[Any]) -> list[Any]:
         """Entries of a growing world log not yet published (all of them after a reset)."""
-        done = self.reported.get(log_name, 0)
+        reported = self.session.reported
+        done = reported.get(log_name, 0)
         if done > len(entries):
             done = 0
-        self.reported[log_name] = len(entries)
+        reported[log_name] = len(entries)
         return entries[done:]

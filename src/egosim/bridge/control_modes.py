@@ -15,13 +15,14 @@ from ..world.traffic import LightsView
 from ..world.traffic.autopilot import LaneAutopilot
 from ..world.traffic.road_users import lane_occupants_of
 from ..world.vehicle import Vehicle
-from .context import CTRL_MODE_AUTO, BridgeContext
+from .codes import ControlMode
+from .context import BridgeContext
 
 
-def switch_ctrl_mode(context: BridgeContext, ego: Ego, mode: int) -> None:
+def switch_ctrl_mode(context: BridgeContext, ego: Ego, mode: ControlMode) -> None:
     """Put `ego` in control mode `mode`; a change releases the command in force."""
     settings = context.settings_of(ego.unique_id)
-    if settings.ctrl_mode != mode:
+    if settings.ctrl_mode is not mode:
         settings.ctrl_mode = mode
         ego.vehicle.release_command()
 
@@ -36,20 +37,21 @@ def drive_autopilots(context: BridgeContext) -> None:
     auto = [
         ego
         for ego in world.egos
-        if context.settings_of(ego.unique_id).ctrl_mode == CTRL_MODE_AUTO
+        if context.settings_of(ego.unique_id).ctrl_mode is ControlMode.AUTO
         and isinstance(ego.vehicle, Vehicle)
     ]
     driven = {ego.unique_id for ego in auto}
-    for unique_id in set(context.autopilots) - driven:
-        del context.autopilots[unique_id]
+    autopilots = context.session.autopilots
+    for unique_id in set(autopilots) - driven:
+        del autopilots[unique_id]
     if not auto:
         return
     lights = LightsView.of(world.signals)
     objects = world.objects()
     for ego in auto:
-        autopilot = context.autopilots.get(ego.unique_id)
+        autopilot = autopilots.get(ego.unique_id)
         if autopilot is None:
-            autopilot = context.autopilots[ego.unique_id] = LaneAutopilot(world.npcs.graph)
+            autopilot = autopilots[ego.unique_id] = LaneAutopilot(world.npcs.graph)
         others = lane_occupants_of(objects, world.map, but=ego.unique_id)
         vehicle = ego.vehicle
         vehicle.command(autopilot.command(vehicle.model, vehicle.status(), lights, others))

@@ -2,9 +2,11 @@
 
 Each row's behaviour is a handler (bridge/bindings.py): a builder for
 publishers, a message handler for subscribers, a request handler for
-services. Builders run on the loop thread after a step; received messages
-and service requests are decoded on the transport's threads and applied on
-the loop thread through the inbox.
+services; every handler gets the context and its effective row (the name in
+use, under its namespace). Builders run on the loop thread in the tick
+pipeline's publish stage; received messages and service requests are decoded
+on the transport's threads and applied on the loop thread through the loop's
+inbox.
 """
 
 from __future__ import annotations
@@ -12,12 +14,13 @@ from __future__ import annotations
 import logging
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import Any, Protocol, TypeVar
 
-from ..app.inbox import Inbox
+from ..logthrottle import LogThrottle
 from ..msgs import MessageType, MsgsError, get_profile
-from ..ros1 import ConnectionRefusedByPeerError, Node, Publisher, Subscriber
+from ..ros1 import BadRequestError, ConnectionRefusedByPeerError, Node, Publisher, Subscriber
 from ..ros1.types import TopicType
+from .context import BridgeContext
 from .network import NetworkSettings
 from .releases import (
     CANONICAL_PROFILE,
@@ -33,13 +36,30 @@ from .releases import (
 from .table import Direction, Row
 
 log = logging.getLogger(__name__)
+throttle = LogThrottle(log)
 
-# (context) -> a message, several, or None when there is nothing to say
-Builder = Callable[[Any], Any | Sequence[Any] | None]
-MessageHandler = Callable[[Any, Any], None]  # (context, message)
+T = TypeVar("T")
+
+# (context, row) -> a message, several, or None when there is nothing to say
+Builder = Callable[[BridgeContext, Row], Any | Sequence[Any] | None]
+MessageHandler = Callable[[BridgeContext, Row, Any], None]  # (context, row, message)
 # (topic, message type, serialized bytes, stamp s): sees every message sent or received
 Tap = Callable[[str, MessageType, bytes, float], None]
-RequestHandler = Callable[[Any, Any], Any]  # (context, request) -> response
+RequestHandler = Callable[[BridgeContext, Row, Any], Any]  # (context, row, request) -> response
+# (context, row, request as the client sent it): applies a request field only one
+# release has, before the row's handler answers
+ReleaseAdapter = Callable[[BridgeContext, Row, Any], None]
+# (context, row, message or request) -> what the row's handler gets instead: work done on
+# the transport's thread, such as reading a user's file, so the loop never waits on it
+Preparer = Callable[[BridgeContext, Row, Any], Any]
+
+
+class Inbox(Protocol):
+    """Hands work to the simulation loop's thread (app/inbox.py)."""
+
+    def post(self, work: Callable[[], object]) -> None: ...
+
+    def call(self, work: Callable[[], T], timeout: float | None = ...) -> T: ...
 
 
 @dataclass(frozen=True)
@@ -48,8 +68,9 @@ class Handlers:
     subscribers: dict[str, MessageHandler] = field(default_factory=dict)
     services: dict[str, RequestHandler] = field(default_factory=dict)
     # (service row key, release) -> what to do with a request field that only that
-    # release has, before the row's handler answers (the request as the client sent it)
-    release_adapters: dict[tuple[str, str], MessageHandler] = field(default_factory=dict)
+    # release has, before the row's handler answers
+    release_adapters: dict[tuple[str, str], ReleaseAdapter] = field(default_factory=dict)
+    preparers: dict[str, Preparer] = field(default_factory=dict)
 
     def __contains__(self, key: str) -> bool:
         return key in self.publishers or key in self.subscribers or key in self.services
@@ -78,12 +99,13 @@ class Outlet:
 
 
 class Bridge:
+    """The rows of the protocol table bound to a ROS node; `open` binds them to a context."""
+
     def __init__(
         self,
         node: Node,
         settings: NetworkSettings,
         handlers: Handlers,
-        context: Any,
         inbox: Inbox,
         default_release: str = CANONICAL_PROFILE,
     ) -> None:
@@ -91,13 +113,20 @@ class Bridge:
         self.default_release = default_release
         self.settings = settings
         self.handlers = handlers
-        self.context = context
         self.inbox = inbox
         self.outlets: list[Outlet] = []
         self.taps: list[Tap] = []
+        self._context: BridgeContext | None = None
 
-    def open(self) -> None:
-        """Advertise, subscribe and serve every enabled row."""
+    @property
+    def context(self) -> BridgeContext:
+        if self._context is None:
+            raise RuntimeError("the bridge is not open")
+        return self._context
+
+    def open(self, context: BridgeContext) -> None:
+        """Advertise, subscribe and serve every enabled row, handled with `context`."""
+        self._context = context
         for row in self.settings.enabled_rows():
             if row.direction is Direction.PUBLISH:
                 self._advertise(row, self.handlers.publishers[row.key])
@@ -107,7 +136,7 @@ class Bridge:
                 self._serve(row)
 
     def open_row(
-        self, key: str, namespace: str, handler: Builder | MessageHandler
+        self, key: str, namespace: str, handler: Callable[..., Any]
     ) -> Callable[[], None] | None:
         """Advertise or subscribe the topic row `key` under `namespace` at run time (loop
         thread) with `handler`, e.g. the topics of an ego that appears; returns what
@@ -140,7 +169,7 @@ class Bridge:
     def publish(self, outlet: Outlet) -> None:
         if outlet.publisher.num_subscribers == 0 and not self.taps:
             return
-        built = outlet.build(self.context)
+        built = outlet.build(self.context, outlet.row)
         if built is None:
             return
         variants = []
@@ -184,7 +213,9 @@ class Bridge:
             caller = header.get("callerid", "?")
             release = release_for_md5(releases, header.get("md5sum", ""))
             if release is None:
-                log.error(
+                throttle.log(
+                    logging.ERROR,
+                    (row.name, caller, "md5sum"),
                     "%s from %s: md5sum %s is no release of %s; message dropped",
                     row.name,
                     caller,
@@ -197,10 +228,19 @@ class Bridge:
                     release.message_type.deserialize(data), release.message_type, message_type
                 )
             except MsgsError as exc:
-                log.error("%s from %s: %s", row.name, caller, exc)
+                throttle.log(
+                    logging.ERROR,
+                    (row.name, caller, "undecodable"),
+                    "%s from %s: message dropped: %s",
+                    row.name,
+                    caller,
+                    exc,
+                )
                 return
             self._tap(row.name, release.message_type, data)
-            self.inbox.post(lambda: handle(self.context, message))
+            prepare = self.handlers.preparers.get(row.key)
+            prepared = message if prepare is None else prepare(self.context, row, message)
+            self.inbox.post(lambda: handle(self.context, row, prepared))
 
         any_release = TopicType(row.type_name, "*", releases[0].message_type.definition)
         return self.node.subscribe(row.name, any_release, received)
@@ -221,14 +261,19 @@ class Bridge:
         def serve(data: bytes, header: Any) -> bytes:
             release = release_of(header)
             served = release.service_type
-            sent = served.request.deserialize(data)
+            try:
+                sent = served.request.deserialize(data)
+            except MsgsError as exc:
+                raise BadRequestError(f"undecodable {served.request.name}: {exc}") from None
             request = convert(sent, served.request, canonical_type.request)
             adapt = self.handlers.release_adapters.get((row.key, release.profile_name))
+            prepare = self.handlers.preparers.get(row.key)
+            prepared = request if prepare is None else prepare(self.context, row, request)
 
             def answer() -> Any:
                 if adapt is not None:
-                    adapt(self.context, sent)
-                return handle(self.context, request)
+                    adapt(self.context, row, sent)
+                return handle(self.context, row, prepared)
 
             response = self.inbox.call(answer)
             return served.response.serialize(

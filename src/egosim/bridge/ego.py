@@ -13,6 +13,7 @@ from ..world.vehicle import ControlCommand, Vehicle, VehicleStatus
 from .context import BridgeContext
 from .ground_vehicle import commanded_ego
 from .messages import vector3
+from .table import Row
 from .units import deg, heading_deg, mps
 
 WHEEL_SUFFIXES = (
@@ -71,10 +72,11 @@ def control_command(ctrl_cmd: Any) -> ControlCommand:
     )
 
 
-def publish_ego_status(context: BridgeContext) -> Any:
+def publish_ego_status(context: BridgeContext, row: Row) -> Any:
     """/Ego_topic: the ego MultiEgoSetting's camera_index selects (the main ego by default)."""
     world = context.world
-    index = context.camera_index if context.camera_index < len(world.egos) else 0
+    camera_index = context.session.camera_index
+    index = camera_index if camera_index < len(world.egos) else 0
     return ego_status_of(context, index)
 
 
@@ -90,20 +92,21 @@ def ego_status_of(context: BridgeContext, index: int) -> Any:
     )
 
 
-def on_ctrl_cmd(context: BridgeContext, ctrl_cmd: Any) -> None:
+def on_ctrl_cmd(context: BridgeContext, row: Row, ctrl_cmd: Any) -> None:
     """/ctrl_cmd drives the main ego while its control mode is external (EventInfo 3)
     and it is a road vehicle."""
-    drive_with_ctrl_cmd(context, 0, "ctrl_cmd", ctrl_cmd)
+    drive_with_ctrl_cmd(context, row, 0, ctrl_cmd)
 
 
-def drive_with_ctrl_cmd(context: BridgeContext, index: int, row_key: str, ctrl_cmd: Any) -> None:
-    """Hand a CtrlCmd to the ego at `index` if its control mode and kind take it."""
-    ego = commanded_ego(context, index, row_key, Vehicle)
+def drive_with_ctrl_cmd(context: BridgeContext, row: Row, index: int, ctrl_cmd: Any) -> None:
+    """Hand a CtrlCmd received on `row` to the ego at `index` if its control mode and kind
+    take it."""
+    ego = commanded_ego(context, row, index, Vehicle)
     if ego is None:
         return
     verdict = ego.vehicle.command(control_command(ctrl_cmd))
     if not verdict.accepted:
-        context.warn_once(
-            f"{row_key}: {verdict.reason}",
-            f"{row_key} rejected (last valid command kept): {verdict.reason}",
+        context.warn_throttled(
+            f"{row.name}: {verdict.reason}",
+            f"{row.name} rejected (last valid command kept): {verdict.reason}",
         )

@@ -13,8 +13,10 @@ import logging
 from typing import Any
 
 from ..world.vehicle import Gear
+from .codes import ControlMode
 from .context import BridgeContext, Lamps
 from .control_modes import switch_ctrl_mode
+from .table import Row
 
 log = logging.getLogger(__name__)
 
@@ -23,43 +25,47 @@ OPTION_GEAR = 0x02 | 0x10
 OPTION_LAMPS = 0x04
 OPTION_SET_PAUSE = 0x08
 GEAR_NO_CHANGE = -1
-CTRL_MODES = (1, 2, 3, 4)
 
 
-def apply_lamps(lamps: Lamps, message: Any) -> None:
+def apply_lamps(lamps: Lamps, message: Any, source: str) -> None:
+    """Set `lamps` from a morai_msgs/Lamps received on `source` (a row's name)."""
     if message.turnSignal in (0, 1, 2):
         lamps.turn_signal = int(message.turnSignal)
     else:
-        log.warning("lamps: turnSignal %s is not 0, 1 or 2; ignored", message.turnSignal)
+        log.warning("%s: turnSignal %s is not 0, 1 or 2; ignored", source, message.turnSignal)
     if message.emergencySignal in (0, 1):
         lamps.emergency = int(message.emergencySignal)
     else:
-        log.warning("lamps: emergencySignal %s is not 0 or 1; ignored", message.emergencySignal)
+        log.warning(
+            "%s: emergencySignal %s is not 0 or 1; ignored", source, message.emergencySignal
+        )
 
 
-def on_lamps(context: BridgeContext, message: Any) -> None:
+def on_lamps(context: BridgeContext, row: Row, message: Any) -> None:
     """/lamps: the main ego's turn and emergency lamps."""
-    apply_lamps(context.settings_of(context.world.egos[0].unique_id).lamps, message)
+    apply_lamps(context.settings_of(context.world.egos[0].unique_id).lamps, message, row.name)
 
 
-def serve_event_cmd(context: BridgeContext, request: Any) -> Any:
+def serve_event_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
     """/Service_MoraiEventCmd: apply the selected parts; answer with the resulting state."""
     event = request.request
     ego = context.world.egos[0]
     settings = context.settings_of(ego.unique_id)
     option = int(event.option) & 0xFF
     if option & OPTION_CTRL_MODE:
-        if event.ctrl_mode in CTRL_MODES:
-            switch_ctrl_mode(context, ego, int(event.ctrl_mode))
+        try:
+            mode = ControlMode(int(event.ctrl_mode))
+        except ValueError:
+            log.warning("%s: ctrl_mode %s is not 1..4; ignored", row.name, event.ctrl_mode)
         else:
-            log.warning("EventCmd: ctrl_mode %s is not 1..4; ignored", event.ctrl_mode)
+            switch_ctrl_mode(context, ego, mode)
     if option & OPTION_GEAR and event.gear != GEAR_NO_CHANGE:
         try:
             ego.vehicle.set_gear(Gear(int(event.gear)))
         except ValueError:
-            log.warning("EventCmd: gear %s is not -1 or 1..4; ignored", event.gear)
+            log.warning("%s: gear %s is not -1 or 1..4; ignored", row.name, event.gear)
     if option & OPTION_LAMPS:
-        apply_lamps(settings.lamps, event.lamps)
+        apply_lamps(settings.lamps, event.lamps, row.name)
     if option & OPTION_SET_PAUSE:
         context.world.paused = bool(event.set_pause)
     profile = context.profile
@@ -70,7 +76,7 @@ def serve_event_cmd(context: BridgeContext, request: Any) -> Any:
     )
     state = profile.message("morai_msgs/EventInfo").new(
         option=event.option,
-        ctrl_mode=settings.ctrl_mode,
+        ctrl_mode=int(settings.ctrl_mode),
         gear=int(ego.vehicle.gear),
         lamps=lamps,
         set_pause=context.world.paused,

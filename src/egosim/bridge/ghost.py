@@ -29,6 +29,7 @@ from ..world.vehicle import (
 )
 from .context import BridgeContext
 from .ground_vehicle import commanded_main_ego
+from .table import Row
 from .units import mps, rad
 
 log = logging.getLogger(__name__)
@@ -38,18 +39,18 @@ def _finite(*values: float) -> bool:
     return all(math.isfinite(v) for v in values)
 
 
-def on_ghost_ctrl_cmd(context: BridgeContext, message: Any) -> None:
+def on_ghost_ctrl_cmd(context: BridgeContext, row: Row, message: Any) -> None:
     """/ghost_ctrl_cmd: teleport the main ego while its control mode is external."""
-    ego = commanded_main_ego(context, "ghost_ctrl_cmd", Vehicle)
+    ego = commanded_main_ego(context, row, Vehicle)
     if ego is None:
         return
     position, rotation = message.position, message.rotation
     values = (position.x, position.y, position.z, rotation.x, rotation.y, rotation.z)
     if not _finite(*values, message.velocity, message.steering_angle):
-        log.error("/ghost_ctrl_cmd ignored: a non-finite position, rotation, speed or angle")
+        log.error("%s ignored: a non-finite position, rotation, speed or angle", row.name)
         return
     if message.velocity < 0.0:
-        log.error("/ghost_ctrl_cmd ignored: velocity %s km/h is negative", message.velocity)
+        log.error("%s ignored: velocity %s km/h is negative", row.name, message.velocity)
         return
     pose = Pose(position.x, position.y, position.z, *(rad(a) for a in values[3:]))
     speed, steer = mps(message.velocity), rad(message.steering_angle)
@@ -59,28 +60,30 @@ def on_ghost_ctrl_cmd(context: BridgeContext, message: Any) -> None:
     )
 
 
-def on_npc_ghost(context: BridgeContext, message: Any) -> None:
+def on_npc_ghost(context: BridgeContext, row: Row, message: Any) -> None:
     """/NpcGhost_Topic: place the listed NPCs; bad entries are logged and skipped."""
     world = context.world
     simulated = dict(zip((int(i) for i in world.npcs.unique_ids), world.npcs.names, strict=True))
     placements = []
     for info in message.npc_list:
-        placement = _placement(info, simulated, world.npc_ghosts)
+        placement = _placement(row, info, simulated, world.npc_ghosts)
         if placement is not None:
             placements.append(placement)
     for unique_id in world.place_npc_ghosts(placements):
-        log.error("NpcGhostCmd: unique_id %d belongs to an ego, pedestrian or obstacle", unique_id)
+        log.error("%s: unique_id %d belongs to an ego, pedestrian or obstacle", row.name, unique_id)
 
 
-def _placement(info: Any, simulated: dict[int, str], ghosts: NpcGhosts) -> GhostPlacement | None:
+def _placement(
+    row: Row, info: Any, simulated: dict[int, str], ghosts: NpcGhosts
+) -> GhostPlacement | None:
     unique_id = int(info.unique_id)
     position, rpy = info.position, info.rpy
     values = (position.x, position.y, position.z, rpy.z, info.vehicle_speed, info.steering_angle)
     if not _finite(*values):
-        log.error("NpcGhostCmd: NPC %d has a non-finite position, angle or speed", unique_id)
+        log.error("%s: NPC %d has a non-finite position, angle or speed", row.name, unique_id)
         return None
     if info.turn_signal not in TurnSignal.__members__.values():
-        log.error("NpcGhostCmd: NPC %d turn_signal %s is not 0..3", unique_id, info.turn_signal)
+        log.error("%s: NPC %d turn_signal %s is not 0..3", row.name, unique_id, info.turn_signal)
         return None
     if unique_id in ghosts:
         model = ghosts.get(unique_id).model
@@ -90,7 +93,7 @@ def _placement(info: Any, simulated: dict[int, str], ghosts: NpcGhosts) -> Ghost
         try:
             model = vehicle_model(name)
         except UnknownVehicleModelError as error:
-            log.error("NpcGhostCmd: NPC %d not spawned: %s", unique_id, error)
+            log.error("%s: NPC %d not spawned: %s", row.name, unique_id, error)
             return None
     return GhostPlacement(
         unique_id,

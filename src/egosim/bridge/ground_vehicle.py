@@ -17,7 +17,9 @@ from ..world.vehicle import (
     SkidSteerVehicle,
     Vehicle,
 )
-from .context import CTRL_MODE_EXTERNAL, BridgeContext
+from .codes import ControlMode
+from .context import BridgeContext
+from .table import Row
 
 # GVDirectCmd.steerType (the protocol document's "Table 1" is missing; these are egosim's).
 STEER_TYPE_SKID = 0  # throttle and skidSteering drive the two sides
@@ -29,24 +31,24 @@ LAT_CTRL_STEER_ANGLES = 1  # targetSteerAngle[]: as STEER_TYPE_WHEEL_ANGLES, uns
 
 
 def commanded_main_ego(
-    context: BridgeContext, row_key: str, kind: type[Vehicle] | type[SkidSteerVehicle]
+    context: BridgeContext, row: Row, kind: type[Vehicle] | type[SkidSteerVehicle]
 ) -> Ego | None:
-    """The main ego when a command of row `row_key` may drive it: its control mode is
-    external (EventInfo 3) and its vehicle is of `kind`; None otherwise."""
-    return commanded_ego(context, 0, row_key, kind)
+    """The main ego when a command of `row` may drive it: its control mode is external
+    (EventInfo 3) and its vehicle is of `kind`; None otherwise."""
+    return commanded_ego(context, row, 0, kind)
 
 
 def commanded_ego(
-    context: BridgeContext, index: int, row_key: str, kind: type[Vehicle] | type[SkidSteerVehicle]
+    context: BridgeContext, row: Row, index: int, kind: type[Vehicle] | type[SkidSteerVehicle]
 ) -> Ego | None:
     """commanded_main_ego for the ego at `index` of the world's egos."""
     ego = context.world.egos[index]
-    if context.settings_of(ego.unique_id).ctrl_mode != CTRL_MODE_EXTERNAL:
+    if context.settings_of(ego.unique_id).ctrl_mode is not ControlMode.EXTERNAL:
         return None
     if not isinstance(ego.vehicle, kind):
-        context.warn_once(
-            f"{row_key}: kind",
-            f"{row_key} ignored: the ego's model {ego.vehicle.model.name} does not take it "
+        context.warn_throttled(
+            f"{row.name}: kind",
+            f"{row.name} ignored: the ego's model {ego.vehicle.model.name} does not take it "
             f"(ground vehicle models take webot_cmd, gv_direct_cmd, gv_state_cmd; "
             f"road vehicles take ctrl_cmd)",
         )
@@ -55,31 +57,31 @@ def commanded_ego(
 
 
 def _drive(
-    context: BridgeContext, row_key: str, command: SideEffortCommand | BodyVelocityCommand
+    context: BridgeContext, row: Row, command: SideEffortCommand | BodyVelocityCommand
 ) -> None:
-    ego = commanded_main_ego(context, row_key, SkidSteerVehicle)
+    ego = commanded_main_ego(context, row, SkidSteerVehicle)
     if ego is None:
         return
     verdict = ego.vehicle.command(command)
     if not verdict.accepted:
-        context.warn_once(
-            f"{row_key}: {verdict.reason}",
-            f"{row_key} rejected (last valid command kept): {verdict.reason}",
+        context.warn_throttled(
+            f"{row.name}: {verdict.reason}",
+            f"{row.name} rejected (last valid command kept): {verdict.reason}",
         )
 
 
-def on_gv_direct_cmd(context: BridgeContext, message: Any) -> None:
+def on_gv_direct_cmd(context: BridgeContext, row: Row, message: Any) -> None:
     """/gv_direct_cmd: throttle, skid steering and brake of the two sides (steerType 0)."""
     if message.steerType != STEER_TYPE_SKID:
-        context.warn_once(
-            f"gv_direct_cmd: steerType {message.steerType}",
-            f"gv_direct_cmd ignored: steerType {message.steerType} is not supported "
+        context.warn_throttled(
+            f"{row.name}: steerType {message.steerType}",
+            f"{row.name} ignored: steerType {message.steerType} is not supported "
             f"(0 skid steering; 1 wheel steering angles needs steered wheels)",
         )
         return
     _drive(
         context,
-        "gv_direct_cmd",
+        row,
         SideEffortCommand(
             throttle=float(message.throttle),
             skid_steering=float(message.skidSteering),
@@ -88,18 +90,18 @@ def on_gv_direct_cmd(context: BridgeContext, message: Any) -> None:
     )
 
 
-def on_gv_state_cmd(context: BridgeContext, message: Any) -> None:
+def on_gv_state_cmd(context: BridgeContext, row: Row, message: Any) -> None:
     """/gv_state_cmd: target forward speed (m/s) and yaw rate (rad/s) (latCtrlType 0)."""
     if message.latCtrlType != LAT_CTRL_ANGULAR_VELOCITY:
-        context.warn_once(
-            f"gv_state_cmd: latCtrlType {message.latCtrlType}",
-            f"gv_state_cmd ignored: latCtrlType {message.latCtrlType} is not supported "
+        context.warn_throttled(
+            f"{row.name}: latCtrlType {message.latCtrlType}",
+            f"{row.name} ignored: latCtrlType {message.latCtrlType} is not supported "
             f"(0 angular velocity; 1 steering angles needs steered wheels)",
         )
         return
     _drive(
         context,
-        "gv_state_cmd",
+        row,
         BodyVelocityCommand(
             linear=float(message.targetLongitudinalVelocity),
             angular=float(message.targetAngularVelocity),
@@ -107,11 +109,11 @@ def on_gv_state_cmd(context: BridgeContext, message: Any) -> None:
     )
 
 
-def on_webot_cmd(context: BridgeContext, twist: Any) -> None:
+def on_webot_cmd(context: BridgeContext, row: Row, twist: Any) -> None:
     """/commands/vel: linear.x (m/s) and angular.z (rad/s); a ground vehicle has no other
     degrees of freedom, so the other components are not read."""
     _drive(
         context,
-        "webot_cmd",
+        row,
         BodyVelocityCommand(linear=float(twist.linear.x), angular=float(twist.angular.z)),
     )

@@ -14,6 +14,7 @@ from typing import Any
 
 from ..world.signals import OFF, SignalError
 from .context import BridgeContext
+from .table import Row
 
 log = logging.getLogger(__name__)
 
@@ -23,9 +24,9 @@ def tl_info_status(aspect: int) -> int:
     return aspect
 
 
-def publish_traffic_light_status(context: BridgeContext) -> Any:
+def publish_traffic_light_status(context: BridgeContext, row: Row) -> Any:
     """/GetTrafficLightStatus: the light governing the lane ahead of the ego, else the nearest."""
-    light = context.world.ego_traffic_light(context.camera_index)
+    light = context.world.ego_traffic_light(context.session.camera_index)
     if light is None:
         return None
     return context.profile.message("morai_msgs/GetTrafficLightStatus").new(
@@ -36,7 +37,7 @@ def publish_traffic_light_status(context: BridgeContext) -> Any:
     )
 
 
-def publish_intersection_status(context: BridgeContext) -> list[Any]:
+def publish_intersection_status(context: BridgeContext, row: Row) -> list[Any]:
     """/InsnStatus: one message per signalised intersection, in index order, each period."""
     message = context.profile.message("morai_msgs/IntersectionStatus")
     return [
@@ -52,15 +53,15 @@ def publish_intersection_status(context: BridgeContext) -> list[Any]:
     ]
 
 
-def on_set_traffic_light(context: BridgeContext, request: Any) -> None:
+def on_set_traffic_light(context: BridgeContext, row: Row, request: Any) -> None:
     """/SetTrafficLight: hold a light's aspect until its intersection is controlled."""
     try:
         context.world.signals.set_light(request.trafficLightIndex, int(request.trafficLightStatus))
     except SignalError as error:
-        log.warning("/SetTrafficLight ignored: %s", error)
+        log.warning("%s ignored: %s", row.name, error)
 
 
-def on_intersection_control(context: BridgeContext, request: Any) -> None:
+def on_intersection_control(context: BridgeContext, row: Row, request: Any) -> None:
     """/InsnControl: jump an intersection to a phase (intersection_status) and a time in it."""
     try:
         context.world.signals.control_intersection(
@@ -69,16 +70,16 @@ def on_intersection_control(context: BridgeContext, request: Any) -> None:
             float(request.intersection_status_time),
         )
     except SignalError as error:
-        log.warning("/InsnControl ignored: %s", error)
+        log.warning("%s ignored: %s", row.name, error)
 
 
-def serve_tl_info(context: BridgeContext, request: Any) -> Any:
+def serve_tl_info(context: BridgeContext, row: Row, request: Any) -> Any:
     """/Morai_TLSrv: the state of any light of the map; an unknown index reads off (-1)."""
     light_id = request.request.idx
     try:
         aspect = context.world.signals.light(light_id).aspect
     except SignalError as error:
-        log.warning("/Morai_TLSrv: %s", error)
+        log.warning("%s: %s", row.name, error)
         aspect = OFF
     return context.profile.message("morai_msgs/MoraiTLInfoSrvResponse").new(
         response=context.profile.message("morai_msgs/MoraiTLInfo").new(

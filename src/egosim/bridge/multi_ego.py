@@ -22,28 +22,19 @@ from collections.abc import Callable
 from typing import Any
 
 from ..world.vehicle import Gear, Pose
-from .context import (
-    CTRL_MODE_AUTO,
-    CTRL_MODE_EXTERNAL,
-    CTRL_MODE_GAMEPAD,
-    CTRL_MODE_KEYBOARD,
-    BridgeContext,
-)
+from .codes import ControlMode
+from .context import BridgeContext, RowOpener
 from .control_modes import switch_ctrl_mode
 from .ego import drive_with_ctrl_cmd, ego_status_of
+from .table import Row
 from .units import mps, rad
 
 log = logging.getLogger(__name__)
 
 # MultiEgoSetting.ctrl_mode: the document's 1 keyboard and 16 auto, and EventInfo's codes
 # (2 gamepad, 3 external, 4 auto), which collide with neither.
-CTRL_MODES = {
-    1: CTRL_MODE_KEYBOARD,
-    2: CTRL_MODE_GAMEPAD,
-    3: CTRL_MODE_EXTERNAL,
-    4: CTRL_MODE_AUTO,
-    16: CTRL_MODE_AUTO,
-}
+MULTI_EGO_AUTO = 16
+CTRL_MODES = {**{int(mode): mode for mode in ControlMode}, MULTI_EGO_AUTO: ControlMode.AUTO}
 # MultiEgoSetting.turn_signal -> Lamps (turnSignal, emergencySignal).
 TURN_SIGNAL_LAMPS = {0: (0, 0), 1: (1, 0), 2: (2, 0), 3: (0, 1)}
 FLOAT_ARRAYS = (
@@ -69,12 +60,12 @@ def ego_namespace(k: int) -> str:
     return f"/ego_{k}"
 
 
-def on_multi_ego_setting(context: BridgeContext, message: Any) -> None:
+def on_multi_ego_setting(context: BridgeContext, row: Row, message: Any) -> None:
     """/ego_setting: check the whole message, then apply it."""
     try:
         entries = _entries(message, len(context.world.egos))
     except SettingError as error:
-        log.error("MultiEgoSetting ignored: %s", error)
+        log.error("%s ignored: %s", row.name, error)
         return
     world = context.world
     world.keep_egos(message.number_of_ego_vehicle)
@@ -83,7 +74,7 @@ def on_multi_ego_setting(context: BridgeContext, message: Any) -> None:
         if k >= len(world.egos):
             world.add_ego(model_name, _pose(entry, None))
         _apply(context, k, entry)
-    context.camera_index = int(message.camera_index)
+    context.session.camera_index = int(message.camera_index)
     _sync_ego_rows(context)
 
 
@@ -167,26 +158,25 @@ def _sync_ego_rows(context: BridgeContext) -> None:
     """Open the namespaced rows of egos that appeared, close those of egos removed."""
     egos = context.world.egos
     present = {ego.unique_id for ego in egos[1:]}
-    for unique_id in set(context.ego_rows) - present:
-        for close in context.ego_rows.pop(unique_id):
+    ego_rows = context.session.ego_rows
+    for unique_id in set(ego_rows) - present:
+        for close in ego_rows.pop(unique_id):
             close()
-    if context.open_row is None:
+    if context.rows is None:
         return
     for k, ego in enumerate(egos[1:], start=1):
-        if ego.unique_id not in context.ego_rows:
-            context.ego_rows[ego.unique_id] = _open_ego_rows(context, k)
+        if ego.unique_id not in ego_rows:
+            ego_rows[ego.unique_id] = _open_ego_rows(context.rows, k)
 
 
-def _open_ego_rows(context: BridgeContext, k: int) -> list[Callable[[], None]]:
-    open_row = context.open_row
-    assert open_row is not None
+def _open_ego_rows(rows: RowOpener, k: int) -> list[Callable[[], None]]:
     namespace = ego_namespace(k)
     closers = [
-        open_row("ego_status", namespace, lambda ctx: ego_status_of(ctx, k)),
-        open_row(
+        rows.open_row("ego_status", namespace, lambda ctx, row: ego_status_of(ctx, k)),
+        rows.open_row(
             "ctrl_cmd",
             namespace,
-            lambda ctx, msg: drive_with_ctrl_cmd(ctx, k, f"{namespace} ctrl_cmd", msg),
+            lambda ctx, row, msg: drive_with_ctrl_cmd(ctx, row, k, msg),
         ),
     ]
     return [close for close in closers if close is not None]

@@ -17,7 +17,7 @@ import re
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from ..yamltext import YamlDocument, parse_yaml
+from ..yamltext import YamlDocument, YamlFileError, parse_yaml
 from .sensor_settings import SensorSettings, parse_sensor_settings
 from .table import DEFAULT_EGO_INPUT, EGO_INPUT_ROWS, ROWS, ROWS_BY_KEY, Direction, Row
 
@@ -118,14 +118,23 @@ def _override(document: YamlDocument, key: Any, value: Any) -> Row:
             raise document.error((*path, "rate_hz"), "only publishers have a rate")
         if isinstance(rate, bool) or not isinstance(rate, int | float):
             raise document.error((*path, "rate_hz"), "expected a number of Hz")
-        if not (math.isfinite(rate) and rate > 0):
-            raise document.error((*path, "rate_hz"), "must be a positive number of Hz")
+        if not (math.isfinite(rate) and 0 < rate <= MAX_RATE_HZ):
+            raise document.error((*path, "rate_hz"), f"must be in 0..{MAX_RATE_HZ:g} Hz (above 0)")
     return replace(row, name=name, enabled=enabled, rate_hz=rate)
+
+
+#: No row publishes faster than this (the physics runs at 100 Hz by default).
+MAX_RATE_HZ = 1000.0
 
 
 def load_network_settings(path: str | None) -> NetworkSettings:
     """The settings of the file at `path`, or the defaults when no file is given."""
     if path is None:
         return default_network_settings()
-    with open(path, encoding="utf-8") as file:
-        return parse_network_settings(file.read(), path)
+    with open(path, "rb") as file:
+        data = file.read()
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise YamlFileError(path, None, "", f"not UTF-8 text ({error.reason})") from None
+    return parse_network_settings(text, path)

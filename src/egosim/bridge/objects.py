@@ -17,6 +17,7 @@ from ..world.collision import VehicleCollision
 from ..world.traffic import ObjectState
 from .context import BridgeContext
 from .messages import vector3
+from .table import Row
 from .units import heading_deg, kmh, swap_length_width
 
 
@@ -41,9 +42,9 @@ def object_status(profile: Profile, state: ObjectState) -> Any:
     )
 
 
-def publish_object_list(context: BridgeContext) -> Any:
+def publish_object_list(context: BridgeContext, row: Row) -> Any:
     """/Object_topic: counts of everything spawned; the N closest objects, closest first."""
-    listing = context.world.object_list(context.camera_index)
+    listing = context.world.object_list(context.session.camera_index)
     profile = context.profile
     return profile.message("morai_msgs/ObjectStatusList").new(
         header=context.header(),
@@ -56,7 +57,7 @@ def publish_object_list(context: BridgeContext) -> Any:
     )
 
 
-def publish_collision(context: BridgeContext) -> Any:
+def publish_collision(context: BridgeContext, row: Row) -> Any:
     """/CollisionData: the main ego's collisions that began since the last message, then
     the objects it still touches (a contact is reported as long as it lasts).
 
@@ -84,7 +85,7 @@ def publish_collision(context: BridgeContext) -> Any:
     )
 
 
-def publish_vehicle_collisions(context: BridgeContext) -> Any:
+def publish_vehicle_collisions(context: BridgeContext, row: Row) -> Any:
     """/VehicleCollisionData: NPC-NPC collisions that began since the last message, then
     the NPC-NPC contacts that last."""
     profile = context.profile

@@ -21,6 +21,7 @@ from .messages import quaternion, time_msg, vector3
 from .network import NetworkSettings
 from .objects import object_status
 from .replayed_scene import recorded_scene, world_objects
+from .table import Row
 from .units import deg
 
 # The yaw rate ReplayInfo reports is the slope of the recorded heading over this span (s).
@@ -50,7 +51,7 @@ def advance_replay(context: BridgeContext, dt: float) -> None:
     show_replay(context)
 
 
-def serve_sim_proc(context: BridgeContext, request: Any) -> Any:
+def serve_sim_proc(context: BridgeContext, row: Row, request: Any) -> Any:
     """/Morai_SimProc: apply the MoraiSimProcHandle; result true only on 0x01 success."""
     received_ns = round(context.stamp() * 1e9)
     result = context.replay.handle(request.request, received_ns=received_ns)
@@ -63,7 +64,7 @@ def serve_sim_proc(context: BridgeContext, request: Any) -> Any:
     )
 
 
-def publish_sim_proc_status(context: BridgeContext) -> Any:
+def publish_sim_proc_status(context: BridgeContext, row: Row) -> Any:
     """/sim/process/state/msg/MoraiSimProcStatus: always, in simulation mode too."""
     status = context.replay.status()
     return context.profile.message("morai_msgs/MoraiSimProcStatus").new(
@@ -75,7 +76,7 @@ def publish_sim_proc_status(context: BridgeContext) -> Any:
     )
 
 
-def publish_replay_info(context: BridgeContext) -> Any | None:
+def publish_replay_info(context: BridgeContext, row: Row) -> Any | None:
     """/ReplayInfo_topic, during replay only: the bag's ego inputs and objects at the
     playback clock, whichever targets are replayed (ReplayInfo describes the bag)."""
     session = context.replay

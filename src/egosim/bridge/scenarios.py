@@ -1,18 +1,23 @@
 """Scenario loading by topic (/ScenarioLoad) and service (/Service_MoraiSL).
 
 ScenarioLoad.file_name comes from the network, so it resolves only inside the
-configured scenario roots (a bare name may omit the .yaml extension).
+configured scenario roots (a bare name may omit the .yaml extension), must be a
+regular file (a named pipe would never finish), and is read and parsed on the
+transport's thread (`prepare_scenario`), so the simulation loop never waits on a
+user's file; the loop only applies the parsed scenario.
 """
 
 from __future__ import annotations
 
 import logging
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..datapaths import PathOutsideRootsError, resolve_in_roots
-from ..world.scenario import ScenarioError, ScenarioLoadOptions, parse_scenario
+from ..datapaths import PathOutsideRootsError, read_regular_file, resolve_in_roots
+from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, parse_scenario
 from .context import BridgeContext
+from .table import Row
 
 log = logging.getLogger(__name__)
 
@@ -21,6 +26,16 @@ SCENARIO_SUFFIXES = ("", ".yaml", ".yml")
 
 class ScenarioRequestError(Exception):
     """A ScenarioLoad request that cannot be honoured; the message says why."""
+
+
+@dataclass(frozen=True)
+class ScenarioRequest:
+    """A ScenarioLoad request with its file read and parsed, or why that failed."""
+
+    request: Any
+    """The ScenarioLoad (or SyncModeScenarioLoad) message."""
+    scenario: Scenario | None
+    error: str = ""
 
 
 def scenario_path(name: str, roots: tuple[Path, ...]) -> Path:
@@ -44,17 +59,38 @@ def load_options(request: Any) -> ScenarioLoadOptions:
     )
 
 
-def load_requested_scenario(context: BridgeContext, request: Any) -> None:
-    """Apply a ScenarioLoad request to the world, or raise ScenarioRequestError."""
+def read_scenario(request: Any, roots: tuple[Path, ...]) -> ScenarioRequest:
+    """Resolve, read and parse the file a ScenarioLoad names (any thread)."""
     try:
-        path = scenario_path(request.file_name, context.data_roots)
-        scenario = parse_scenario(path.read_text(encoding="utf-8"), str(path))
-        report = context.world.load_scenario(scenario, load_options(request))
+        path = scenario_path(request.file_name, roots)
+        text = read_regular_file(path).decode("utf-8")
+        return ScenarioRequest(request, parse_scenario(text, str(path)))
     except (PathOutsideRootsError, OSError, UnicodeDecodeError, ScenarioError) as error:
+        return ScenarioRequest(request, None, f"scenario {request.file_name!r} not loaded: {error}")
+
+
+def prepare_scenario(context: BridgeContext, row: Row, message: Any) -> ScenarioRequest:
+    """The /ScenarioLoad topic's message, read (transport thread)."""
+    return read_scenario(message, context.data_roots)
+
+
+def prepare_scenario_service(context: BridgeContext, row: Row, request: Any) -> ScenarioRequest:
+    """A scenario-loading service's request (its `request` field), read (transport thread)."""
+    return read_scenario(request.request, context.data_roots)
+
+
+def load_requested_scenario(context: BridgeContext, prepared: ScenarioRequest) -> None:
+    """Apply a read ScenarioLoad request to the world, or raise ScenarioRequestError."""
+    if prepared.scenario is None:
+        raise ScenarioRequestError(prepared.error)
+    request = prepared.request
+    try:
+        report = context.world.load_scenario(prepared.scenario, load_options(request))
+    except ScenarioError as error:
         raise ScenarioRequestError(f"scenario {request.file_name!r} not loaded: {error}") from error
     log.info(
         "scenario %s loaded: ego %s, %d NPCs, %d pedestrians, %d obstacles%s",
-        path,
+        prepared.scenario.source.label,
         "placed" if report.ego_placed else "kept",
         report.npcs_spawned,
         report.pedestrians_spawned,
@@ -68,20 +104,20 @@ def load_requested_scenario(context: BridgeContext, request: Any) -> None:
         )
 
 
-def on_scenario_load(context: BridgeContext, request: Any) -> None:
+def on_scenario_load(context: BridgeContext, row: Row, prepared: ScenarioRequest) -> None:
     try:
-        load_requested_scenario(context, request)
+        load_requested_scenario(context, prepared)
     except ScenarioRequestError as error:
-        log.error("/ScenarioLoad: %s", error)
+        log.error("%s: %s", row.name, error)
 
 
-def serve_scenario_load(context: BridgeContext, request: Any) -> Any:
+def serve_scenario_load(context: BridgeContext, row: Row, prepared: ScenarioRequest) -> Any:
     """/Service_MoraiSL: MoraiSrvResponse.result true when the scenario was loaded."""
     try:
-        load_requested_scenario(context, request.request)
+        load_requested_scenario(context, prepared)
         result = True
     except ScenarioRequestError as error:
-        log.error("/Service_MoraiSL: %s", error)
+        log.error("%s: %s", row.name, error)
         result = False
     return context.profile.message("morai_msgs/MoraiScenarioLoadSrvResponse").new(
         response=context.profile.message("morai_msgs/MoraiSrvResponse").new(result=result)

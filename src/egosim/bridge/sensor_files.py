@@ -18,6 +18,7 @@ from typing import Any
 from ..datapaths import PathOutsideRootsError, resolve_in_roots
 from ..sensors import encode_pcd, gps_imu_snapshot
 from .context import BridgeContext
+from .table import Row
 
 log = logging.getLogger(__name__)
 
@@ -70,10 +71,10 @@ def save_sensor_data(context: BridgeContext, request: Any) -> tuple[Path, Path]:
     return cloud_path, readings_path
 
 
-def on_save_sensor_data(context: BridgeContext, request: Any) -> None:
+def on_save_sensor_data(context: BridgeContext, row: Row, request: Any) -> None:
     try:
         cloud_path, readings_path = save_sensor_data(context, request)
     except SaveRequestError as error:
-        log.error("/SaveSensorData: not saved: %s", error)
+        log.error("%s: not saved: %s", row.name, error)
         return
-    log.info("/SaveSensorData: wrote %s and %s", cloud_path, readings_path)
+    log.info("%s: wrote %s and %s", row.name, cloud_path, readings_path)

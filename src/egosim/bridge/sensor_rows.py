@@ -15,48 +15,49 @@ from typing import Any
 from .context import BridgeContext
 from .sensor_messages import gps_message, imu_message, point_cloud, tf_message
 from .sensor_rig import GPS_INDEX, IMU_INDEX, LIDAR_INDEX, finite_mount
+from .table import Row
 
 log = logging.getLogger(__name__)
 
 MOUNT_ARRAYS = ("pose_x", "pose_y", "pose_z", "roll", "pitch", "yaw")
 
 
-def publish_gps(context: BridgeContext) -> Any:
+def publish_gps(context: BridgeContext, row: Row) -> Any:
     rig = context.sensors
     header = context.header(rig.frame_ids[GPS_INDEX])
     return gps_message(context.profile, header, rig.gps_fix(context.world))
 
 
-def publish_imu(context: BridgeContext) -> Any:
+def publish_imu(context: BridgeContext, row: Row) -> Any:
     rig = context.sensors
     header = context.header(rig.frame_ids[IMU_INDEX])
     return imu_message(context.profile, header, rig.imu_reading(context.world))
 
 
-def publish_lidar(context: BridgeContext) -> Any:
+def publish_lidar(context: BridgeContext, row: Row) -> Any:
     rig = context.sensors
     header = context.header(rig.frame_ids[LIDAR_INDEX])
     return point_cloud(context.profile, header, rig.scan(context.world))
 
 
-def publish_tf(context: BridgeContext) -> Any:
+def publish_tf(context: BridgeContext, row: Row) -> Any:
     rig = context.sensors
     return tf_message(context.profile, context.stamp(), rig.transforms(context.world))
 
 
-def on_sensor_pos_control(context: BridgeContext, message: Any) -> None:
+def on_sensor_pos_control(context: BridgeContext, row: Row, message: Any) -> None:
     """/SensorPosControl: parallel arrays; entry k moves sensor `sensor_index[k]` (m, rad)."""
     arrays = [message.sensor_index, *(getattr(message, name) for name in MOUNT_ARRAYS)]
     lengths = {len(array) for array in arrays}
     if len(lengths) != 1:
-        log.error("/SensorPosControl: the 7 arrays differ in length (%s); ignored", sorted(lengths))
+        log.error("%s: the 7 arrays differ in length (%s); ignored", row.name, sorted(lengths))
         return
     for k, index in enumerate(message.sensor_index):
         mount = finite_mount(tuple(float(getattr(message, name)[k]) for name in MOUNT_ARRAYS))
         if mount is None:
-            log.error("/SensorPosControl: sensor %d: pose is not finite; ignored", index)
+            log.error("%s: sensor %d: pose is not finite; ignored", row.name, index)
             continue
         try:
             context.sensors.move(int(index), mount)
         except IndexError as error:
-            log.error("/SensorPosControl: %s; ignored", error)
+            log.error("%s: %s; ignored", row.name, error)

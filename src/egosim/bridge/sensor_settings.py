@@ -56,6 +56,33 @@ LIDAR_FIELDS = (
     "min_range_m",
     "max_range_m",
 )
+# The range of every numeric setting (inclusive; docs/sensors_and_time.md lists them):
+# wide enough for any real sensor, narrow enough that no setting can make the simulator
+# allocate or compute without bound.
+RANGES: dict[str, tuple[float, float]] = {
+    "seed": (0, 2**32 - 1),
+    "x": (-100.0, 100.0),
+    "y": (-100.0, 100.0),
+    "z": (-100.0, 100.0),
+    "roll_deg": (-360.0, 360.0),
+    "pitch_deg": (-360.0, 360.0),
+    "yaw_deg": (-360.0, 360.0),
+    "channels": (1, 256),
+    "min_elevation_deg": (-90.0, 90.0),
+    "max_elevation_deg": (-90.0, 90.0),
+    "horizontal_resolution_deg": (0.05, 360.0),
+    "min_range_m": (0.0, 1000.0),
+    "max_range_m": (0.01, 1000.0),
+    "horizontal_std_m": (0.0, 1000.0),
+    "vertical_std_m": (0.0, 1000.0),
+    "orientation_std_rad": (0.0, 10.0),
+    "angular_velocity_std_rad_s": (0.0, 100.0),
+    "linear_acceleration_std_m_s2": (0.0, 1000.0),
+    "angular_velocity_bias_rad_s": (-100.0, 100.0),
+    "linear_acceleration_bias_m_s2": (-1000.0, 1000.0),
+}
+#: A LiDAR scan casts channels x 360 / horizontal_resolution_deg rays.
+MAX_LIDAR_RAYS = 1_000_000
 DEFAULT_GPS_MOUNT = MountPose(z=1.5)
 DEFAULT_IMU_MOUNT = MountPose()
 
@@ -100,6 +127,7 @@ def parse_sensor_settings(document: YamlDocument, data: Any) -> SensorSettings:
     seed = data.get("seed", 0)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise document.error((*path, "seed"), "expected a non-negative integer")
+    seed = _number(document, (*path, "seed"), seed, integer=True)
     return SensorSettings(
         seed=seed,
         gps=_point_sensor(document, (*path, "gps"), data.get("gps"), GpsSettings, GpsNoise),
@@ -128,14 +156,25 @@ def _lidar(document: YamlDocument, path: Path, data: Any) -> LidarSettings:
     if data is None:
         return defaults
     _check_keys(document, path, data, ("frame_id", "mount", *LIDAR_FIELDS))
+    resolution = data.get("horizontal_resolution_deg")
+    if isinstance(resolution, int | float) and not isinstance(resolution, bool) and resolution <= 0:
+        raise document.error((*path, "horizontal_resolution_deg"), "must be > 0 deg")
     geometry: dict[str, Any] = {}
     for name in LIDAR_FIELDS:
         if name in data:
             geometry[name] = _number(
                 document, (*path, name), data[name], integer=name == "channels"
             )
-    if geometry.get("horizontal_resolution_deg", 1.0) <= 0:
-        raise document.error((*path, "horizontal_resolution_deg"), "must be > 0 deg")
+    channels = geometry.get("channels", defaults.config.channels)
+    resolution = geometry.get(
+        "horizontal_resolution_deg", defaults.config.horizontal_resolution_deg
+    )
+    if channels * 360.0 / resolution > MAX_LIDAR_RAYS:
+        raise document.error(
+            path,
+            f"channels x 360 / horizontal_resolution_deg is {channels * 360.0 / resolution:.0f}"
+            f" rays a scan (at most {MAX_LIDAR_RAYS})",
+        )
     mount = _mount(document, (*path, "mount"), data.get("mount"), defaults.config.mount)
     config = _built(document, path, lambda: replace(defaults.config, mount=mount, **geometry))
     return LidarSettings(frame_id=_frame_id(document, path, data, defaults.frame_id), config=config)
@@ -162,7 +201,7 @@ def _noise(document: YamlDocument, path: Path, data: Any, kind: Callable[..., T]
     values: dict[str, Any] = {}
     for name, value in data.items():
         if name.endswith("_bias_rad_s") or name.endswith("_bias_m_s2"):
-            values[name] = _vector(document, (*path, name), value)
+            values[name] = _vector(document, (*path, name), value, RANGES[name])
         else:
             values[name] = _number(document, (*path, name), value)
     return _built(document, path, lambda: kind(**values))
@@ -183,20 +222,37 @@ def _check_keys(document: YamlDocument, path: Path, data: Any, known: tuple[str,
             raise document.error((*path, str(key)), f"unknown field (known: {', '.join(known)})")
 
 
-def _number(document: YamlDocument, path: Path, value: Any, integer: bool = False) -> Any:
+def _number(
+    document: YamlDocument,
+    path: Path,
+    value: Any,
+    integer: bool = False,
+    bounds: tuple[float, float] | None = None,
+) -> Any:
+    """A finite number within `bounds` (default: the range of the field `path` ends in)."""
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise document.error(path, "expected a number")
     if not math.isfinite(value):
         raise document.error(path, "expected a finite number")
     if integer and not isinstance(value, int):
         raise document.error(path, "expected an integer")
+    low, high = bounds or RANGES[path[-1]]
+    if value < low:
+        raise document.error(path, f"must be >= {low:g} (range {low:g}..{high:g}), got {value}")
+    if value > high:
+        raise document.error(path, f"must be <= {high:g} (range {low:g}..{high:g}), got {value}")
     return value
 
 
-def _vector(document: YamlDocument, path: Path, value: Any) -> tuple[float, float, float]:
+def _vector(
+    document: YamlDocument, path: Path, value: Any, bounds: tuple[float, float]
+) -> tuple[float, float, float]:
     if not isinstance(value, list) or len(value) != 3:
         raise document.error(path, "expected a list of 3 numbers (x, y, z)")
-    return tuple(float(_number(document, (*path, str(k)), v)) for k, v in enumerate(value))  # type: ignore[return-value]
+    x, y, z = (
+        float(_number(document, (*path, str(k)), v, bounds=bounds)) for k, v in enumerate(value)
+    )
+    return x, y, z
 
 
 def _built(document: YamlDocument, path: Path, build: Callable[[], T]) -> T:

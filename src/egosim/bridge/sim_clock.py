@@ -12,9 +12,10 @@ from typing import Any
 from .context import BridgeContext
 from .messages import time_msg
 from .sensor_messages import clock_message
+from .table import Row
 
 
-def publish_clock(context: BridgeContext) -> Any:
-    if not context.publishes_clock:
+def publish_clock(context: BridgeContext, row: Row) -> Any:
+    if not context.clock.publishes_clock:
         return None
     return clock_message(context.profile, time_msg(context.profile, context.stamp()))

@@ -14,6 +14,7 @@ from ..world.traffic import ObjectType
 from ..world.vehicle import VEHICLE_CATALOGUE, VehicleModel
 from .context import BridgeContext
 from .messages import vector3
+from .table import Row
 from .units import deg
 
 log = logging.getLogger(__name__)
@@ -55,19 +56,19 @@ def vehicle_spec(profile: Profile, model: VehicleModel | None) -> Any:
     )
 
 
-def serve_map_spec(context: BridgeContext, request: Any) -> Any:
+def serve_map_spec(context: BridgeContext, row: Row, request: Any) -> Any:
     """/Service_MoraiMapSpec: the loaded map's georeference."""
     return context.profile.message("morai_msgs/MoraiMapSpecSrvResponse").new(
         response=map_spec(context.profile, context.world.map.georef)
     )
 
 
-def serve_vehicle_spec(context: BridgeContext, request: Any) -> Any:
+def serve_vehicle_spec(context: BridgeContext, row: Row, request: Any) -> Any:
     """/Service_MoraiVehicleSpec: any vehicle by unique_id; all zeros for an unknown id."""
     unique_id = int(request.request.unique_id)
     model = vehicle_model_of(context.world, unique_id)
     if model is None:
-        log.warning("/Service_MoraiVehicleSpec: no vehicle with unique_id %d", unique_id)
+        log.warning("%s: no vehicle with unique_id %d", row.name, unique_id)
     return context.profile.message("morai_msgs/MoraiVehicleSpecSrvResponse").new(
         response=vehicle_spec(context.profile, model)
     )

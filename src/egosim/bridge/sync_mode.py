@@ -1,7 +1,12 @@
 """MORAI's synchronous mode (morai_msgs 26.r1): the client steps the world.
 
-Served with `--clock sync`; in the other clock modes every request is refused
-(result / tick_status false) because the loop already steps the world.
+Any run serves it: SyncModeCmd(start) switches the simulator into synchronous mode,
+where the world advances only on WaitForTick (the loop stops stepping it and rows
+publish only on ticks), and SyncModeCmd(stop) returns it to the clock mode it had
+(real time, or sim time at its --rtf); `--clock sync` starts a run in it, the world
+held until the first client starts. Header stamps keep the run's clock across the
+switch: simulation time with --clock sim/sync, wall time read at each tick with
+--clock real.
 
 Frames: SyncModeCmd(start) answers with the current frame F and the tick length
 (time_step ms; 0 asks for the simulator's physics step). Every tick advances the
@@ -24,9 +29,7 @@ WaitForTickResponse.time is the simulation time in seconds with 6 decimals
 from __future__ import annotations
 
 import logging
-from collections.abc import Callable
 from contextlib import nullcontext
-from dataclasses import dataclass, field
 from typing import Any
 
 from ..msgs import get_profile
@@ -34,55 +37,21 @@ from ..world.vehicle import Gear
 from .context import BridgeContext
 from .ego import ego_status_of, on_ctrl_cmd
 from .releases import canonical, convert
-from .scenarios import ScenarioRequestError, load_requested_scenario
+from .scenarios import ScenarioRequest, ScenarioRequestError, load_requested_scenario
+from .sync_session import MAX_PENDING_ACTIONS, Action, SyncSession
+from .table import Row
 
 log = logging.getLogger(__name__)
 
 MAX_TICKS_PER_REQUEST = 500
 MAX_TIME_STEP_MS = 1000
-MAX_PENDING_ACTIONS = 10_000
-
-Action = Callable[[BridgeContext], bool]
 
 
-@dataclass
-class SyncSession:
-    """The synchronous-mode state of a `--clock sync` run."""
-
-    active: bool = False
-    user_id: str = ""
-    frame: int = 0
-    time_step_ms: int = 0
-    _pending: dict[int, list[tuple[str, Action]]] = field(default_factory=dict)
-    _pending_count: int = 0
-
-    def schedule(self, frame: int, service: str, action: Action) -> bool:
-        """Keep `action` for the tick producing `frame`; False when too many wait."""
-        if self._pending_count >= MAX_PENDING_ACTIONS:
-            return False
-        self._pending.setdefault(frame, []).append((service, action))
-        self._pending_count += 1
-        return True
-
-    def due(self, frame: int) -> list[tuple[str, Action]]:
-        """The (service, action) pairs kept for `frame`, in arrival order, now taken."""
-        actions = self._pending.pop(frame, [])
-        self._pending_count -= len(actions)
-        return actions
-
-    def drop_pending(self) -> None:
-        self._pending.clear()
-        self._pending_count = 0
-
-
-def _session(context: BridgeContext, service: str) -> SyncSession | None:
-    """The active session, or None (logged) when sync mode is off or not running."""
+def _session(context: BridgeContext, row: Row) -> SyncSession | None:
+    """The active session, or None (logged) when sync mode is not started."""
     session = context.sync
-    if session is None:
-        log.error("%s: synchronous mode needs `egosim run --clock sync`", service)
-        return None
     if not session.active:
-        log.error("%s: synchronous mode is not started (call SyncModeCmd first)", service)
+        log.error("%s: synchronous mode is not started (call SyncModeCmd first)", row.name)
         return None
     return session
 
@@ -95,18 +64,16 @@ def service_response(context: BridgeContext, service_type: str, response: Any) -
     return context.profile.message(f"morai_msgs/{service_type}Response").new(response=response)
 
 
-def serve_sync_mode_cmd(context: BridgeContext, request: Any) -> Any:
+def serve_sync_mode_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
     """/SyncModeCmd: start (with a tick length) or stop synchronous mode."""
     command = request.request
     session = context.sync
-    ok = session is not None
-    if session is None:
-        log.error("/SyncModeCmd: synchronous mode needs `egosim run --clock sync`")
-    elif command.start_sync_mode:
+    ok = True
+    if command.start_sync_mode:
         step_ms = int(command.time_step) or round(context.world.physics_step_s * 1000)
         ok = 0 < step_ms <= MAX_TIME_STEP_MS
         if ok:
-            session.active, session.user_id, session.time_step_ms = True, command.user_id, step_ms
+            session.start(command.user_id, step_ms)
             log.info(
                 "sync mode started by %r at frame %d, %d ms",
                 command.user_id,
@@ -114,39 +81,41 @@ def serve_sync_mode_cmd(context: BridgeContext, request: Any) -> Any:
                 step_ms,
             )
         else:
-            log.error("/SyncModeCmd: time_step %d ms is not 1..%d", step_ms, MAX_TIME_STEP_MS)
+            log.error("%s: time_step %d ms is not 1..%d", row.name, step_ms, MAX_TIME_STEP_MS)
     else:
-        session.active = False
-        session.drop_pending()
-        log.info("sync mode stopped at frame %d", session.frame)
+        session.stop()
+        log.info(
+            "sync mode stopped at frame %d; the %s clock runs",
+            session.frame,
+            context.clock.mode.value,
+        )
     return service_response(
         context,
         "MoraiSyncModeCmdSrv",
         context.profile.message("morai_msgs/SyncModeCmdResponse").new(
             user_id=command.user_id,
-            frame=session.frame if session is not None else 0,
+            frame=session.frame,
             result=ok,
-            time_step=session.time_step_ms if session is not None else 0,
+            time_step=session.time_step_ms,
         ),
     )
 
 
-def serve_wait_for_tick(context: BridgeContext, request: Any) -> Any:
+def serve_wait_for_tick(context: BridgeContext, row: Row, request: Any) -> Any:
     """/SyncModeWaitForTick: tick to the requested frame; the ego's status there."""
     tick = request.request
-    session = _session(context, "/SyncModeWaitForTick")
+    session = _session(context, row)
     ticked = False
     if session is not None:
         target = int(tick.frame)
         if tick.user_id != session.user_id:
-            log.error("/SyncModeWaitForTick: user %r did not start sync mode", tick.user_id)
+            log.error("%s: user %r did not start sync mode", row.name, tick.user_id)
         elif target <= session.frame:
-            log.warning(
-                "/SyncModeWaitForTick: frame %d is not after the current %d", target, session.frame
-            )
+            log.warning("%s: frame %d is not after the current %d", row.name, target, session.frame)
         elif target - session.frame > MAX_TICKS_PER_REQUEST:
             log.error(
-                "/SyncModeWaitForTick: %d ticks at once (max %d)",
+                "%s: %d ticks at once (max %d)",
+                row.name,
                 target - session.frame,
                 MAX_TICKS_PER_REQUEST,
             )
@@ -154,7 +123,7 @@ def serve_wait_for_tick(context: BridgeContext, request: Any) -> Any:
             # Every frame's outputs are out before the reply, so several frames' may go
             # out together (one frame's gain nothing from it).
             several = target - session.frame > 1
-            with context.holding_output() if several else nullcontext():
+            with context.hold_output() if several else nullcontext():
                 while session.frame < target:
                     _tick(context, session)
             ticked = True
@@ -165,7 +134,7 @@ def serve_wait_for_tick(context: BridgeContext, request: Any) -> Any:
         context.profile.message("morai_msgs/WaitForTickResponse").new(
             tick_status=ticked,
             pause_status=world.paused,
-            frame=context.sync.frame if context.sync is not None else 0,
+            frame=context.sync.frame,
             vehicle_status=ego_status_of(context, 0),
             time=f"{world.sim_time:.6f}",
         ),
@@ -177,92 +146,88 @@ def _tick(context: BridgeContext, session: SyncSession) -> None:
     for name, action in session.due(frame):
         if not action(context):
             log.error("%s for frame %d failed", name, frame)
-    context.step(session.time_step_ms / 1000.0)
+    context.tick(session.time_step_ms / 1000.0)
     session.frame = frame
 
 
-def at_frame(context: BridgeContext, service: str, frame: int, action: Action) -> bool:
-    """Apply `action` in the tick producing `frame` (see the module's docstring)."""
-    session = _session(context, service)
+def at_frame(context: BridgeContext, row: Row, frame: int, action: Action) -> bool:
+    """Apply `action`, requested on `row`, in the tick producing `frame` (see the
+    module's docstring)."""
+    session = _session(context, row)
     if session is None:
         return False
     if frame <= session.frame:
-        log.error("%s: frame %d is not after the current %d", service, frame, session.frame)
+        log.error("%s: frame %d is not after the current %d", row.name, frame, session.frame)
         return False
     if frame == session.frame + 1:
-        return action(context)
-    if not session.schedule(frame, service, action):
-        log.error("%s: %d requests already wait for their frames", service, MAX_PENDING_ACTIONS)
+        return bool(action(context))
+    if not session.schedule(frame, row.name, action):
+        log.error("%s: %d requests already wait for their frames", row.name, MAX_PENDING_ACTIONS)
         return False
     return True
 
 
-def driving(command: Any) -> Action:
-    """The action that hands the main ego a (26.r1) CtrlCmd."""
+def driving(row: Row, command: Any) -> Action:
+    """The action that hands the main ego a (26.r1) CtrlCmd requested on `row`."""
 
     def drive(context: BridgeContext) -> bool:
-        on_ctrl_cmd(context, command)
+        on_ctrl_cmd(context, row, command)
         return True
 
     return drive
 
 
-def serve_ctrl_cmd(context: BridgeContext, request: Any) -> Any:
+def serve_ctrl_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
     """/SyncModeCtrlCmd: the main ego's CtrlCmd from the tick producing `frame` on."""
-    drive = driving(request.request.command)
-    ok = at_frame(context, "/SyncModeCtrlCmd", int(request.request.frame), drive)
+    drive = driving(row, request.request.command)
+    ok = at_frame(context, row, int(request.request.frame), drive)
     return service_response(context, "MoraiSyncModeCtrlCmdSrv", result_message(context, ok))
 
 
-def apply_tick_command(context: BridgeContext, request: Any) -> None:
+def apply_tick_command(context: BridgeContext, row: Row, request: Any) -> None:
     """Release 2021.08 sends the ego's CtrlCmd inside WaitForTick (later releases use
     SyncModeCtrlCmd): it drives from the tick producing the requested frame on."""
     sent = request.request.command
     command = convert(
         sent, get_profile("2021.08").message("morai_msgs/CtrlCmd"), canonical("morai_msgs/CtrlCmd")
     )
-    at_frame(context, "/SyncModeWaitForTick", int(request.request.frame), driving(command))
+    at_frame(context, row, int(request.request.frame), driving(row, command))
 
 
-def serve_set_gear(context: BridgeContext, request: Any) -> Any:
+def serve_set_gear(context: BridgeContext, row: Row, request: Any) -> Any:
     """/SyncModeSetGear: the main ego's gear (EventInfo codes 1 P, 2 R, 3 N, 4 D)."""
     try:
         gear = Gear(int(request.request.gear))
     except ValueError:
-        log.error("/SyncModeSetGear: gear %s is not 1..4", request.request.gear)
+        log.error("%s: gear %s is not 1..4", row.name, request.request.gear)
         gear = None
 
     def shift(context: BridgeContext) -> bool:
         context.world.egos[0].vehicle.set_gear(gear)
         return True
 
-    ok = gear is not None and at_frame(
-        context, "/SyncModeSetGear", int(request.request.frame), shift
-    )
+    ok = gear is not None and at_frame(context, row, int(request.request.frame), shift)
     return service_response(context, "MoraiSyncModeSetGearSrv", result_message(context, ok))
 
 
-def serve_scenario_load(context: BridgeContext, request: Any) -> Any:
+def serve_scenario_load(context: BridgeContext, row: Row, prepared: ScenarioRequest) -> Any:
     """/SyncModeScenarioLoad: ScenarioLoad (same fields and file roots) at a frame."""
-    load = request.request
 
     def apply(context: BridgeContext) -> bool:
         try:
-            load_requested_scenario(context, load)
+            load_requested_scenario(context, prepared)
         except ScenarioRequestError as error:
-            log.error("/SyncModeScenarioLoad: %s", error)
+            log.error("%s: %s", row.name, error)
             return False
         return True
 
-    ok = at_frame(context, "/SyncModeScenarioLoad", int(load.frame), apply)
+    ok = at_frame(context, row, int(prepared.request.frame), apply)
     return service_response(context, "MoraiSyncModeSLSrv", result_message(context, ok))
 
 
-def publish_sync_mode_info(context: BridgeContext) -> Any:
+def publish_sync_mode_info(context: BridgeContext, row: Row) -> Any:
     """/SyncModeInfo: who runs sync mode, whether it is on, and the current frame."""
     session = context.sync
-    if session is None:
-        return None
     return context.profile.message("morai_msgs/SyncModeInfo").new(
         master_id=session.user_id,
         status=session.active,

@@ -20,6 +20,7 @@ Public API::
 """
 
 from .errors import (
+    BadRequestError,
     ConnectionClosedError,
     ConnectionRefusedByPeerError,
     FrameTooLargeError,
@@ -43,6 +44,7 @@ from .types import ANY_TYPE, MessageTypeInfo, ServiceType, ServiceTypeInfo, Topi
 
 __all__ = [
     "ANY_TYPE",
+    "BadRequestError",
     "ConnectionClosedError",
     "ConnectionRefusedByPeerError",
     "FrameTooLargeError",

@@ -50,5 +50,10 @@ class ServiceError(Ros1Error):
     """A service call failed: lookup, transport, or the server's handler reported an error."""
 
 
+class BadRequestError(ServiceError):
+    """A service request its handler cannot take (undecodable, or invalid as a whole):
+    answered with an error and logged without a traceback."""
+
+
 class NodeShutdownError(Ros1Error):
     """The node has been shut down."""

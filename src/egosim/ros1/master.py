@@ -17,19 +17,16 @@ from .names import SEP, canonicalize, namespace_of, resolve
 from .network import DEFAULT_MASTER_URI, master_bind_address
 from .notifier import Notifier
 from .param_tree import ParameterTree
-from .rpc import XmlRpcServer
+from .rpc import Reply, StatusCode, XmlRpcServer, reply
 
 log = logging.getLogger(__name__)
 
 MASTER_CALLER_ID = "/master"
-SUCCESS, ERROR = 1, -1
 ANY_TYPE = "*"
-
-Reply = list[Any]
 
 
 def _ok(message: str, value: Any) -> Reply:
-    return [SUCCESS, message, value]
+    return reply(StatusCode.SUCCESS, message, value)
 
 
 def _as_namespace(key: str) -> str:
@@ -243,7 +240,7 @@ class Master:
         with self._lock:
             api = self._reg.nodes.get(node_name)
         if api is None:
-            return [ERROR, f"unknown node [{node_name}]", ""]
+            return reply(StatusCode.ERROR, f"unknown node [{node_name}]", "")
         return _ok(f"node api for [{node_name}]", api)
 
     def get_published_topics(self, caller_id: str, subgraph: str) -> Reply:
@@ -278,7 +275,7 @@ class Master:
         with self._lock:
             providers = list(self._reg.services.get(service, {}).values())
         if not providers:
-            return [ERROR, f"no provider for [{service}]", ""]
+            return reply(StatusCode.ERROR, f"no provider for [{service}]", "")
         return _ok(f"rosrpc URI: [{providers[0]}]", providers[0])
 
     def get_pid(self, caller_id: str) -> Reply:
@@ -311,7 +308,7 @@ class Master:
             try:
                 self._params.delete(key)
             except KeyError:
-                return [ERROR, f"parameter [{key}] is not set", 0]
+                return reply(StatusCode.ERROR, f"parameter [{key}] is not set", 0)
             self._param_changed(caller_id, key)
         return _ok(f"parameter {key} deleted", 0)
 
@@ -321,7 +318,7 @@ class Master:
             try:
                 self._params.set(key, value)
             except TypeError as exc:
-                return [ERROR, str(exc), 0]
+                return reply(StatusCode.ERROR, str(exc), 0)
             self._param_changed(caller_id, key)
         return _ok(f"parameter {key} set", 0)
 
@@ -331,13 +328,15 @@ class Master:
             try:
                 return _ok(f"Parameter [{key}]", self._params.get(key))
             except KeyError:
-                return [ERROR, f"Parameter [{key}] is not set", 0]
+                return reply(StatusCode.ERROR, f"Parameter [{key}] is not set", 0)
 
     def search_param(self, caller_id: str, key: str) -> Reply:
         with self._lock:
             found = self._params.search(caller_id, key)
         if found is None:
-            return [ERROR, f"Cannot find parameter [{key}] in an upwards search", ""]
+            return reply(
+                StatusCode.ERROR, f"Cannot find parameter [{key}] in an upwards search", ""
+            )
         return _ok(f"Found [{found}]", found)
 
     def subscribe_param(self, caller_id: str, caller_api: str, key: str) -> Reply:

@@ -8,8 +8,7 @@ from typing import Any
 
 from . import rpc
 from .errors import MasterError, MasterUnreachableError, PeerUnreachableError
-
-SUCCESS = 1
+from .rpc import StatusCode
 
 
 class MasterClient:
@@ -32,7 +31,7 @@ class MasterClient:
 
     def _call(self, method: str, *args: Any, timeout: float | None = None) -> Any:
         code, message, value = self._raw(method, *args, timeout=timeout)
-        if code != SUCCESS:
+        if code != StatusCode.SUCCESS:
             raise MasterError(f"{method}{args}: {message}")
         return value
 
@@ -78,6 +77,9 @@ class MasterClient:
     def get_uri(self, timeout: float | None = None) -> str:
         return self._call("getUri", timeout=timeout)
 
+    def get_pid(self, timeout: float | None = None) -> int:
+        return int(self._call("getPid", timeout=timeout))
+
     def lookup_service(self, service: str) -> str:
         return self._call("lookupService", service)
 
@@ -91,13 +93,13 @@ class MasterClient:
     def get_param(self, key: str) -> Any:
         """The value (a dict for a namespace); KeyError when the key is not set."""
         code, _message, value = self._raw("getParam", key)
-        if code != SUCCESS:
+        if code != StatusCode.SUCCESS:
             raise KeyError(key)
         return value
 
     def search_param(self, key: str) -> str | None:
         code, _message, value = self._raw("searchParam", key)
-        return value if code == SUCCESS and value else None
+        return value if code == StatusCode.SUCCESS and value else None
 
     def subscribe_param(self, caller_api: str, key: str) -> Any:
         return self._call("subscribeParam", caller_api, key)

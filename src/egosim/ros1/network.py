@@ -11,19 +11,20 @@ from urllib.parse import urlsplit
 
 DEFAULT_MASTER_URI = "http://localhost:11311/"
 LOOPBACK = "127.0.0.1"
-ALL_INTERFACES = "0.0.0.0"
+#: Set to an address (0.0.0.0: every interface) to bind servers there instead of the
+#: address the node advertises.
+BIND_ENV = "EGOSIM_ROS_BIND"
 
 
-def _is_loopback(host: str) -> bool:
-    if host == "localhost":
-        return True
+def _address_of(host: str) -> str:
+    """The IPv4 address a host name or address stands for (loopback if it resolves to none)."""
     try:
-        return ipaddress.ip_address(host).is_loopback
+        return str(ipaddress.ip_address(host))
     except ValueError:
         try:
-            return ipaddress.ip_address(socket.gethostbyname(host)).is_loopback
+            return socket.gethostbyname(host)
         except OSError:
-            return False
+            return LOOPBACK
 
 
 @dataclass(frozen=True)
@@ -43,12 +44,13 @@ class NetworkConfig:
         bind_host: str | None = None,
     ) -> NetworkConfig:
         """ROS_IP wins over ROS_HOSTNAME (as in rospy); with neither, everything stays on loopback.
-        A non-loopback advertised host means listening on all interfaces unless ``bind_host``."""
+        Servers listen on the address the node advertises (ROS_IP's, or ROS_HOSTNAME's as
+        resolved), never on every interface unless asked: ``bind_host`` or EGOSIM_ROS_BIND."""
         env = os.environ if env is None else env
         uri = master_uri or env.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
         advertise = host or env.get("ROS_IP") or env.get("ROS_HOSTNAME") or LOOPBACK
         if bind_host is None:
-            bind_host = LOOPBACK if _is_loopback(advertise) else ALL_INTERFACES
+            bind_host = env.get(BIND_ENV) or _address_of(advertise)
         return cls(master_uri=uri, advertise_host=advertise, bind_host=bind_host)
 
 

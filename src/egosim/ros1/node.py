@@ -17,6 +17,7 @@ from .connection_header import error_header, write_header
 from .errors import MasterError, MasterUnreachableError, Ros1Error
 from .master import Master
 from .master_client import MasterClient
+from .master_watch import MasterWatch
 from .names import NameResolver, canonicalize, join, parse_argv, validate_name
 from .network import NetworkConfig, http_uri, rosrpc_uri
 from .publication import Negotiator, Publisher
@@ -86,6 +87,8 @@ class Node:
         self._services: dict[str, ServiceServer] = {}
         self._proxies: list[ServiceProxy] = []
         self._param_callbacks: dict[str, list[ParamCallback]] = {}
+        # What this node set on the parameter server, to set again on a new master.
+        self._params_set: dict[str, Any] = {}
         self._shutdown_callbacks: list[Callable[[str], None]] = []
         self._connection_ids = itertools.count(1)
         self._shutdown_started = False
@@ -110,6 +113,8 @@ class Node:
         except BaseException:
             self.shutdown("start-up failed")
             raise
+        if self.embedded_master is None:
+            MasterWatch(self.master, self.reregister, self._stopped).start()
         log.info("node %s up at %s, master %s", self.name, self.uri, self.master_uri)
 
     # --- master -----------------------------------------------------------------------------
@@ -329,13 +334,19 @@ class Node:
             return default
 
     def set_param(self, key: str, value: Any) -> None:
-        self.master.set_param(self.resolve_name(key), value)
+        name = self.resolve_name(key)
+        self.master.set_param(name, value)
+        with self._lock:
+            self._params_set[name] = value
 
     def has_param(self, key: str) -> bool:
         return self.master.has_param(self.resolve_name(key))
 
     def delete_param(self, key: str) -> None:
-        self.master.delete_param(self.resolve_name(key))
+        name = self.resolve_name(key)
+        self.master.delete_param(name)
+        with self._lock:
+            self._params_set.pop(name, None)
 
     def search_param(self, key: str) -> str | None:
         """Search upwards from this node's namespace; the found global key, or None."""
@@ -369,6 +380,36 @@ class Node:
                 callback(key, value)
             except Exception:
                 log.exception("parameter callback for %s failed", key)
+
+    # --- a new master ------------------------------------------------------------------------
+    def reregister(self) -> None:
+        """Register everything of this node with the master again (a restarted master
+        knows nothing of it): parameters, publishers, subscribers, services, parameter
+        subscriptions."""
+        with self._lock:
+            params = dict(self._params_set)
+            param_keys = list(self._param_callbacks)
+        for name, value in params.items():
+            self.master.set_param(name, value)
+        for publisher in self.publishers:
+            self.master.register_publisher(publisher.topic, publisher.msg_type.name, self.uri)
+        for subscriber in self.subscribers:
+            uris = self.master.register_subscriber(
+                subscriber.topic, subscriber.msg_type.name, self.uri
+            )
+            subscriber.update_publishers(uris)
+        for server in self.services:
+            self.master.register_service(server.service, self._service_uri, self.uri)
+        for key in param_keys:
+            self.master.subscribe_param(self.uri, key)
+        log.warning(
+            "registered again with %s: %d parameters, %d publishers, %d subscribers, %d services",
+            self.master_uri,
+            len(params),
+            len(self.publishers),
+            len(self.subscribers),
+            len(self.services),
+        )
 
     # --- lifecycle --------------------------------------------------------------------------
     def _check_running(self) -> None:

@@ -8,12 +8,33 @@ import socketserver
 import threading
 import xmlrpc.client
 from collections.abc import Callable
+from enum import IntEnum
 from typing import Any
 from xmlrpc.server import SimpleXMLRPCRequestHandler, SimpleXMLRPCServer
 
 from .errors import PeerUnreachableError
 
 log = logging.getLogger(__name__)
+
+
+class StatusCode(IntEnum):
+    """The code that opens every master and slave API reply ``[code, statusMessage, value]``."""
+
+    ERROR = -1
+    """The call is wrong (bad arguments, unknown name); the value is not meaningful."""
+    FAILURE = 0
+    """The call was valid but did not succeed."""
+    SUCCESS = 1
+
+
+# A master or slave API reply: [code, statusMessage, value].
+Reply = list[Any]
+
+
+def reply(code: StatusCode, message: str, value: Any) -> Reply:
+    """An API reply; the code goes out as a plain int, the only kind XML-RPC marshals."""
+    return [int(code), message, value]
+
 
 #: Largest XML-RPC request body accepted (the largest ROS calls carry parameter trees).
 MAX_REQUEST_BYTES = 64 * 1024 * 1024

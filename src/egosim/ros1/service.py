@@ -13,8 +13,10 @@ import threading
 import time
 from collections.abc import Callable, Mapping
 
+from ..logthrottle import LogThrottle
 from .connection_header import error_header, read_header, write_header
 from .errors import (
+    BadRequestError,
     ConnectionClosedError,
     ConnectionRefusedByPeerError,
     MasterError,
@@ -35,6 +37,7 @@ from .tcpros import (
 from .types import ServiceTypeInfo
 
 log = logging.getLogger(__name__)
+throttle = LogThrottle(log)
 
 ANY_MD5 = "*"
 _OK = b"\x01"
@@ -136,8 +139,26 @@ class ServiceServer:
             self.bytes_received += len(request) + 4
             try:
                 ok, body = _OK, self._handler(request, header)
+            except BadRequestError as exc:
+                caller = header["callerid"]
+                throttle.log(
+                    logging.WARNING,
+                    (self.service, caller, type(exc).__name__),
+                    "service %s: request from %s refused: %s",
+                    self.service,
+                    caller,
+                    exc,
+                )
+                ok, body = _FAILED, str(exc).encode()
             except Exception as exc:
-                log.info("service %s handler failed: %s", self.service, exc, exc_info=True)
+                throttle.log(
+                    logging.ERROR,
+                    (self.service, header["callerid"], type(exc).__name__),
+                    "service %s handler failed: %s",
+                    self.service,
+                    exc,
+                    exc_info=True,
+                )
                 ok, body = _FAILED, str(exc).encode()
             # One write for the ok byte and the frame: two small sends would let Nagle's
             # algorithm hold the second back for a delayed ACK (about 40 ms per call).

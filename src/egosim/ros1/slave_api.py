@@ -8,15 +8,14 @@ from __future__ import annotations
 import os
 import threading
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
-if TYPE_CHECKING:
-    from .node import Node
+from .publication import Publisher
+from .rpc import Reply, StatusCode, reply
+from .service import ServiceServer
+from .subscription import Subscriber
 
-SUCCESS, FAILURE, ERROR = 1, 0, -1
 TCPROS = "TCPROS"
-
-Reply = list[Any]
 
 #: XML-RPC integers are 32-bit; byte counters of a long run saturate here rather than fault.
 _XMLRPC_INT_MAX = 2**31 - 1
@@ -26,8 +25,35 @@ def _count(value: int) -> int:
     return min(value, _XMLRPC_INT_MAX)
 
 
+class SlaveNode(Protocol):
+    """What the Slave API reads and does of its node (ros1/node.py's Node)."""
+
+    @property
+    def master_uri(self) -> str: ...
+
+    @property
+    def tcpros_address(self) -> tuple[str, int]: ...
+
+    @property
+    def publishers(self) -> list[Publisher]: ...
+
+    @property
+    def subscribers(self) -> list[Subscriber]: ...
+
+    @property
+    def services(self) -> list[ServiceServer]: ...
+
+    def publisher(self, topic: str) -> Publisher | None: ...
+
+    def publishers_updated(self, topic: str, publisher_uris: list[str]) -> None: ...
+
+    def param_updated(self, key: str, value: Any) -> None: ...
+
+    def shutdown(self, reason: str = ...) -> None: ...
+
+
 class SlaveApi:
-    def __init__(self, node: Node) -> None:
+    def __init__(self, node: SlaveNode) -> None:
         self._node = node
 
     def functions(self) -> dict[str, Callable[..., Reply]]:
@@ -83,7 +109,7 @@ class SlaveApi:
             _count(sum(s.bytes_received for s in services)),
             _count(sum(s.bytes_sent for s in services)),
         ]
-        return [SUCCESS, "", [publish, subscribe, service]]
+        return reply(StatusCode.SUCCESS, "", [publish, subscribe, service])
 
     def get_bus_info(self, caller_id: str) -> Reply:
         node = self._node
@@ -96,49 +122,47 @@ class SlaveApi:
                 info.append(
                     [c.connection_id, c.publisher_id, "i", TCPROS, sub.topic, c.connected, ""]
                 )
-        return [SUCCESS, "bus info", info]
+        return reply(StatusCode.SUCCESS, "bus info", info)
 
     def get_master_uri(self, caller_id: str) -> Reply:
-        return [SUCCESS, "", self._node.master_uri]
+        return reply(StatusCode.SUCCESS, "", self._node.master_uri)
 
     def shutdown(self, caller_id: str, msg: str = "") -> Reply:
         # The node stops this very server, so it must not do so from the request's thread.
         reason = f"requested by {caller_id}: {msg}" if msg else f"requested by {caller_id}"
         threading.Thread(target=self._node.shutdown, args=(reason,), daemon=True).start()
-        return [SUCCESS, "shutdown", 0]
+        return reply(StatusCode.SUCCESS, "shutdown", 0)
 
     def get_pid(self, caller_id: str) -> Reply:
-        return [SUCCESS, "", os.getpid()]
+        return reply(StatusCode.SUCCESS, "", os.getpid())
 
     def get_subscriptions(self, caller_id: str) -> Reply:
-        return [
-            SUCCESS,
-            "subscriptions",
-            [[s.topic, s.msg_type.name] for s in self._node.subscribers],
-        ]
+        topics = [[s.topic, s.msg_type.name] for s in self._node.subscribers]
+        return reply(StatusCode.SUCCESS, "subscriptions", topics)
 
     def get_publications(self, caller_id: str) -> Reply:
-        return [
-            SUCCESS,
-            "publications",
-            [[p.topic, p.msg_type.name] for p in self._node.publishers],
-        ]
+        topics = [[p.topic, p.msg_type.name] for p in self._node.publishers]
+        return reply(StatusCode.SUCCESS, "publications", topics)
 
     def param_update(self, caller_id: str, parameter_key: str, parameter_value: Any) -> Reply:
         self._node.param_updated(parameter_key, parameter_value)
-        return [SUCCESS, "", 0]
+        return reply(StatusCode.SUCCESS, "", 0)
 
     def publisher_update(self, caller_id: str, topic: str, publishers: list[str]) -> Reply:
         if not isinstance(publishers, list) or not all(isinstance(p, str) for p in publishers):
             # The update replaces the topic's publishers: a malformed one must change nothing.
-            return [ERROR, f"publishers must be a list of XML-RPC URIs, got {publishers!r}", 0]
+            return reply(
+                StatusCode.ERROR,
+                f"publishers must be a list of XML-RPC URIs, got {publishers!r}",
+                0,
+            )
         self._node.publishers_updated(topic, publishers)
-        return [SUCCESS, "", 0]
+        return reply(StatusCode.SUCCESS, "", 0)
 
     def request_topic(self, caller_id: str, topic: str, protocols: list[Any]) -> Reply:
         if self._node.publisher(topic) is None:
-            return [ERROR, f"not a publisher of [{topic}]", []]
+            return reply(StatusCode.ERROR, f"not a publisher of [{topic}]", [])
         if not any(p and p[0] == TCPROS for p in protocols):
-            return [FAILURE, "no supported protocol implementations", []]
+            return reply(StatusCode.FAILURE, "no supported protocol implementations", [])
         host, port = self._node.tcpros_address
-        return [SUCCESS, f"ready on {host}:{port}", [TCPROS, host, port]]
+        return reply(StatusCode.SUCCESS, f"ready on {host}:{port}", [TCPROS, host, port])

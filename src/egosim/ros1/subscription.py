@@ -115,7 +115,7 @@ class _Inbound:
         )
         try:
             code, message, protocol = reply
-            if code != 1 or not protocol or protocol[0] != "TCPROS":
+            if code != rpc.StatusCode.SUCCESS or not protocol or protocol[0] != "TCPROS":
                 raise ProtocolError(f"requestTopic refused: {message}")
             host, port = protocol[1], int(protocol[2])
         except (TypeError, ValueError, IndexError) as exc:

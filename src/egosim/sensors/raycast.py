@@ -16,8 +16,8 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.sensors.errors import SensorConfigError
+from egosim.world.arrays import FloatArray
 
-FloatArray = npt.NDArray[np.float64]
 IndexArray = npt.NDArray[np.intp]
 
 

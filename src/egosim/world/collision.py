@@ -15,10 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.traffic.objects import ObjectState
-
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
 
 DEFAULT_MAX_SUBSTEP_M = 0.1
 """Largest relative travel of two boxes between two overlap tests, m."""

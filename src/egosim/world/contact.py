@@ -24,12 +24,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import numpy.typing as npt
 
+from egosim.world.arrays import BoolArray, FloatArray, IntArray
 from egosim.world.collision import Footprints, corners
-
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
 
 RESTITUTION = 0.2
 """Share of the approach speed a contact gives back (car bodies crumple: mostly plastic)."""
@@ -70,7 +67,7 @@ class Response:
 
     displacements: FloatArray
     velocities: FloatArray
-    moved: npt.NDArray[np.bool_]
+    moved: BoolArray
 
 
 def penetration(a: Footprints, b: Footprints) -> tuple[FloatArray, FloatArray]:

@@ -12,8 +12,8 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
-import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.collision import (
     ContactTracker,
     EgoCollision,
@@ -79,9 +79,6 @@ PEDESTRIAN_HALF_DEPTH_M = 0.5
 # Length of lane over which the grade under an ego is measured, m.
 GRADE_BASE_M = 1.0
 PEDESTRIAN_MASS_KG = 75.0
-
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
 
 
 class UnknownObjectModelError(ValueError):

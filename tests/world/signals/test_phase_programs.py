@@ -8,11 +8,9 @@ from egosim.world.signals import (
     GREEN_LEFT,
     OFF,
     RED,
-    TYPE_RYG,
-    TYPE_RYG_LEFT,
-    TYPE_RYG_LEFT_GREEN,
     YELLOW,
     IntersectionProgram,
+    LightType,
     PhaseTiming,
     TrafficSignals,
     UnknownPhaseError,
@@ -66,12 +64,12 @@ def test_an_approach_alone_goes_through_and_left_together_on_a_standard_junction
     assert len(go_phases) == len(controller.light_ids)
     for phase in go_phases:
         lit = [(t, a) for t, a in zip(types, phase.aspects, strict=True) if a != RED]
-        assert lit in ([(TYPE_RYG_LEFT_GREEN, GREEN | GREEN_LEFT)], [(TYPE_RYG, GREEN)])
+        assert lit in ([(LightType.RYG_LEFT_GREEN, GREEN | GREEN_LEFT)], [(LightType.RYG, GREEN)])
 
 
 def test_a_left_arrow_head_shows_only_its_arrow_and_waits_out_the_through_phase() -> None:
     # One group: a left-turn head (R/Y/left arrow), a plain head, a four-lamp head.
-    types = {"L": TYPE_RYG_LEFT, "P": TYPE_RYG, "F": TYPE_RYG_LEFT_GREEN}
+    types = {"L": LightType.RYG_LEFT, "P": LightType.RYG, "F": LightType.RYG_LEFT_GREEN}
     program = build_program(["L", "P", "F"], types, [("L", "P", "F")], TIMING)
     assert [(p.duration_s, p.aspects) for p in program] == [
         (4.0, (GREEN_LEFT, RED, RED | GREEN_LEFT)),
@@ -87,7 +85,7 @@ def test_a_left_arrow_head_shows_only_its_arrow_and_waits_out_the_through_phase(
 
 
 def test_a_left_arrow_head_alone_in_its_group_gets_the_left_phase_time() -> None:
-    program = build_program(["L"], {"L": TYPE_RYG_LEFT}, [("L",)], TIMING)
+    program = build_program(["L"], {"L": LightType.RYG_LEFT}, [("L",)], TIMING)
     assert [(p.duration_s, p.aspects) for p in program] == [
         (4.0, (GREEN_LEFT,)),
         (2.0, (YELLOW,)),

@@ -5,7 +5,7 @@ import itertools
 from tests.world.traffic.scenes import run, world_from
 
 from egosim.world.map import build_builtin_map
-from egosim.world.signals import TYPE_FLASHING_YELLOW
+from egosim.world.signals import LightType
 from egosim.world.traffic.junction_rules import junction_conflicts
 
 TOWN = build_builtin_map("town")
@@ -38,7 +38,7 @@ def test_merging_junction_lanes_conflict() -> None:
 
 def test_npcs_arriving_together_at_a_flashing_junction_take_turns() -> None:
     assert all(
-        TOWN.traffic_lights[i].light_type == TYPE_FLASHING_YELLOW
+        TOWN.traffic_lights[i].light_type == LightType.FLASHING_YELLOW
         for i in TOWN.intersections[FLASHING_JUNCTION].light_ids
     )
     routes = _merging_movements()

@@ -11,11 +11,9 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 import numpy as np
-import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray
 from egosim.world.map.lanes import Crosswalk, IntersectionSite
-
-FloatArray = npt.NDArray[np.float64]
 
 MAX_INTERSECTION_DISTANCE_M = 40.0
 # Shorter lines cross nothing a pedestrian could walk.

@@ -9,13 +9,12 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray
 from egosim.world.map.errors import MapGeometryError, UnknownLaneError
 from egosim.world.map.georef import GeoReference
+from egosim.world.map.light_type import LightType
 from egosim.world.map.polyline import segment_headings, stations
 from egosim.world.map.projection import LaneProjection, LaneProjections, SegmentTable
-
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
 
 # Gap between lanes on the flattened station axis, so a station never reaches the next lane.
 _LANE_KEY_GAP_M = 1.0
@@ -89,7 +88,7 @@ class TrafficLightSite:
     id: str
     position: tuple[float, float, float]
     heading: float
-    light_type: int
+    light_type: LightType
     lane_ids: tuple[str, ...]
     intersection_id: int
 

@@ -8,10 +8,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.map.spatial_index import SegmentGrid
-
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
 
 # Cost of a candidate lane = distance (m) + HEADING_WEIGHT_M_PER_RAD * heading error: a car
 # drifting 1.5 m off its lane still beats a connector crossing it at 90 deg.

@@ -13,8 +13,8 @@ from dataclasses import dataclass, field
 from itertools import pairwise
 
 import numpy as np
-import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray
 from egosim.world.map.compass import compass
 from egosim.world.map.errors import MapGeometryError
 from egosim.world.map.georef import GeoReference
@@ -26,6 +26,7 @@ from egosim.world.map.lanes import (
     Sidewalk,
     TrafficLightSite,
 )
+from egosim.world.map.light_type import LightType
 from egosim.world.map.polyline import (
     connector_curve,
     offset_left,
@@ -33,8 +34,6 @@ from egosim.world.map.polyline import (
     stations,
     trim,
 )
-
-FloatArray = npt.NDArray[np.float64]
 
 # Junction approach layout, outward from the junction box edge: a crosswalk, then the stop line.
 CROSSWALK_GAP_M = 0.5
@@ -50,21 +49,14 @@ LIGHT_HEIGHT_M = 5.0
 STRAIGHT_LIMIT_RAD = math.radians(30.0)
 U_TURN_LIMIT_RAD = math.radians(150.0)
 
-LightTypeRule = Callable[[int, str, bool], int]
+LightTypeRule = Callable[[int, str, bool], LightType]
 """(junction id, approach arm label, approach can turn left) -> protocol trafficLightType."""
 
-# Protocol trafficLightType codes.
-LIGHT_RYG = 0
-LIGHT_RYG_LEFT = 1
-LIGHT_RYG_LEFT_GREEN = 2
-LIGHT_FLASHING_YELLOW = 100
-LEFT_ARROW_LIGHTS = frozenset({LIGHT_RYG_LEFT, LIGHT_RYG_LEFT_GREEN})
 
-
-def standard_light_type(junction_id: int, arm: str, can_turn_left: bool) -> int:
+def standard_light_type(junction_id: int, arm: str, can_turn_left: bool) -> LightType:
     """A four-lamp head (R/Y/left arrow/G) where the approach may turn left, a plain R/Y/G
     head elsewhere."""
-    return LIGHT_RYG_LEFT_GREEN if can_turn_left else LIGHT_RYG
+    return LightType.RYG_LEFT_GREEN if can_turn_left else LightType.RYG
 
 
 @dataclass(frozen=True)
@@ -190,7 +182,7 @@ class RoadNetworkBuilder:
                     junction_lights.append(self._add_light(junction, arm, rule))
                 crosswalks.append(self._crosswalk(junction, arm))
             arrow_lights = {
-                light.id for light in junction_lights if light.light_type in LEFT_ARROW_LIGHTS
+                light.id for light in junction_lights if light.light_type.has_left_arrow
             }
             lights.extend(junction_lights)
             intersections.append(

@@ -5,10 +5,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import numpy.typing as npt
 
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
+from egosim.world.arrays import FloatArray, IntArray
 
 # Keeps the grid's offset table small on very large maps.
 MAX_CELLS = 4_000_000

@@ -15,10 +15,9 @@ import numpy as np
 
 from egosim.world.map.builtin_origin import BUILTIN_GEOREF
 from egosim.world.map.lanes import LaneMap, Sidewalk
+from egosim.world.map.light_type import LightType
 from egosim.world.map.polyline import arc, between, stations
 from egosim.world.map.road_network import (
-    LIGHT_FLASHING_YELLOW,
-    LIGHT_RYG_LEFT,
     JunctionSpec,
     RoadNetworkBuilder,
     RoadSpec,
@@ -71,7 +70,15 @@ def build_town() -> LaneMap:
 
     def grid_road(a: tuple[float, float], b: tuple[float, float], ja: int, jb: int) -> None:
         reference = np.array([a, b])
-        spec = RoadSpec(next(road_ids), reference, 2, 2, GRID_SPEED_MPS, ja, jb)
+        spec = RoadSpec(
+            next(road_ids),
+            reference,
+            LANES_PER_DIRECTION,
+            LANES_PER_DIRECTION,
+            GRID_SPEED_MPS,
+            ja,
+            jb,
+        )
         builder.add_road(spec)
 
     for row, y in enumerate(lines):
@@ -101,7 +108,15 @@ def build_town() -> LaneMap:
         if end <= start:
             end += ring_length
         reference = between(doubled, start, end)
-        spec = RoadSpec(next(road_ids), reference, 2, 2, RING_SPEED_MPS, 17 + k, 17 + (k + 1) % 16)
+        spec = RoadSpec(
+            next(road_ids),
+            reference,
+            LANES_PER_DIRECTION,
+            LANES_PER_DIRECTION,
+            RING_SPEED_MPS,
+            17 + k,
+            17 + (k + 1) % 16,
+        )
         builder.add_road(spec)
 
     return builder.build("town", BUILTIN_GEOREF, _light_type, _block_sidewalks())
@@ -109,9 +124,9 @@ def build_town() -> LaneMap:
 
 def _light_type(junction_id: int, arm: str, can_turn_left: bool) -> int:
     if junction_id == FLASHING_JUNCTION:
-        return LIGHT_FLASHING_YELLOW
+        return LightType.FLASHING_YELLOW
     if (junction_id, arm) == LEFT_ARROW_ONLY_APPROACH:
-        return LIGHT_RYG_LEFT
+        return LightType.RYG_LEFT
     return standard_light_type(junction_id, arm, can_turn_left)
 
 

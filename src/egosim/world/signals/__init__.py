@@ -5,21 +5,18 @@ Public API:
     IntersectionController, IntersectionStatus        one intersection's program runner
     Phase, PhaseTiming, build_program                 phase programs
     governing_light_id, nearest_light_id              the light a vehicle looks at
-    RED, YELLOW, GREEN, GREEN_LEFT, OFF, TYPE_*, can_show,
+    RED, YELLOW, GREEN, GREEN_LEFT, OFF, LightType, can_show,
         LEFT_ARROW_TYPES, has_left_arrow   aspects and head types
     SignalError and subclasses
 """
 
+from egosim.world.map.light_type import LightType
 from egosim.world.signals.aspects import (
     GREEN,
     GREEN_LEFT,
     LEFT_ARROW_TYPES,
     OFF,
     RED,
-    TYPE_FLASHING_YELLOW,
-    TYPE_RYG,
-    TYPE_RYG_LEFT,
-    TYPE_RYG_LEFT_GREEN,
     YELLOW,
     can_show,
     has_left_arrow,
@@ -42,15 +39,12 @@ __all__ = [
     "LEFT_ARROW_TYPES",
     "OFF",
     "RED",
-    "TYPE_FLASHING_YELLOW",
-    "TYPE_RYG",
-    "TYPE_RYG_LEFT",
-    "TYPE_RYG_LEFT_GREEN",
     "YELLOW",
     "IntersectionController",
     "IntersectionProgram",
     "IntersectionStatus",
     "LightState",
+    "LightType",
     "Phase",
     "PhaseTiming",
     "SignalError",

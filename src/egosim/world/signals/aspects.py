@@ -7,30 +7,23 @@ light_type) fixes which lamps it has, and so which aspects it can show.
 
 from __future__ import annotations
 
+from egosim.world.map.light_type import LightType
+
 RED = 1
 YELLOW = 4
 GREEN = 16
 GREEN_LEFT = 32
 OFF = -1
 
-TYPE_RYG = 0
-"""Red / yellow / green."""
-TYPE_RYG_LEFT = 1
-"""Red / yellow / left arrow: a head over left-turn lanes, with no round green."""
-TYPE_RYG_LEFT_GREEN = 2
-"""Red / yellow / left arrow / green."""
-TYPE_FLASHING_YELLOW = 100
-"""Yellow / yellow / yellow: flashes yellow, stops nobody."""
-
 LAMPS_BY_TYPE: dict[int, int] = {
-    TYPE_RYG: RED | YELLOW | GREEN,
-    TYPE_RYG_LEFT: RED | YELLOW | GREEN_LEFT,
-    TYPE_RYG_LEFT_GREEN: RED | YELLOW | GREEN | GREEN_LEFT,
-    TYPE_FLASHING_YELLOW: YELLOW,
+    LightType.RYG: RED | YELLOW | GREEN,
+    LightType.RYG_LEFT: RED | YELLOW | GREEN_LEFT,
+    LightType.RYG_LEFT_GREEN: RED | YELLOW | GREEN | GREEN_LEFT,
+    LightType.FLASHING_YELLOW: YELLOW,
 }
 
 
-LEFT_ARROW_TYPES = tuple(t for t, lamps in LAMPS_BY_TYPE.items() if lamps & GREEN_LEFT)
+LEFT_ARROW_TYPES = tuple(t for t in LightType if t.has_left_arrow)
 """Head types with a left-arrow lamp."""
 
 
@@ -53,8 +46,3 @@ def can_show(light_type: int, aspect: int) -> bool:
         return True
     lamps = LAMPS_BY_TYPE.get(light_type)
     return lamps is not None and aspect > 0 and aspect & ~lamps == 0
-
-
-def is_red_only(aspect: int) -> bool:
-    """A plain red: nothing may enter on it, so crossing pedestrians may walk."""
-    return aspect == RED

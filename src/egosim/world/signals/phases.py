@@ -10,12 +10,12 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
+from egosim.world.map.light_type import LightType
 from egosim.world.signals.aspects import (
     GREEN,
     GREEN_LEFT,
     OFF,
     RED,
-    TYPE_FLASHING_YELLOW,
     YELLOW,
     go_lamps,
     has_green,
@@ -72,7 +72,7 @@ def build_program(
     heads only has two phases, lit and dark, of `flash_s` each.
     """
     ids = tuple(light_ids)
-    flashing = {i for i in ids if light_types[i] == TYPE_FLASHING_YELLOW}
+    flashing = {i for i in ids if light_types[i] == LightType.FLASHING_YELLOW}
     if flashing == set(ids):
         return (
             Phase("flash on", timing.flash_s, tuple(YELLOW for _ in ids)),

@@ -9,13 +9,8 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.world.map import LaneMap
-from egosim.world.signals.aspects import (
-    LEFT_ARROW_TYPES,
-    OFF,
-    TYPE_FLASHING_YELLOW,
-    can_show,
-    has_green,
-)
+from egosim.world.map.light_type import LightType
+from egosim.world.signals.aspects import LEFT_ARROW_TYPES, OFF, can_show, has_green
 from egosim.world.signals.controller import IntersectionController, IntersectionStatus
 from egosim.world.signals.errors import (
     UnknownIntersectionError,
@@ -65,7 +60,7 @@ class TrafficSignals:
         self.light_types = np.array(
             [lane_map.traffic_lights[i].light_type for i in self.light_ids], dtype=np.int64
         )
-        self.flashing_heads = self.light_types == TYPE_FLASHING_YELLOW
+        self.flashing_heads = self.light_types == LightType.FLASHING_YELLOW
         """Per light: its head only flashes yellow."""
         self.arrow_heads = np.isin(self.light_types, LEFT_ARROW_TYPES)
         """Per light: its head has a left-arrow lamp."""

@@ -16,10 +16,8 @@ from functools import lru_cache
 import numpy as np
 import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.map import LaneMap
-
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
 
 CONFLICT_DISTANCE_M = 2.5
 """Junction lanes whose centrelines come closer than this cross or merge: two cars on

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.traffic.idm import IntelligentDriverModel
 from egosim.world.traffic.junction_rules import (
     DECISION_MARGIN_M,
@@ -27,9 +28,6 @@ from egosim.world.traffic.leaders import LaneOccupants, leaders_ahead
 from egosim.world.traffic.objects import ObjectTable, ObjectType
 from egosim.world.traffic.signal_rules import LightsView, signal_permissions
 from egosim.world.vehicle import VehicleModel
-
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
 
 CRASH_BRAKE_DECEL_MPS2 = 7.0
 """A crashed NPC's driver brakes this hard (dry asphalt, full brake) until it stands."""

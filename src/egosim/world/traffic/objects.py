@@ -10,8 +10,8 @@ from itertools import chain
 import numpy as np
 import numpy.typing as npt
 
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
+from egosim.world.arrays import FloatArray, IntArray
+
 Vector3 = tuple[float, float, float]
 
 

@@ -13,13 +13,10 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from egosim.world.arrays import BoolArray, FloatArray, IntArray
 from egosim.world.map import Crosswalk, LaneMap, Sidewalk
 from egosim.world.traffic.catalogue import BoxModel
 from egosim.world.traffic.objects import ObjectTable, ObjectType
-
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
-BoolArray = npt.NDArray[np.bool_]
 
 # Gap between paths on the flattened station axis, so a station never reaches the next path.
 _PATH_KEY_GAP_M = 1.0
@@ -153,9 +150,6 @@ class PedestrianCrowd:
         self._gate_key = np.array([g[0] for g in gates], dtype=np.float64)
         self._gate_owner = np.array([g[1] for g in gates], dtype=np.int64)
         self._gate_crosswalk = np.array([g[2] for g in gates], dtype=np.int64)
-
-    def crosswalks_used(self) -> set[int]:
-        return {int(c) for c in self._gate_crosswalk}
 
     def _place(self, s: FloatArray) -> tuple[FloatArray, FloatArray]:
         key = self._key_base + s

@@ -5,13 +5,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import numpy.typing as npt
 
+from egosim.world.arrays import BoolArray, IntArray
 from egosim.world.signals import GREEN, GREEN_LEFT, YELLOW, TrafficSignals
 from egosim.world.traffic.lane_graph import TURN_LEFT
-
-BoolArray = npt.NDArray[np.bool_]
-IntArray = npt.NDArray[np.int64]
 
 
 @dataclass(frozen=True, eq=False)

@@ -18,12 +18,7 @@ from __future__ import annotations
 
 import re
 
-from egosim.world.map.road_network import (
-    LIGHT_FLASHING_YELLOW,
-    LIGHT_RYG,
-    LIGHT_RYG_LEFT,
-    LIGHT_RYG_LEFT_GREEN,
-)
+from egosim.world.map.light_type import LightType
 
 _LAMP_NAMES = {
     "red": "red",
@@ -61,9 +56,9 @@ def light_type_of(sub_type: object) -> int | None:
         return None
     has_red, has_green, has_left = "red" in lamps, "green" in lamps, "left" in lamps
     if lamps - {"other"} == {"yellow"}:
-        return LIGHT_FLASHING_YELLOW
+        return LightType.FLASHING_YELLOW
     if not has_red or "yellow" not in lamps:
         return None
     if has_left:
-        return LIGHT_RYG_LEFT_GREEN if has_green else LIGHT_RYG_LEFT
-    return LIGHT_RYG if has_green else None
+        return LightType.RYG_LEFT_GREEN if has_green else LightType.RYG_LEFT
+    return LightType.RYG if has_green else None

@@ -11,11 +11,11 @@ import math
 from dataclasses import dataclass
 
 from egosim.world.map.lanes import Lane
+from egosim.world.map.light_type import LightType
 from egosim.world.map.mgeo.light_types import light_type_of
 from egosim.world.map.mgeo.links import LinkEnds
 from egosim.world.map.mgeo.nodes import Node
 from egosim.world.map.mgeo.records import Record, unique_by_idx
-from egosim.world.map.road_network import LIGHT_RYG
 
 VEHICLE_LIGHT_TYPES = frozenset({"car", "vehicle"})
 
@@ -52,7 +52,7 @@ def read_light_heads(
                 f"traffic_light_set.json: {idx}: sub_type {record.data.get('sub_type')!r} "
                 "read as R/Y/G"
             )
-            light_type = LIGHT_RYG
+            light_type = LightType.RYG
         lane_ids = _stop_line_lanes(record, lanes, ends, nodes, notes)
         taken = sorted(governed.intersection(lane_ids))
         if taken:

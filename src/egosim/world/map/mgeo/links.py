@@ -11,16 +11,14 @@ from collections import defaultdict
 from dataclasses import dataclass
 
 import numpy as np
-import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray
 from egosim.world.map.errors import MapGeometryError
 from egosim.world.map.lanes import Lane
 from egosim.world.map.mgeo.nodes import Node
 from egosim.world.map.mgeo.records import Record, unique_by_idx
 from egosim.world.map.mgeo.widths import link_widths
 from egosim.world.map.polyline import stations
-
-FloatArray = npt.NDArray[np.float64]
 
 DEFAULT_SPEED_LIMIT_KPH = 50.0
 # Consecutive points closer than this are one point (MGeo tools often repeat a vertex).

@@ -5,11 +5,9 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray
 from egosim.world.map.errors import MapRecordError
-
-FloatArray = npt.NDArray[np.float64]
 
 
 class Record:

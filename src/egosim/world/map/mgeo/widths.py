@@ -3,11 +3,9 @@
 from __future__ import annotations
 
 import numpy as np
-import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray
 from egosim.world.map.mgeo.records import Record
-
-FloatArray = npt.NDArray[np.float64]
 
 DEFAULT_LANE_WIDTH_M = 3.5
 

@@ -8,14 +8,12 @@ crossing (see egosim.world.map.crossings).
 from __future__ import annotations
 
 import numpy as np
-import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray
 from egosim.world.map.crossings import crossing
 from egosim.world.map.lanes import Crosswalk, IntersectionSite
 from egosim.world.map.opendrive.document import CrosswalkRecord, Road
 from egosim.world.map.opendrive.reference_line import lateral_points, reference_poses
-
-FloatArray = npt.NDArray[np.float64]
 
 
 def road_crosswalks(

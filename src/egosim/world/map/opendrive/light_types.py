@@ -16,7 +16,7 @@ R/Y/G; other dynamic signals are ignored and reported.
 
 from __future__ import annotations
 
-from egosim.world.map.road_network import LIGHT_RYG, LIGHT_RYG_LEFT
+from egosim.world.map.light_type import LightType
 
 THREE_LAMP_HEAD = "1000001"
 ARROW_HEAD = "1000011"
@@ -26,9 +26,9 @@ LEFT_ARROW_SUBTYPE = "10"
 def light_type_of(signal_type: str, subtype: str) -> int | None:
     """The trafficLightType of a dynamic signal, None when it is not a vehicle light."""
     if signal_type == THREE_LAMP_HEAD:
-        return LIGHT_RYG
+        return LightType.RYG
     if signal_type == ARROW_HEAD:
-        return LIGHT_RYG_LEFT if subtype == LEFT_ARROW_SUBTYPE else LIGHT_RYG
+        return LightType.RYG_LEFT if subtype == LEFT_ARROW_SUBTYPE else LightType.RYG
     if "light" in signal_type.lower():
-        return LIGHT_RYG
+        return LightType.RYG
     return None

@@ -5,11 +5,10 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray
 from egosim.world.map.opendrive.document import Road
 from egosim.world.map.opendrive.geometry import Arc, Geometry, Line, Spiral, evaluate
 from egosim.world.map.opendrive.polynomials import evaluate as evaluate_cubics
-
-FloatArray = npt.NDArray[np.float64]
 
 # A 0.02 rad turn between stations keeps chords within R·0.02²/8 (0.5 mm at R = 10 m) of
 # the curve and their length within 0.002 % of its arc length.

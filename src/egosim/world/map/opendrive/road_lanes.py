@@ -12,8 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray
 from egosim.world.map.lanes import Sidewalk
 from egosim.world.map.opendrive.document import LaneRecord, Road
 from egosim.world.map.opendrive.polynomials import evaluate as evaluate_cubics
@@ -22,8 +22,6 @@ from egosim.world.map.opendrive.reference_line import (
     reference_poses,
     sample_stations,
 )
-
-FloatArray = npt.NDArray[np.float64]
 
 DRIVABLE_LANE_TYPES = frozenset({"driving", "entry", "exit", "onRamp", "offRamp", "connectingRamp"})
 SIDEWALK_LANE_TYPE = "sidewalk"
