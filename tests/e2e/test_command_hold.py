@@ -48,7 +48,7 @@ def test_morai_example_command_with_unset_mode_drives(egosim, rospy_client) -> N
     client.stream(*CTRL, {"accel": 0.5, "brake": 0.0, "front_steer": 0.0}, rate=20)
     speeds = _speeds_for(client, 3.0)
     client.stop_stream(CTRL[0])
-    assert speeds[-1] > 10.0
+    assert speeds[-1] > 5.0
     assert "unknown longitudinal mode" not in simulator.process.stderr_text()
 
 
@@ -88,4 +88,4 @@ def test_one_sync_mode_command_holds_through_every_later_tick(egosim, rospy_clie
     assert all(s["accel"] == pytest.approx(0.5) and s["brake"] == 0.0 for s in statuses)
     speeds = [s["velocity"]["x"] for s in statuses]
     assert speeds == sorted(speeds)
-    assert speeds[-1] > 10.0
+    assert speeds[-1] > 5.0
