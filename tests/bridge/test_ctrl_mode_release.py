@@ -8,8 +8,10 @@ import pytest
 from egosim.bridge import HANDLERS, ControlMode, simulation_context
 from egosim.bridge.context import BridgeContext
 from egosim.bridge.events import OPTION_CTRL_MODE
+from egosim.bridge.scenarios import apply_network_settings
 from egosim.world import World
 from egosim.world.map import build_builtin_map
+from egosim.world.scenario import parse_scenario
 
 
 def steps(context: BridgeContext, seconds: float) -> None:
@@ -51,3 +53,16 @@ def test_one_command_holds_and_a_mode_change_releases_it() -> None:
     drive(context, throttle)
     steps(context, 0.5)
     assert context.world.ego_status().accel_pedal == 0.5
+
+
+def test_a_scenario_network_section_sets_the_dead_man_timeout_live() -> None:
+    context = simulation_context(World(build_builtin_map("straight")))
+    assert context.world.egos[0].vehicle.command_timeout is None
+    text = "map: straight\nnetwork:\n  command_timeout_s: 0.5\n"
+    apply_network_settings(context, parse_scenario(text, "live.yaml"))
+    assert context.world.command_timeout_s == 0.5
+    assert context.world.egos[0].vehicle.command_timeout == 0.5
+    throttle = context.profile.message("morai_msgs/CtrlCmd").new(longlCmdType=1, accel=0.5)
+    drive(context, throttle)
+    steps(context, 0.6)
+    assert context.world.ego_status().brake_pedal == 1.0

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+import xmlrpc.client
+from itertools import pairwise
 
 import pytest
 
@@ -163,3 +165,38 @@ def test_scenario_load_topic_with_pause(egosim, rospy_client) -> None:
     paused = [client.next_message(OBJECTS[0]) for _ in range(5)]
     positions = {tuple(sorted(o["position"]["x"] for o in m["npc_list"])) for m in paused}
     assert len(positions) == 1
+
+
+LIVE_SETTINGS = """\
+map: straight
+network:
+  rows:
+    ego_status: {rate_hz: 10}
+    object_status: {name: /objects}
+    collision: {enabled: false}
+"""
+
+
+def test_scenario_network_settings_apply_live_and_keep_unchanged_connections(
+    egosim, rospy_client
+) -> None:
+    simulator = egosim("--map", "straight")
+    scenarios.write(simulator.data_root, "live.yaml", LIVE_SETTINGS)
+    client = rospy_client(simulator)
+    client.subscribe(*EGO)
+    client.wait_connected(EGO[0])
+    request = {"file_name": "live.yaml", "load_network_connection_data": True}
+    assert client.call(*SCENARIO_SRV, {"request": request})["response"]["result"] is True
+
+    # The same /Ego_topic connection goes on, now at 10 Hz.
+    seen = len(client.messages(EGO[0], count=0, timeout=0))
+    stamps = [m["header"]["stamp"] for m in client.messages(EGO[0], since=seen + 2, count=5)]
+    gaps = [b - a for a, b in pairwise(stamps)]
+    assert all(gap == pytest.approx(0.1, abs=0.02) for gap in gaps), gaps
+    # /Object_topic moved to /objects; /CollisionData is gone.
+    client.subscribe("/objects", OBJECTS[1])
+    assert client.next_message("/objects")["num_of_npcs"] == 0
+    _, _, (published, _, _) = xmlrpc.client.ServerProxy(simulator.master_uri).getSystemState("/t")
+    topics = {topic for topic, _ in published}
+    assert "/objects" in topics
+    assert "/Object_topic" not in topics and "/CollisionData" not in topics

@@ -5,6 +5,7 @@ from __future__ import annotations
 from . import (
     ego,
     events,
+    extended_status,
     ghost,
     ground_vehicle,
     lights,
@@ -24,6 +25,8 @@ from .core import Handlers
 HANDLERS = Handlers(
     publishers={
         "ego_status": ego.publish_ego_status,
+        "ego_status_extended": extended_status.publish_ego_status_extended,
+        "object_status_extended": extended_status.publish_object_list_extended,
         "object_status": objects.publish_object_list,
         "collision": objects.publish_collision,
         "vehicle_collision": objects.publish_vehicle_collisions,

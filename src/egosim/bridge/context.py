@@ -18,6 +18,7 @@ from ..logthrottle import LogThrottle
 from ..msgs import Profile
 from ..replay import ReplaySession
 from ..world import World
+from .angle_rates import AngleRates
 from .clock import HeaderClock
 from .codes import ControlMode
 from .messages import header
@@ -39,12 +40,15 @@ MAP_FRAME = "map"
 RowHandler = Callable[..., Any]
 
 
-class RowOpener(Protocol):
-    """Opens a topic row of the table under a namespace at run time (Bridge.open_row)."""
+class RowBinder(Protocol):
+    """Binds rows of the table at run time (the bridge): a topic row under a namespace
+    (Bridge.open_row), or a whole new table (Bridge.apply_settings)."""
 
     def open_row(
         self, key: str, namespace: str, handler: RowHandler
     ) -> Callable[[], None] | None: ...
+
+    def apply_settings(self, settings: NetworkSettings) -> list[str]: ...
 
 
 @dataclass
@@ -77,6 +81,8 @@ class SessionState:
     """The autopilot of each ego in control mode auto, by unique id."""
     ego_rows: dict[int, list[Callable[[], None]]] = field(default_factory=dict)
     """What closes the namespaced topics of each additional ego, by unique id."""
+    angle_rates: AngleRates = field(default_factory=AngleRates)
+    """The last reading of each angle whose rate a row reports (extended status rows)."""
 
 
 @dataclass
@@ -98,8 +104,8 @@ class BridgeContext:
     """Synchronous mode: whether a client owns time, the frame, requests kept for later."""
     data_roots: tuple[Path, ...] = ()
     """Where file names from the network (scenarios, bags, sensor data) resolve."""
-    rows: RowOpener | None = None
-    """Opens rows at run time (the bridge); None in-process, without a ROS node."""
+    rows: RowBinder | None = None
+    """Binds rows at run time (the bridge); None in-process, without a ROS node."""
     hold_output: Callable[[], AbstractContextManager[None]] = nullcontext
     """A block whose topic output reaches subscribers as one burst when it ends
     (Node.holding_output); sync mode ticks a WaitForTick's frames inside one."""

@@ -18,7 +18,14 @@ from typing import Any, Protocol, TypeVar
 
 from ..logthrottle import LogThrottle
 from ..msgs import MessageType, MsgsError, get_profile
-from ..ros1 import BadRequestError, ConnectionRefusedByPeerError, Node, Publisher, Subscriber
+from ..ros1 import (
+    BadRequestError,
+    ConnectionRefusedByPeerError,
+    Node,
+    Publisher,
+    ServiceServer,
+    Subscriber,
+)
 from ..ros1.types import TopicType
 from .context import BridgeContext
 from .network import NetworkSettings
@@ -117,6 +124,8 @@ class Bridge:
         self.outlets: list[Outlet] = []
         self.taps: list[Tap] = []
         self._context: BridgeContext | None = None
+        # What unbinds each row of the table that is bound (not namespaced copies).
+        self._unbinders: dict[str, Callable[[], None]] = {}
 
     @property
     def context(self) -> BridgeContext:
@@ -128,12 +137,46 @@ class Bridge:
         """Advertise, subscribe and serve every enabled row, handled with `context`."""
         self._context = context
         for row in self.settings.enabled_rows():
-            if row.direction is Direction.PUBLISH:
-                self._advertise(row, self.handlers.publishers[row.key])
-            elif row.direction is Direction.SUBSCRIBE:
-                self._subscribe(row, self.handlers.subscribers[row.key])
-            else:
-                self._serve(row)
+            self._bind(row)
+
+    def apply_settings(self, settings: NetworkSettings) -> list[str]:
+        """Make `settings` the table in force, changing only the rows that changed: a
+        renamed or disabled row is withdrawn, a new or renamed one opened, a re-rated one
+        keeps its connections and publishes at its new rate; clients of unchanged rows
+        keep theirs. What changed, for the log."""
+        before = {row.key: row for row in self.settings.enabled_rows()}
+        after = {row.key: row for row in settings.enabled_rows()}
+        changes = []
+        for key, row in before.items():
+            if key not in after or after[key].name != row.name:
+                self._unbinders.pop(key)()
+                changes.append(f"{row.name} withdrawn")
+        self.settings = settings
+        for key, row in after.items():
+            old = before.get(key)
+            if old is None or old.name != row.name:
+                self._bind(row)
+                changes.append(f"{row.name} opened")
+            elif old.rate_hz != row.rate_hz:
+                outlet = next(o for o in self.outlets if o.row.key == key and o.row == old)
+                outlet.row, outlet.period = row, 1.0 / row.rate_hz if row.rate_hz else None
+                changes.append(f"{row.name} at {row.rate_hz:g} Hz")
+        return changes
+
+    def _bind(self, row: Row) -> None:
+        if row.direction is Direction.PUBLISH:
+            outlet = self._advertise(row, self.handlers.publishers[row.key])
+            self._unbinders[row.key] = lambda: self._withdraw(outlet)
+        elif row.direction is Direction.SUBSCRIBE:
+            self._unbinders[row.key] = self._subscribe(
+                row, self.handlers.subscribers[row.key]
+            ).close
+        else:
+            self._unbinders[row.key] = self._serve(row).close
+
+    def _withdraw(self, outlet: Outlet) -> None:
+        self.outlets.remove(outlet)
+        outlet.publisher.close()
 
     def open_row(
         self, key: str, namespace: str, handler: Callable[..., Any]
@@ -150,12 +193,7 @@ class Bridge:
         if row.direction is not Direction.PUBLISH:
             raise ValueError(f"{row.name}: only topics are opened at run time")
         outlet = self._advertise(row, handler)
-
-        def close() -> None:
-            self.outlets.remove(outlet)
-            outlet.publisher.close()
-
-        return close
+        return lambda: self._withdraw(outlet)
 
     def publish_due(self, now: float) -> None:
         """Build and publish every outlet whose period has elapsed at loop time `now` (s)."""
@@ -245,7 +283,7 @@ class Bridge:
         any_release = TopicType(row.type_name, "*", releases[0].message_type.definition)
         return self.node.subscribe(row.name, any_release, received)
 
-    def _serve(self, row: Row) -> None:
+    def _serve(self, row: Row) -> ServiceServer:
         """Serve the row to clients of any release, each answered in its own."""
         releases = service_releases_of(row.type_name, self.default_release)
         canonical_type = get_profile(CANONICAL_PROFILE).service(row.type_name)
@@ -280,7 +318,7 @@ class Bridge:
                 convert(response, canonical_type.response, served.response)
             )
 
-        self.node.advertise_service(
+        return self.node.advertise_service(
             row.name,
             releases[0].service_type,
             serve,

@@ -23,7 +23,7 @@ from typing import Any
 
 from ..world.vehicle import Gear, Pose
 from .codes import ControlMode
-from .context import BridgeContext, RowOpener
+from .context import BridgeContext, RowBinder
 from .control_modes import switch_ctrl_mode
 from .ego import drive_with_ctrl_cmd, ego_status_of
 from .table import Row
@@ -169,7 +169,7 @@ def _sync_ego_rows(context: BridgeContext) -> None:
             ego_rows[ego.unique_id] = _open_ego_rows(context.rows, k)
 
 
-def _open_ego_rows(rows: RowOpener, k: int) -> list[Callable[[], None]]:
+def _open_ego_rows(rows: RowBinder, k: int) -> list[Callable[[], None]]:
     namespace = ego_namespace(k)
     closers = [
         rows.open_row("ego_status", namespace, lambda ctx, row: ego_status_of(ctx, k)),

@@ -62,7 +62,19 @@ def settings_for(ego_input: str, overrides: dict[str, Row]) -> NetworkSettings:
 
 def parse_network_settings(text: str, label: str) -> NetworkSettings:
     """Settings from a YAML text; errors name the file, line and field."""
-    document = parse_yaml(text, label)
+    return network_settings_of(parse_yaml(text, label))
+
+
+def section_of(document: YamlDocument, key: str) -> YamlDocument:
+    """The part of `document` under `key` (a scenario's `network:`), as a document of its
+    own whose errors still name the file's lines."""
+    data = document.data.get(key) if isinstance(document.data, dict) else None
+    lines = {path[1:]: line for path, line in document.lines.items() if path[:1] == (key,)}
+    return YamlDocument(document.label, data, lines, document.error_type)
+
+
+def network_settings_of(document: YamlDocument) -> NetworkSettings:
+    """Settings from a parsed document; errors name the file, line and field."""
     data = document.data if document.data is not None else {}
     if not isinstance(data, dict):
         raise document.error((), f"expected a mapping with any of {', '.join(SETTINGS)}")

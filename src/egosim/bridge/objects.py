@@ -28,18 +28,23 @@ def to_object_frame(vector: Sequence[float], heading: float) -> tuple[float, flo
     return (c * x + s * y, -s * x + c * y, z)
 
 
-def object_status(profile: Profile, state: ObjectState) -> Any:
+def object_status_fields(profile: Profile, state: ObjectState) -> dict[str, Any]:
+    """The fields ObjectStatus and ObjectStatusExtended share, in protocol units."""
     velocity = to_object_frame(state.velocity, state.heading)
-    return profile.message("morai_msgs/ObjectStatus").new(
-        unique_id=state.unique_id,
-        type=int(state.object_type),
-        name=state.name,
-        heading=heading_deg(state.heading),
-        velocity=vector3(profile, [kmh(v) for v in velocity]),
-        acceleration=vector3(profile, to_object_frame(state.acceleration, state.heading)),
-        size=vector3(profile, swap_length_width(state.size)),
-        position=vector3(profile, state.position),
-    )
+    return {
+        "unique_id": state.unique_id,
+        "type": int(state.object_type),
+        "name": state.name,
+        "heading": heading_deg(state.heading),
+        "velocity": vector3(profile, [kmh(v) for v in velocity]),
+        "acceleration": vector3(profile, to_object_frame(state.acceleration, state.heading)),
+        "size": vector3(profile, swap_length_width(state.size)),
+        "position": vector3(profile, state.position),
+    }
+
+
+def object_status(profile: Profile, state: ObjectState) -> Any:
+    return profile.message("morai_msgs/ObjectStatus").new(**object_status_fields(profile, state))
 
 
 def publish_object_list(context: BridgeContext, row: Row) -> Any:

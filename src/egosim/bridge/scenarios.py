@@ -16,7 +16,10 @@ from typing import Any
 
 from ..datapaths import PathOutsideRootsError, read_regular_file, resolve_in_roots
 from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, parse_scenario
+from ..yamltext import YamlFileError
 from .context import BridgeContext
+from .network import network_settings_of, section_of
+from .sensor_rig import SensorRig
 from .table import Row
 
 log = logging.getLogger(__name__)
@@ -98,10 +101,32 @@ def load_requested_scenario(context: BridgeContext, prepared: ScenarioRequest) -
         ", paused" if report.paused else "",
     )
     if report.network_settings is not None:
-        log.info(
-            "scenario network settings (applied at the next start with --network): %s",
-            report.network_settings,
-        )
+        apply_network_settings(context, prepared.scenario)
+
+
+def apply_network_settings(context: BridgeContext, scenario: Scenario) -> None:
+    """A scenario's `network:` section (load_network_connection_data) becomes the table in
+    force at once: rows renamed, re-rated, enabled or disabled, the ego input switched,
+    the egos' command timeout set, the sensors reconfigured; a section with a mistake
+    changes nothing."""
+    try:
+        settings = network_settings_of(section_of(scenario.source, "network"))
+    except YamlFileError as error:
+        log.error("scenario network settings not applied: %s", error)
+        return
+    changes = context.rows.apply_settings(settings) if context.rows is not None else []
+    context.settings = settings
+    if settings.command_timeout_s != context.world.command_timeout_s:
+        context.world.command_timeout_s = settings.command_timeout_s
+        changes.append(f"command timeout {settings.command_timeout_s} s")
+    if settings.sensors != context.sensors.settings:
+        context.sensors = SensorRig(settings.sensors, context.world.map.georef)
+        changes.append("sensors reconfigured")
+    log.info(
+        "scenario network settings applied (ego input %s): %s",
+        settings.ego_input,
+        "; ".join(changes) or "nothing changed",
+    )
 
 
 def on_scenario_load(context: BridgeContext, row: Row, prepared: ScenarioRequest) -> None:

@@ -66,6 +66,8 @@ def obstacle_boxes(world: World) -> ObstacleBoxes:
 
 class SensorRig:
     def __init__(self, settings: SensorSettings, georeference: GeoReference) -> None:
+        self.settings = settings
+        """What the network settings asked for (SensorPosControl moves mounts later)."""
         gps_seed, imu_seed = np.random.SeedSequence(settings.seed).spawn(2)
         self._gps_rng = np.random.default_rng(gps_seed)
         self._imu_rng = np.random.default_rng(imu_seed)

@@ -27,7 +27,9 @@ DEFAULT_CHUNK_SIZE = 768 * 1024
 DEFAULT_QUEUE_LIMIT = 100_000
 DEFAULT_QUEUE_BYTES = 256 * 1024 * 1024
 # A quiet bag (few, small messages) still reaches the disk this often.
-DEFAULT_FLUSH_INTERVAL_S = 1.0
+# A process killed with SIGKILL loses at most the messages of this long (and of the
+# queue not yet taken, which the writer takes at least as often).
+DEFAULT_FLUSH_INTERVAL_S = 0.05
 
 
 @dataclass(frozen=True)
