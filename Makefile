@@ -7,9 +7,11 @@ ARGS ?=
 ROS_PEER_DEBS := python3-rospy python3-rosmaster python3-rostopic python3-rosservice \
 	python3-rosparam python3-rosnode python3-rosbag python3-genpy ros-core-dev \
 	g++ pkg-config
+# Debian's headless Chromium and its WebDriver: the live view's browser tests.
+BROWSER_DEBS := chromium chromium-driver
 SOURCES := $(wildcard src tests benchmarks examples)
 
-.PHONY: run test lint ros-peers benchmarks clean
+.PHONY: run test lint ros-peers browser-peers benchmarks clean
 
 $(BIN)/python:
 	@$(PYTHON) -m venv $(VENV) 2>/dev/null || { \
@@ -48,11 +50,24 @@ ros-peers:
 		echo "########################################################################"; \
 	fi
 
+browser-peers:
+	@if [ -x /usr/bin/chromium ] && [ -x /usr/bin/chromedriver ]; then \
+		echo "browser test peers: present"; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+		echo "browser test peers: installing $(BROWSER_DEBS)"; \
+		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+			--no-install-recommends $(BROWSER_DEBS); \
+	else \
+		echo "WARNING: chromium and chromium-driver are missing and this is not root:"; \
+		echo "the live view's browser tests will SKIP (sudo apt-get install $(BROWSER_DEBS))"; \
+	fi
+
 lint: $(VENV)/.installed-test
 	$(BIN)/ruff check $(SOURCES)
 	$(BIN)/ruff format --check $(SOURCES)
+	$(BIN)/mypy
 
-test: $(VENV)/.installed-test ros-peers lint
+test: $(VENV)/.installed-test ros-peers browser-peers lint
 	$(BIN)/pytest
 
 benchmarks: $(VENV)/.installed-test

@@ -1,7 +1,8 @@
 """Maps by name or path: the built-in maps, MGeo folders and OpenDRIVE (.xodr) files.
 
 `load_map(name_or_path)` is what `egosim run --map NAME|PATH` calls. A built-in name gives
-that map; a folder is read as MGeo, a `.xodr` file as OpenDRIVE. What a loader reads but
+that map, the name of a map shipped with egosim (`mgeo_sample`) its folder; a folder is read
+as MGeo, a `.xodr` file as OpenDRIVE. What a loader reads but
 leaves out is logged (and returned by `read_map`); anything it cannot read raises a
 MapLoadError whose one-line message names the file and the record.
 """
@@ -18,6 +19,8 @@ from egosim.world.map.mgeo import MGEO_FILES, build_mgeo_map
 from egosim.world.map.opendrive import build_opendrive_map
 
 OPENDRIVE_SUFFIX = ".xodr"
+SHIPPED_MAPS_DIR = Path(__file__).parent / "data" / "maps"
+"""Map folders shipped with egosim, loadable by their folder's name."""
 
 log = logging.getLogger(__name__)
 
@@ -33,6 +36,24 @@ class LoadedMap:
     """What the loader read but left out, one line each."""
 
 
+def shipped_map_names() -> tuple[str, ...]:
+    return tuple(sorted(p.name for p in SHIPPED_MAPS_DIR.iterdir() if p.is_dir()))
+
+
+def map_names() -> tuple[str, ...]:
+    """Every map `load_map` knows by name: the built-in maps, then the shipped ones."""
+    return (*BUILTIN_MAP_NAMES, *shipped_map_names())
+
+
+def scenario_map_location(reference: str, scenario_folder: Path) -> str:
+    """What to load for a scenario's `map` field: a known map name as it is, a path
+    taken relative to the folder of the scenario file."""
+    if reference in map_names():
+        return reference
+    path = Path(reference).expanduser()
+    return str(path if path.is_absolute() else scenario_folder / path)
+
+
 def load_map(name_or_path: str) -> LaneMap:
     """The map named (a built-in name) or stored at a path (an MGeo folder, a .xodr file)."""
     loaded = read_map(name_or_path)
@@ -45,6 +66,8 @@ def read_map(name_or_path: str) -> LoadedMap:
     """`load_map` that also returns the notes instead of logging them."""
     if name_or_path in BUILTIN_MAP_NAMES:
         return LoadedMap(build_builtin_map(name_or_path), ())
+    if name_or_path in shipped_map_names():
+        return _read_mgeo(SHIPPED_MAPS_DIR / name_or_path)
     path = Path(name_or_path)
     if path.is_dir():
         return _read_mgeo(path)
@@ -52,7 +75,7 @@ def read_map(name_or_path: str) -> LoadedMap:
         return _read_opendrive(path)
     if path.exists():
         raise MapLoadError(f"{path}: not an MGeo folder or an OpenDRIVE {OPENDRIVE_SUFFIX} file")
-    known = ", ".join(BUILTIN_MAP_NAMES)
+    known = ", ".join(map_names())
     raise MapLoadError(f"{name_or_path}: no such file or folder, nor a built-in map ({known})")
 
 

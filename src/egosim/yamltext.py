@@ -6,6 +6,8 @@ npcs[2].speed" is worth more to them than a traceback.
 
 from __future__ import annotations
 
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -28,15 +30,61 @@ def field_name(path: FieldPath) -> str:
 
 
 class YamlFileError(ValueError):
-    """A YAML file that cannot be used, located by file label, line and field."""
+    """A YAML file that cannot be used, located by file label, line and field.
+
+    One error may report several problems of the same file (`problems`, in file order;
+    its message has one line each); its own label, line and field are the first one's.
+    """
 
     def __init__(self, label: str, line: int | None, field: str, message: str) -> None:
         self.label = label
         self.line = line
         self.field = field
         self.message = message
+        self.problems: tuple[YamlFileError, ...] = (self,)
         where = label if line is None else f"{label}:{line}"
         super().__init__(f"{where}: {field + ': ' if field else ''}{message}")
+
+    @classmethod
+    def of_all(cls, errors: Sequence[YamlFileError]) -> YamlFileError:
+        """One error reporting every problem of `errors` (each once), in file order."""
+        unique: dict[str, YamlFileError] = {}
+        for error in errors:
+            for problem in error.problems:
+                unique.setdefault(str(problem), problem)
+        ordered = sorted(unique.values(), key=lambda p: (p.line is None, p.line or 0))
+        if len(ordered) == 1:
+            return ordered[0]
+        first = ordered[0]
+        combined = type(first)(first.label, first.line, first.field, first.message)
+        combined.problems = tuple(ordered)
+        combined.args = ("\n".join(str(problem) for problem in ordered),)
+        return combined
+
+
+class Problems:
+    """Collects the problems found in a file, so that they are all reported at once.
+
+    Each independent check runs in its own `with problems.collecting():` block, which
+    keeps the YamlFileError it raises and carries on after the block.
+    """
+
+    def __init__(self) -> None:
+        self.found: list[YamlFileError] = []
+
+    def add(self, error: YamlFileError) -> None:
+        self.found.append(error)
+
+    @contextmanager
+    def collecting(self) -> Iterator[None]:
+        try:
+            yield
+        except YamlFileError as error:
+            self.found.append(error)
+
+    def raise_any(self) -> None:
+        if self.found:
+            raise YamlFileError.of_all(self.found)
 
 
 @dataclass(frozen=True)
@@ -69,7 +117,8 @@ def check_nesting(text: str, label: str, error_type: type[YamlFileError]) -> Non
         if isinstance(event, yaml.CollectionStartEvent):
             depth += 1
             if depth > MAX_DEPTH:
-                line = event.start_mark.line + 1
+                mark = event.start_mark
+                line = None if mark is None else mark.line + 1
                 raise error_type(label, line, "", f"nested deeper than {MAX_DEPTH} levels")
         elif isinstance(event, yaml.CollectionEndEvent):
             depth -= 1
@@ -124,10 +173,13 @@ def parse_yaml(
             if not isinstance(key_node, yaml.ScalarNode):
                 raise error_type(label, key_line, field_name(path), "a key must be a plain value")
             key = construct(key_node, path)
+            # Named once: mypy (run by Python >= 3.11) misreads `lines[(*path, key)]` as
+            # Python 3.11's unparenthesised star index when checking for Python 3.10.
+            key_path = (*path, key)
             if key in result:
-                raise error_type(label, key_line, field_name((*path, key)), "appears twice")
-            result[key] = convert(value_node, (*path, key))
-            lines[(*path, key)] = key_line
+                raise error_type(label, key_line, field_name(key_path), "appears twice")
+            result[key] = convert(value_node, key_path)
+            lines[key_path] = key_line
         return result
 
     def construct(node: yaml.Node, path: FieldPath) -> Any:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -63,3 +64,81 @@ def test_console_script_runs() -> None:
         check=True,
     )
     assert result.stdout.strip() == "b36ceb480d187645a32b95c2be82bf56"
+
+
+def test_short_name_resolves_to_its_package(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["msgs", "CtrlCmd"]) == 0
+    short = capsys.readouterr().out
+    assert main(["msgs", "morai_msgs/CtrlCmd"]) == 0
+    assert short == capsys.readouterr().out
+    assert short.startswith("# morai_msgs/CtrlCmd  md5sum: b36ceb480d187645a32b95c2be82bf56")
+
+
+def test_unknown_short_name_is_one_line_listing_candidates(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    assert main(["msgs", "ctrlcmd"]) == 1
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    lines = captured.err.splitlines()
+    assert len(lines) == 1
+    assert "morai_msgs/CtrlCmd" in lines[0]
+    assert "morai_msgs/SyncModeCtrlCmd" in lines[0]
+    assert "Traceback" not in captured.err
+
+
+def test_service_shows_request_and_response_fields(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["msgs", "MoraiScenarioLoadSrv"]) == 0
+    body = capsys.readouterr().out.splitlines()[1:]
+    separator = body.index("---")
+    assert body[: separator + 1] == [
+        "morai_msgs/ScenarioLoad request",
+        "  string file_name",
+        "  bool load_network_connection_data",
+        "  bool delete_all",
+        "  bool load_ego_vehicle_data",
+        "  bool load_surrounding_vehicle_data",
+        "  bool load_pedestrian_data",
+        "  bool load_obstacle_data",
+        "  bool set_pause",
+        "---",
+    ]
+    assert body[separator + 1 :] == ["morai_msgs/MoraiSrvResponse response", "  bool result"]
+
+
+def test_nested_types_expand_beneath_their_field(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["msgs", "NavSatFix"]) == 0
+    body = capsys.readouterr().out.splitlines()
+    assert body[1] == "uint8 COVARIANCE_TYPE_UNKNOWN=0"
+    assert "std_msgs/Header header" in body
+    assert body[body.index("std_msgs/Header header") + 2] == "  time stamp"
+    assert "  int8 STATUS_NO_FIX=-1" in body
+    assert "float64[9] position_covariance" in body
+
+
+def test_export_writes_a_catkin_package(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    target = tmp_path / "src" / "morai_msgs"
+    assert main(["msgs", "--export", str(target), "--profile", "2021.08"]) == 0
+    assert "wrote morai_msgs 2021.08" in capsys.readouterr().out
+    assert (target / "package.xml").is_file()
+    assert (target / "msg" / "CtrlCmd.msg").is_file()
+    assert (target / "srv" / "MoraiEventCmdSrv.srv").is_file()
+
+
+def test_export_into_an_unwritable_place_is_a_one_line_error(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder")
+    assert main(["msgs", "--export", str(blocker / "morai_msgs")]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("egosim msgs: cannot write") and len(err.splitlines()) == 1
+
+
+def test_export_python_without_genpy_says_what_to_install(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    # egosim's own interpreter has no genpy: the message names the fix.
+    assert main(["msgs", "--export-python", str(tmp_path), "--ros-python", sys.executable]) == 1
+    err = capsys.readouterr().err
+    assert "python3-genpy" in err and len(err.splitlines()) == 1

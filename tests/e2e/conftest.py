@@ -11,13 +11,8 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import RosProcess, free_port
-from tests.debian_ros import ROS_PYTHON, require_ros
+from tests.debian_ros import require_ros
 from tests.e2e.driver import RospyDriver
-
-PEERS = Path(__file__).parent / "peers"
-MORAI_MSGS_26R1 = (
-    Path(__file__).parents[2] / "src" / "egosim" / "msgs" / "definitions" / "26.r1" / "morai_msgs"
-)
 
 
 @dataclass
@@ -68,12 +63,12 @@ def rospy_client(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Callable[.
 
 @pytest.fixture(scope="session")
 def built_msg_packages(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """morai_msgs (26.r1, from egosim's shipped files) and its dependencies as genpy-built
-    Python packages, as a user's `catkin_make` leaves them; put it on PYTHONPATH."""
+    """morai_msgs (26.r1) and its dependencies as rospy modules, written by
+    `egosim msgs --export-python` with Debian's genpy; put it on PYTHONPATH."""
     require_ros()
     outdir = tmp_path_factory.mktemp("msg_packages")
     subprocess.run(
-        [ROS_PYTHON, str(PEERS / "build_msg_packages.py"), str(outdir), str(MORAI_MSGS_26R1)],
+        [sys.executable, "-m", "egosim", "msgs", "--export-python", str(outdir)],
         check=True,
         capture_output=True,
         timeout=300,

@@ -21,6 +21,9 @@ def test_pure_pursuit_example_completes_a_lap(egosim, spawn_ros, built_msg_packa
         ROS_IP="127.0.0.1",
         PYTHONPATH=str(built_msg_packages),
     )
+    # It reports its progress while it drives, not only at the end.
+    progress = example.expect(r"^driven +([\d.]+) m .* speed +([\d.]+) km/h", timeout=180)
+    assert float(progress.group(1)) > 0.0
     line = example.expect(r"^lap complete", timeout=180)
     assert example.wait(timeout=30) == 0
     largest = float(re.search(r"path ([\d.]+) m", line.string).group(1))

@@ -279,6 +279,19 @@ def test_a_parameter_xmlrpc_cannot_send_back_is_refused(embedded_master):
     assert master.getParam("/x", "/")[0] == 1
 
 
+def test_a_method_response_posted_as_a_call_gets_a_fault_and_is_logged(embedded_master, caplog):
+    caplog.set_level(logging.WARNING, logger="egosim.ros1")
+    body = xmlrpc.client.dumps(([1, "ok", 0],), methodresponse=True)
+    connection = http.client.HTTPConnection(*_address(embedded_master.uri), timeout=5)
+    connection.request("POST", "/", body=body, headers={"Content-Type": "text/xml"})
+    reply = connection.getresponse().read()
+    connection.close()
+    with pytest.raises(xmlrpc.client.Fault, match="methodResponse, not a methodCall"):
+        xmlrpc.client.loads(reply)
+    assert any("methodResponse" in r.getMessage() for r in caplog.records)
+    assert xmlrpc.client.ServerProxy(embedded_master.uri).getPid("/x")[0] == 1
+
+
 def test_a_malformed_publisher_update_changes_nothing(embedded_master, make_node):
     listener, talker, pub, received = _connected_chatter(embedded_master, make_node)
     reply = slave_call(listener, "publisherUpdate", "/chatter", talker.uri)  # not a list

@@ -10,7 +10,8 @@ from ..bridge.clock import ClockMode
 
 @dataclass(frozen=True)
 class RunOptions:
-    map: str = "town"
+    map: str | None = None
+    """A map name or path; None: the scenario's map, else the town."""
     scenario: Path | None = None
     network: Path | None = None
     clock: ClockMode = ClockMode.REAL

@@ -6,21 +6,24 @@ import contextlib
 import logging
 import sys
 import threading
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from ..bridge import HANDLERS, Bridge, ClockMode, simulation_context
 from ..bridge.network import load_network_settings
-from ..maps import MapLoadError, load_map
+from ..maps import MapLoadError, load_map, scenario_map_location
 from ..replay import RecorderError
 from ..ros1 import Node, Ros1Error
 from ..world import World
-from ..world.scenario import ScenarioError, load_default_scenario, parse_scenario
+from ..world.scenario import Scenario, ScenarioError, load_default_scenario, parse_scenario
 from ..yamltext import YamlFileError
+from .attachments import Attach, Attachment, RunningSimulator
 from .inbox import Inbox
 from .loop import SimulationLoop
 from .options import RunOptions
 from .recording import TopicRecorder, open_recorder
 from .signals import stop_on_signals
+from .summary import ready_summary
 
 log = logging.getLogger("egosim")
 
@@ -28,6 +31,7 @@ NODE_NAME = "egosim"
 EXIT_OK = 0
 EXIT_BAD_INPUT = 2
 EXIT_ROS_FAILED = 3
+DEFAULT_MAP = "town"
 
 
 class StartupError(Exception):
@@ -38,37 +42,78 @@ class StartupError(Exception):
         self.exit_code = exit_code
 
 
+def read_scenario_file(path: Path) -> Scenario:
+    """The scenario in the file at `path` (OSError, UnicodeDecodeError, ScenarioError)."""
+    return parse_scenario(path.read_text(encoding="utf-8"), str(path))
+
+
+def startup_scenario(options: RunOptions, map_name: str) -> Callable[[], Scenario] | None:
+    """What reads the scenario a run starts with: --scenario, else the town's default."""
+    path = options.scenario
+    if path is not None:
+        return lambda: read_scenario_file(path)
+    if map_name == DEFAULT_MAP:
+        return load_default_scenario
+    return None
+
+
 def build_world(options: RunOptions) -> World:
+    """The world of `options`: the scenario's own map unless --map names one (which must
+    then be the map the scenario is for); no scenario: --map (default town)."""
+    scenario = _read_scenario(options.scenario) if options.scenario is not None else None
+    if options.map is not None:
+        source = options.map
+    elif scenario is not None and options.scenario is not None:
+        source = scenario_map_location(scenario.map_reference, options.scenario.parent)
+    else:
+        source = DEFAULT_MAP
     try:
-        lane_map = load_map(options.map)
+        lane_map = load_map(source)
     except MapLoadError as error:
         raise StartupError(f"map: {error}") from error
-    try:
-        if options.scenario is not None:
-            scenario = parse_scenario(
-                options.scenario.read_text(encoding="utf-8"), str(options.scenario)
+    if scenario is None and lane_map.name == DEFAULT_MAP:
+        scenario = load_default_scenario()
+    if scenario is not None and scenario.map_name != lane_map.name:
+        raise StartupError(
+            str(
+                scenario.error(
+                    ("map",),
+                    f"the scenario is for map {scenario.map_name!r}, --map gives "
+                    f"{lane_map.name!r} (leave --map out to run the scenario's own map)",
+                )
             )
-        elif lane_map.name == "town":
-            scenario = load_default_scenario()
-        else:
-            scenario = None
+        )
+    try:
         return World(lane_map, scenario, physics_step_s=options.physics_dt)
-    except (OSError, UnicodeDecodeError) as error:
-        raise StartupError(f"cannot read scenario {options.scenario}: {error}") from error
     except ScenarioError as error:
         raise StartupError(str(error)) from error
 
 
-def run(options: RunOptions) -> int:
-    """Run the simulator until stopped; the process exit status."""
+def _read_scenario(path: Path) -> Scenario:
     try:
-        return _run(options)
+        return read_scenario_file(path)
+    except (OSError, UnicodeDecodeError) as error:
+        raise StartupError(f"cannot read scenario {path}: {error}") from error
+    except ScenarioError as error:
+        raise StartupError(str(error)) from error
+
+
+def run(
+    options: RunOptions, attach: Sequence[Attach] = (), stop: threading.Event | None = None
+) -> int:
+    """Run the simulator until stopped; the process exit status.
+
+    `attach` builds what rides on the loop (the live view, a batch case's drive) once the
+    simulator is up; setting `stop` ends the run as Ctrl-C does.
+    """
+    try:
+        return _run(options, attach, stop or threading.Event())
     except StartupError as error:
         print(f"egosim: {error}", file=sys.stderr)
         return error.exit_code
 
 
-def _run(options: RunOptions) -> int:
+def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -> int:
     world = build_world(options)
     try:
         settings = load_network_settings(
@@ -84,7 +129,6 @@ def _run(options: RunOptions) -> int:
         except RecorderError as error:
             raise StartupError(f"--record: {error}") from error
 
-    stop = threading.Event()
     # The bag is closed (index and header written) however the run ends.
     with stop_on_signals(stop), recorder or contextlib.nullcontext():
         try:
@@ -114,8 +158,19 @@ def _run(options: RunOptions) -> int:
             node.shutdown("startup failed")
             reason = f"cannot register with the ROS master: {error}"
             raise StartupError(reason, EXIT_ROS_FAILED) from error
+        running = RunningSimulator(
+            options, context, inbox, node, startup_scenario(options, world.map.name)
+        )
+        attachments: list[Attachment] = []
+        try:
+            attachments.extend(build(running) for build in attach)
+        except StartupError:
+            for attachment in attachments:
+                attachment.close()
+            node.shutdown("startup failed")
+            raise
         log.info("egosim up: map %s, master %s", world.map.name, node.master_uri)
-        print("egosim: ready", flush=True)
+        print(f"egosim: ready\n{ready_summary(world, options)}", flush=True)
 
         max_steps = None
         if options.duration is not None:
@@ -132,6 +187,8 @@ def _run(options: RunOptions) -> int:
         try:
             loop.run()
         finally:
+            for attachment in attachments:
+                attachment.close()
             inbox.close()
             node.shutdown("egosim stopping")
     return EXIT_OK

@@ -12,7 +12,7 @@ inbox.
 from __future__ import annotations
 
 import logging
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any, Protocol, TypeVar
 
@@ -247,7 +247,7 @@ class Bridge:
         releases = releases_of(row.type_name, self.default_release)
         message_type = canonical(row.type_name)
 
-        def received(data: bytes, header: Any) -> None:
+        def received(data: bytes, header: Mapping[str, str]) -> None:
             caller = header.get("callerid", "?")
             release = release_for_md5(releases, header.get("md5sum", ""))
             if release is None:
@@ -289,14 +289,14 @@ class Bridge:
         canonical_type = get_profile(CANONICAL_PROFILE).service(row.type_name)
         handle = self.handlers.services[row.key]
 
-        def release_of(header: Any) -> ServiceRelease:
+        def release_of(header: Mapping[str, str]) -> ServiceRelease:
             release = service_release_for_md5(releases, header.get("md5sum", "*"))
             if release is None:
                 accepted = [(r.service_type.md5sum, r.profile_name) for r in releases]
                 raise refusal(row.name, row.type_name, header.get("md5sum"), accepted)
             return release
 
-        def serve(data: bytes, header: Any) -> bytes:
+        def serve(data: bytes, header: Mapping[str, str]) -> bytes:
             release = release_of(header)
             served = release.service_type
             try:
@@ -326,10 +326,12 @@ class Bridge:
         )
 
 
-def negotiator(topic: str, releases: tuple[Release, ...]) -> Callable[[Any], MessageType]:
+def negotiator(
+    topic: str, releases: tuple[Release, ...]
+) -> Callable[[Mapping[str, str]], MessageType]:
     """Picks the release a subscriber's md5sum asks for (`*`: the default one)."""
 
-    def negotiate(header: Any) -> MessageType:
+    def negotiate(header: Mapping[str, str]) -> MessageType:
         wanted = header.get("md5sum", "*")
         if wanted == "*":
             return releases[0].message_type

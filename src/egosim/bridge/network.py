@@ -17,7 +17,7 @@ import re
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from ..yamltext import YamlDocument, YamlFileError, parse_yaml
+from ..yamltext import Problems, YamlDocument, YamlFileError, parse_yaml
 from .sensor_settings import SensorSettings, parse_sensor_settings
 from .table import DEFAULT_EGO_INPUT, EGO_INPUT_ROWS, ROWS, ROWS_BY_KEY, Direction, Row
 
@@ -61,7 +61,7 @@ def settings_for(ego_input: str, overrides: dict[str, Row]) -> NetworkSettings:
 
 
 def parse_network_settings(text: str, label: str) -> NetworkSettings:
-    """Settings from a YAML text; errors name the file, line and field."""
+    """Settings from a YAML text; errors name the file, line and field, all at once."""
     return network_settings_of(parse_yaml(text, label))
 
 
@@ -74,23 +74,32 @@ def section_of(document: YamlDocument, key: str) -> YamlDocument:
 
 
 def network_settings_of(document: YamlDocument) -> NetworkSettings:
-    """Settings from a parsed document; errors name the file, line and field."""
+    """Settings from a parsed document; errors name the file, line and field, and every
+    problem of the document is reported at once."""
     data = document.data if document.data is not None else {}
     if not isinstance(data, dict):
         raise document.error((), f"expected a mapping with any of {', '.join(SETTINGS)}")
-    unknown = set(data) - set(SETTINGS)
-    if unknown:
-        key = sorted(unknown)[0]
-        raise document.error((key,), f"unknown setting (known: {', '.join(SETTINGS)})")
+    problems = Problems()
+    for key in sorted(set(data) - set(SETTINGS), key=str):
+        problems.add(document.error((key,), f"unknown setting (known: {', '.join(SETTINGS)})"))
     ego_input = data.get("ego_input", DEFAULT_EGO_INPUT)
     if ego_input not in EGO_INPUT_ROWS:
-        raise document.error(("ego_input",), f"must be one of {', '.join(EGO_INPUT_ROWS)}")
+        problems.add(document.error(("ego_input",), f"must be one of {', '.join(EGO_INPUT_ROWS)}"))
     rows = data.get("rows") or {}
+    overrides: dict[str, Row] = {}
     if not isinstance(rows, dict):
-        raise document.error(("rows",), "expected a mapping of row key to settings")
-    overrides = {key: _override(document, key, value) for key, value in rows.items()}
-    sensors = parse_sensor_settings(document, data.get("sensors"))
-    timeout = _command_timeout(document, data.get("command_timeout_s"))
+        problems.add(document.error(("rows",), "expected a mapping of row key to settings"))
+        rows = {}
+    for key, value in rows.items():
+        with problems.collecting():
+            overrides[key] = _override(document, key, value)
+    sensors = SensorSettings()
+    with problems.collecting():
+        sensors = parse_sensor_settings(document, data.get("sensors"))
+    timeout = None
+    with problems.collecting():
+        timeout = _command_timeout(document, data.get("command_timeout_s"))
+    problems.raise_any()
     return replace(settings_for(ego_input, overrides), sensors=sensors, command_timeout_s=timeout)
 
 
@@ -113,26 +122,41 @@ def _override(document: YamlDocument, key: Any, value: Any) -> Row:
     if not isinstance(value, dict):
         raise document.error(path, "expected a mapping with name, rate_hz, enabled")
     row = ROWS_BY_KEY[key]
+    problems = Problems()
     for field_name in value:
         if field_name not in ROW_FIELDS:
-            raise document.error((*path, str(field_name)), "unknown field (name, rate_hz, enabled)")
+            problems.add(
+                document.error((*path, str(field_name)), "unknown field (name, rate_hz, enabled)")
+            )
     name = value.get("name", row.name)
     if not isinstance(name, str) or not ROS_NAME.match(name):
-        raise document.error((*path, "name"), f"not a valid ROS name: {name!r}")
+        problems.add(document.error((*path, "name"), f"not a valid ROS name: {name!r}"))
     enabled = value.get("enabled", row.enabled)
     if not isinstance(enabled, bool):
-        raise document.error((*path, "enabled"), "expected true or false")
+        problems.add(document.error((*path, "enabled"), "expected true or false"))
     if key in EGO_INPUT_ROWS.values() and "enabled" in value:
-        raise document.error((*path, "enabled"), "ego command inputs are chosen by ego_input")
+        problems.add(
+            document.error((*path, "enabled"), "ego command inputs are chosen by ego_input")
+        )
     rate = value.get("rate_hz", row.rate_hz)
-    if "rate_hz" in value:
-        if row.direction is not Direction.PUBLISH:
-            raise document.error((*path, "rate_hz"), "only publishers have a rate")
-        if isinstance(rate, bool) or not isinstance(rate, int | float):
-            raise document.error((*path, "rate_hz"), "expected a number of Hz")
-        if not (math.isfinite(rate) and 0 < rate <= MAX_RATE_HZ):
-            raise document.error((*path, "rate_hz"), f"must be in 0..{MAX_RATE_HZ:g} Hz (above 0)")
+    with problems.collecting():
+        _check_rate(document, path, row, value)
+    problems.raise_any()
     return replace(row, name=name, enabled=enabled, rate_hz=rate)
+
+
+def _check_rate(
+    document: YamlDocument, path: tuple[str, ...], row: Row, value: dict[str, Any]
+) -> None:
+    if "rate_hz" not in value:
+        return
+    rate = value["rate_hz"]
+    if row.direction is not Direction.PUBLISH:
+        raise document.error((*path, "rate_hz"), "only publishers have a rate")
+    if isinstance(rate, bool) or not isinstance(rate, int | float):
+        raise document.error((*path, "rate_hz"), "expected a number of Hz")
+    if not (math.isfinite(rate) and 0 < rate <= MAX_RATE_HZ):
+        raise document.error((*path, "rate_hz"), f"must be in 0..{MAX_RATE_HZ:g} Hz (above 0)")
 
 
 #: No row publishes faster than this (the physics runs at 100 Hz by default).

@@ -14,7 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from rosbags.typesys.base import Nodetype
+from rosbags.interfaces import Nodetype
 from rosbags.typesys.store import Typestore
 
 from ..msgs import PROFILES, MessageType, ServiceType, UnknownTypeError, get_profile

@@ -29,10 +29,10 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields, replace
-from typing import Any, TypeVar
+from typing import Any, TypeVar, cast
 
 from ..sensors import GpsNoise, ImuNoise, LidarConfig, MountPose, SensorConfigError
-from ..yamltext import YamlDocument
+from ..yamltext import Problems, YamlDocument, YamlFileError
 from .units import rad
 
 T = TypeVar("T")
@@ -119,36 +119,53 @@ Path = tuple[str, ...]
 
 
 def parse_sensor_settings(document: YamlDocument, data: Any) -> SensorSettings:
-    """The `sensors:` mapping of a network settings document; errors name file, line, field."""
+    """The `sensors:` mapping of a network settings document; errors name file, line and
+    field, every problem of the section at once."""
     path: Path = ("sensors",)
     if data is None:
         return SensorSettings()
-    _check_keys(document, path, data, ("seed", *SENSOR_KINDS))
+    problems = Problems()
+    with problems.collecting():
+        _check_keys(document, path, data, ("seed", *SENSOR_KINDS))
+    if not isinstance(data, dict):
+        problems.raise_any()
     seed = data.get("seed", 0)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise document.error((*path, "seed"), "expected a non-negative integer")
-    seed = _number(document, (*path, "seed"), seed, integer=True)
-    return SensorSettings(
-        seed=seed,
-        gps=_point_sensor(document, (*path, "gps"), data.get("gps"), GpsSettings, GpsNoise),
-        imu=_point_sensor(document, (*path, "imu"), data.get("imu"), ImuSettings, ImuNoise),
-        lidar=_lidar(document, (*path, "lidar"), data.get("lidar")),
-    )
+        problems.add(document.error((*path, "seed"), "expected a non-negative integer"))
+    else:
+        with problems.collecting():
+            seed = _number(document, (*path, "seed"), seed, integer=True)
+    settings = SensorSettings(seed=seed if isinstance(seed, int) else 0)
+    with problems.collecting():
+        gps = _point_sensor(document, (*path, "gps"), data.get("gps"), GpsSettings, GpsNoise)
+        settings = replace(settings, gps=gps)
+    with problems.collecting():
+        imu = _point_sensor(document, (*path, "imu"), data.get("imu"), ImuSettings, ImuNoise)
+        settings = replace(settings, imu=imu)
+    with problems.collecting():
+        settings = replace(settings, lidar=_lidar(document, (*path, "lidar"), data.get("lidar")))
+    problems.raise_any()
+    return settings
 
 
 def _point_sensor(
     document: YamlDocument, path: Path, data: Any, settings: type[T], noise: type
 ) -> T:
     """GPS or IMU settings: a frame id, a mount and a noise model, each defaulted."""
-    defaults = settings()
+    defaults: Any = settings()
     if data is None:
-        return defaults
+        return cast(T, defaults)
     _check_keys(document, path, data, ("frame_id", "mount", "noise"))
-    return settings(
-        frame_id=_frame_id(document, path, data, defaults.frame_id),
-        mount=_mount(document, (*path, "mount"), data.get("mount"), defaults.mount),
-        noise=_noise(document, (*path, "noise"), data.get("noise"), noise),
-    )
+    problems = Problems()
+    values: dict[str, Any] = {}
+    with problems.collecting():
+        values["frame_id"] = _frame_id(document, path, data, defaults.frame_id)
+    with problems.collecting():
+        values["mount"] = _mount(document, (*path, "mount"), data.get("mount"), defaults.mount)
+    with problems.collecting():
+        values["noise"] = _noise(document, (*path, "noise"), data.get("noise"), noise)
+    problems.raise_any()
+    return settings(**values)
 
 
 def _lidar(document: YamlDocument, path: Path, data: Any) -> LidarSettings:
@@ -156,39 +173,56 @@ def _lidar(document: YamlDocument, path: Path, data: Any) -> LidarSettings:
     if data is None:
         return defaults
     _check_keys(document, path, data, ("frame_id", "mount", *LIDAR_FIELDS))
-    resolution = data.get("horizontal_resolution_deg")
-    if isinstance(resolution, int | float) and not isinstance(resolution, bool) and resolution <= 0:
-        raise document.error((*path, "horizontal_resolution_deg"), "must be > 0 deg")
+    problems = Problems()
     geometry: dict[str, Any] = {}
-    for name in LIDAR_FIELDS:
-        if name in data:
-            geometry[name] = _number(
-                document, (*path, name), data[name], integer=name == "channels"
-            )
-    channels = geometry.get("channels", defaults.config.channels)
-    resolution = geometry.get(
-        "horizontal_resolution_deg", defaults.config.horizontal_resolution_deg
+    resolution = data.get("horizontal_resolution_deg")
+    not_positive = (
+        isinstance(resolution, int | float) and not isinstance(resolution, bool) and resolution <= 0
     )
-    if channels * 360.0 / resolution > MAX_LIDAR_RAYS:
-        raise document.error(
-            path,
-            f"channels x 360 / horizontal_resolution_deg is {channels * 360.0 / resolution:.0f}"
-            f" rays a scan (at most {MAX_LIDAR_RAYS})",
+    if not_positive:
+        problems.add(document.error((*path, "horizontal_resolution_deg"), "must be > 0 deg"))
+    for name in LIDAR_FIELDS:
+        if name in data and not (name == "horizontal_resolution_deg" and not_positive):
+            with problems.collecting():
+                geometry[name] = _number(
+                    document, (*path, name), data[name], integer=name == "channels"
+                )
+    if not problems.found:
+        channels = geometry.get("channels", defaults.config.channels)
+        resolution = geometry.get(
+            "horizontal_resolution_deg", defaults.config.horizontal_resolution_deg
         )
-    mount = _mount(document, (*path, "mount"), data.get("mount"), defaults.config.mount)
+        if channels * 360.0 / resolution > MAX_LIDAR_RAYS:
+            problems.add(
+                document.error(
+                    path,
+                    f"channels x 360 / horizontal_resolution_deg is "
+                    f"{channels * 360.0 / resolution:.0f} rays a scan (at most {MAX_LIDAR_RAYS})",
+                )
+            )
+    mount = defaults.config.mount
+    with problems.collecting():
+        mount = _mount(document, (*path, "mount"), data.get("mount"), mount)
+    frame_id = defaults.frame_id
+    with problems.collecting():
+        frame_id = _frame_id(document, path, data, frame_id)
+    problems.raise_any()
     config = _built(document, path, lambda: replace(defaults.config, mount=mount, **geometry))
-    return LidarSettings(frame_id=_frame_id(document, path, data, defaults.frame_id), config=config)
+    return LidarSettings(frame_id=frame_id, config=config)
 
 
 def _mount(document: YamlDocument, path: Path, data: Any, default: MountPose) -> MountPose:
     if data is None:
         return default
     _check_keys(document, path, data, tuple(MOUNT_FIELDS))
+    problems = Problems()
     values = {}
     for key, attribute in MOUNT_FIELDS.items():
         if key in data:
-            value = _number(document, (*path, key), data[key])
-            values[attribute] = rad(value) if key.endswith("_deg") else value
+            with problems.collecting():
+                value = _number(document, (*path, key), data[key])
+                values[attribute] = rad(value) if key.endswith("_deg") else value
+    problems.raise_any()
     return replace(default, **values)
 
 
@@ -198,16 +232,19 @@ def _noise(document: YamlDocument, path: Path, data: Any, kind: Callable[..., T]
         return kind()
     names = tuple(f.name for f in fields(kind))  # type: ignore[arg-type]
     _check_keys(document, path, data, names)
+    problems = Problems()
     values: dict[str, Any] = {}
     for name, value in data.items():
-        if name.endswith("_bias_rad_s") or name.endswith("_bias_m_s2"):
-            values[name] = _vector(document, (*path, name), value, RANGES[name])
-        else:
-            values[name] = _number(document, (*path, name), value)
+        with problems.collecting():
+            if name.endswith("_bias_rad_s") or name.endswith("_bias_m_s2"):
+                values[name] = _vector(document, (*path, name), value, RANGES[name])
+            else:
+                values[name] = _number(document, (*path, name), value)
+    problems.raise_any()
     return _built(document, path, lambda: kind(**values))
 
 
-def _frame_id(document: YamlDocument, path: Path, data: dict, default: str) -> str:
+def _frame_id(document: YamlDocument, path: Path, data: dict[str, Any], default: str) -> str:
     frame_id = data.get("frame_id", default)
     if not isinstance(frame_id, str) or not frame_id or "/" in frame_id.strip("/"):
         raise document.error((*path, "frame_id"), f"not a tf frame name: {frame_id!r}")
@@ -215,11 +252,16 @@ def _frame_id(document: YamlDocument, path: Path, data: dict, default: str) -> s
 
 
 def _check_keys(document: YamlDocument, path: Path, data: Any, known: tuple[str, ...]) -> None:
+    """A mapping of known keys only; every unknown key is reported."""
     if not isinstance(data, dict):
         raise document.error(path, f"expected a mapping ({', '.join(known)})")
-    for key in data:
-        if key not in known:
-            raise document.error((*path, str(key)), f"unknown field (known: {', '.join(known)})")
+    unknown = [
+        document.error((*path, str(key)), f"unknown field (known: {', '.join(known)})")
+        for key in data
+        if key not in known
+    ]
+    if unknown:
+        raise YamlFileError.of_all(unknown)
 
 
 def _number(

@@ -8,7 +8,7 @@ import sys
 from collections.abc import Sequence
 
 from .. import __version__
-from . import msgs, record, run, topics
+from . import batch, msgs, record, run, topics
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -22,6 +22,7 @@ def build_parser() -> argparse.ArgumentParser:
     msgs.add_parser(subparsers)
     topics.add_parser(subparsers)
     record.add_parser(subparsers)
+    batch.add_parser(subparsers)
     return parser
 
 

@@ -11,6 +11,7 @@ from pathlib import Path
 from ..app.options import ClockMode, RunOptions
 from ..app.runner import run as run_simulator
 from ..msgs import DEFAULT_PROFILE, PROFILES
+from ..view import DEFAULT_HOST, DEFAULT_PORT, ViewOptions, live_view
 
 LOG_LEVELS = ("DEBUG", "INFO", "WARNING", "ERROR")
 
@@ -29,6 +30,13 @@ def positive_float(text: str) -> float:
     return value
 
 
+def port_number(text: str) -> int:
+    value = int(text)
+    if not 0 <= value <= 65535:
+        raise argparse.ArgumentTypeError(f"expected a port 0..65535, got {text}")
+    return value
+
+
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "run",
@@ -39,12 +47,16 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument(
         "--map",
-        default="town",
         metavar="NAME|PATH",
-        help="built-in map (town, straight, loop), MGeo folder or OpenDRIVE .xodr file",
+        help="built-in map (town, straight, loop, mgeo_sample), MGeo folder or OpenDRIVE "
+        ".xodr file (default: the scenario's map, else town); with --scenario it must be "
+        "the map the scenario is for",
     )
     parser.add_argument(
-        "--scenario", type=Path, metavar="PATH", help="scenario YAML (the town has a default)"
+        "--scenario",
+        type=Path,
+        metavar="PATH",
+        help="scenario YAML; runs on the map it names (the town has a default scenario)",
     )
     parser.add_argument("--network", type=Path, metavar="PATH", help="network settings YAML")
     parser.add_argument("--clock", choices=[m.value for m in ClockMode], default="real")
@@ -87,6 +99,26 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         metavar="HZ",
         help="physics steps per simulated second (default 100)",
     )
+    view = parser.add_argument_group("live view")
+    view.add_argument(
+        "--view-host",
+        default=DEFAULT_HOST,
+        metavar="HOST",
+        help=f"address the browser view listens on (default {DEFAULT_HOST}: this machine only)",
+    )
+    view.add_argument(
+        "--view-port",
+        type=port_number,
+        default=DEFAULT_PORT,
+        metavar="PORT",
+        help=f"port of the browser view (default {DEFAULT_PORT}; 0: any free port)",
+    )
+    view.add_argument("--no-view", action="store_true", help="serve no browser view")
+    view.add_argument(
+        "--view-readonly",
+        action="store_true",
+        help="the view only shows: no pause, scenario loading or keyboard driving",
+    )
     parser.set_defaults(handler=run)
 
 
@@ -114,4 +146,7 @@ def run(args: argparse.Namespace) -> int:
         data_roots=tuple(args.data_root),
         ros_argv=tuple(args.ros_args),
     )
-    return run_simulator(options)
+    attach = []
+    if not args.no_view:
+        attach.append(live_view(ViewOptions(args.view_host, args.view_port, args.view_readonly)))
+    return run_simulator(options, attach)

@@ -10,6 +10,7 @@ profile.service("morai_msgs/MoraiEventCmdSrv").request
 from .definitions import DEFAULT_PROFILE, PROFILES
 from .errors import (
     DefinitionError,
+    ExportError,
     MsgsError,
     SerializationError,
     UnknownProfileError,
@@ -21,6 +22,7 @@ __all__ = [
     "DEFAULT_PROFILE",
     "PROFILES",
     "DefinitionError",
+    "ExportError",
     "MessageType",
     "MsgsError",
     "Profile",

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from rosbags.typesys.base import Nodetype
+from rosbags.interfaces import Nodetype
 from rosbags.typesys.store import Typestore
 
 NUMPY_DTYPES = {
@@ -84,9 +84,8 @@ def defaults_plan(store: Typestore, store_name: str) -> DefaultsPlan:
     constants = {}
     makers = []
     for name, desc in fields:
-        nodetype, args = desc
-        if nodetype == Nodetype.BASE:
-            constants[name] = default_base(args[0])
+        if desc[0] == Nodetype.BASE:
+            constants[name] = default_base(desc[1][0])
         else:
             makers.append((name, field_maker(store, desc)))
     return DefaultsPlan(

@@ -19,3 +19,7 @@ class DefinitionError(MsgsError):
 
 class SerializationError(MsgsError):
     """A message could not be turned into bytes, or bytes into a message."""
+
+
+class ExportError(MsgsError):
+    """Message definitions could not be exported (unwritable folder, no genpy)."""

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from hashlib import md5
 from typing import Any
 
-from rosbags.typesys.base import Nodetype
+from rosbags.interfaces import Nodetype
 from rosbags.typesys.msg import denormalize_msgtype
 from rosbags.typesys.store import Typestore
 

@@ -20,6 +20,9 @@ from .definitions import (
 )
 from .errors import DefinitionError, SerializationError, UnknownTypeError
 
+# rosbags' stand-ins for ROS 1's time and duration built-ins: not types a user names.
+ROSBAGS_INTERNAL = "builtin_interfaces/"
+
 # Standard types egosim publishes or that morai_msgs embeds; listed by `egosim msgs`.
 STANDARD_TYPES: tuple[str, ...] = (
     "std_msgs/Header",
@@ -129,7 +132,8 @@ class Profile:
         self._own_texts[store_name] = text
         return parsed
 
-    def _own_text(self, store_name: str) -> str:
+    def own_text(self, store_name: str) -> str:
+        """The definition of `store_name` alone (`pkg/msg/Name`), as its .msg file has it."""
         if store_name in self._own_texts:
             return self._own_texts[store_name]
         return self.store.gendefhash(store_name, {})[0]
@@ -146,7 +150,7 @@ class Profile:
             self._messages[ros_name] = MessageType(
                 name=ros_name,
                 md5sum=self.store.generate_msgdef(store_name)[1],
-                definition=fulltext.full_text(self.store, store_name, self._own_text),
+                definition=fulltext.full_text(self.store, store_name, self.own_text),
                 store=self.store,
             )
         self._messages[name] = self._messages[ros_name]
@@ -166,6 +170,20 @@ class Profile:
             definition=f"{srv.request}{SERVICE_SEPARATOR}\n{srv.response}",
         )
 
+    def resolve(self, name: str) -> str:
+        """The full name of the message or service type `name`, which may omit its package
+        when only one type has that name (`CtrlCmd` -> `morai_msgs/CtrlCmd`)."""
+        if "/" in name:
+            return name
+        halves = {f"{srv}{half}" for srv in self._services for half in ("Request", "Response")}
+        known = [
+            ros_name
+            for store_name in self.store.fielddefs
+            if not store_name.startswith(ROSBAGS_INTERNAL)
+            and (ros_name := denormalize_msgtype(store_name)) not in halves
+        ]
+        return resolve_short_name(name, [*known, *self._services], self.name)
+
     def message_names(self) -> list[str]:
         """The package's own message types, then the standard ones, each sorted."""
         package = sorted(set(self._package_messages) - set(STANDARD_TYPES))
@@ -173,6 +191,20 @@ class Profile:
 
     def service_names(self) -> list[str]:
         return sorted(self._services)
+
+
+def resolve_short_name(name: str, full_names: list[str], profile: str) -> str:
+    """The one full name among `full_names` whose type name is `name`."""
+    matches = sorted({full for full in full_names if full.rpartition("/")[2] == name})
+    if len(matches) == 1:
+        return matches[0]
+    if matches:
+        raise UnknownTypeError(f"{name!r} is ambiguous in {profile}: {', '.join(matches)}")
+    similar = sorted(
+        {full for full in full_names if name.lower() in full.rpartition("/")[2].lower()}
+    )
+    hint = f"; did you mean {', '.join(similar)}?" if similar else ""
+    raise UnknownTypeError(f"no message or service type {name!r} in {profile}{hint}")
 
 
 @functools.cache

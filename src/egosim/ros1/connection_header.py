@@ -26,7 +26,7 @@ def encode_header(fields: Mapping[str, str]) -> bytes:
     return _U32.pack(len(body)) + bytes(body)
 
 
-def decode_header(body: bytes | memoryview) -> dict[str, str]:
+def decode_header(body: bytes | bytearray | memoryview) -> dict[str, str]:
     """Decode header fields (without the total length prefix); raise ProtocolError if malformed."""
     fields: dict[str, str] = {}
     view = memoryview(body)

@@ -4,7 +4,7 @@ Parameter Server API). Every call carries the caller's id; results are unwrapped
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, cast
 
 from . import rpc
 from .errors import MasterError, MasterUnreachableError, PeerUnreachableError
@@ -19,12 +19,15 @@ class MasterClient:
 
     def _raw(self, method: str, *args: Any, timeout: float | None = None) -> list[Any]:
         try:
-            return rpc.call(
-                self.master_uri,
-                method,
-                self.caller_id,
-                *args,
-                timeout=self.timeout if timeout is None else timeout,
+            return cast(
+                list[Any],
+                rpc.call(
+                    self.master_uri,
+                    method,
+                    self.caller_id,
+                    *args,
+                    timeout=self.timeout if timeout is None else timeout,
+                ),
             )
         except PeerUnreachableError as exc:
             raise MasterUnreachableError(str(exc)) from exc
@@ -42,7 +45,7 @@ class MasterClient:
     def unregister_service(
         self, service: str, service_api: str, timeout: float | None = None
     ) -> int:
-        return self._call("unregisterService", service, service_api, timeout=timeout)
+        return cast(int, self._call("unregisterService", service, service_api, timeout=timeout))
 
     def register_subscriber(self, topic: str, topic_type: str, caller_api: str) -> list[str]:
         return list(self._call("registerSubscriber", topic, topic_type, caller_api))
@@ -50,7 +53,7 @@ class MasterClient:
     def unregister_subscriber(
         self, topic: str, caller_api: str, timeout: float | None = None
     ) -> int:
-        return self._call("unregisterSubscriber", topic, caller_api, timeout=timeout)
+        return cast(int, self._call("unregisterSubscriber", topic, caller_api, timeout=timeout))
 
     def register_publisher(self, topic: str, topic_type: str, caller_api: str) -> list[str]:
         return list(self._call("registerPublisher", topic, topic_type, caller_api))
@@ -58,11 +61,11 @@ class MasterClient:
     def unregister_publisher(
         self, topic: str, caller_api: str, timeout: float | None = None
     ) -> int:
-        return self._call("unregisterPublisher", topic, caller_api, timeout=timeout)
+        return cast(int, self._call("unregisterPublisher", topic, caller_api, timeout=timeout))
 
     # Master API: name service and system state
     def lookup_node(self, node_name: str) -> str:
-        return self._call("lookupNode", node_name)
+        return cast(str, self._call("lookupNode", node_name))
 
     def get_published_topics(self, subgraph: str = "") -> list[tuple[str, str]]:
         return [(topic, kind) for topic, kind in self._call("getPublishedTopics", subgraph)]
@@ -75,13 +78,13 @@ class MasterClient:
         return publishers, subscribers, services
 
     def get_uri(self, timeout: float | None = None) -> str:
-        return self._call("getUri", timeout=timeout)
+        return cast(str, self._call("getUri", timeout=timeout))
 
     def get_pid(self, timeout: float | None = None) -> int:
         return int(self._call("getPid", timeout=timeout))
 
     def lookup_service(self, service: str) -> str:
-        return self._call("lookupService", service)
+        return cast(str, self._call("lookupService", service))
 
     # Parameter Server API
     def delete_param(self, key: str) -> None:
@@ -105,7 +108,7 @@ class MasterClient:
         return self._call("subscribeParam", caller_api, key)
 
     def unsubscribe_param(self, caller_api: str, key: str, timeout: float | None = None) -> int:
-        return self._call("unsubscribeParam", caller_api, key, timeout=timeout)
+        return cast(int, self._call("unsubscribeParam", caller_api, key, timeout=timeout))
 
     def has_param(self, key: str) -> bool:
         return bool(self._call("hasParam", key))

@@ -58,7 +58,7 @@ def master_bind_address(master_uri: str) -> tuple[str, int]:
     """The address an embedded master binds: the (IPv4) address of the URI's host and its port."""
     parts = urlsplit(master_uri)
     host = parts.hostname or "localhost"
-    return socket.gethostbyname(host), parts.port or 11311
+    return socket.gethostbyname(host), 11311 if parts.port is None else parts.port
 
 
 def http_uri(host: str, port: int) -> str:

@@ -470,7 +470,12 @@ class Node:
         log.info("node %s shutting down: %s", self.name, reason)
         if self._rosout_handler is not None:
             logging.getLogger(self._rosout_logger).removeHandler(self._rosout_handler)
-        for handle in [*self.publishers, *self.subscribers, *self.services]:
+        handles: list[Publisher | Subscriber | ServiceServer] = [
+            *self.publishers,
+            *self.subscribers,
+            *self.services,
+        ]
+        for handle in handles:
             handle.close()
         with self._lock:
             param_keys, self._param_callbacks = list(self._param_callbacks), {}

@@ -9,10 +9,13 @@ import threading
 import xmlrpc.client
 from collections.abc import Callable
 from enum import IntEnum
-from typing import Any
+from typing import TYPE_CHECKING, Any
 from xmlrpc.server import SimpleXMLRPCRequestHandler, SimpleXMLRPCServer
 
 from .errors import PeerUnreachableError
+
+if TYPE_CHECKING:
+    from _typeshed import ReadableBuffer
 
 log = logging.getLogger(__name__)
 
@@ -128,14 +131,19 @@ class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
             self._thread.join()
         self.server_close()
 
-    def _marshaled_dispatch(
-        self, data: bytes, dispatch_method: Any = None, path: Any = None
+    # typeshed declares str, but CPython's dispatcher returns the encoded body (bytes),
+    # which is what the request handler writes.
+    def _marshaled_dispatch(  # type: ignore[override]
+        self, data: str | ReadableBuffer, dispatch_method: Any = None, path: Any = None
     ) -> bytes:
         try:
             params, method = xmlrpc.client.loads(data, use_builtin_types=self.use_builtin_types)
         except Exception as exc:
             self._log_bad_request(f"request is not XML-RPC: {exc}")
             return _fault(f"request is not XML-RPC: {exc}")
+        if method is None:
+            self._log_bad_request("request is a methodResponse, not a methodCall")
+            return _fault("request is a methodResponse, not a methodCall")
         try:
             response = self._dispatch(method, params)
             return xmlrpc.client.dumps(

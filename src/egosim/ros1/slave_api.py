@@ -115,12 +115,22 @@ class SlaveApi:
         node = self._node
         info: list[list[Any]] = []
         for pub in node.publishers:
-            for c in pub.connections:
-                info.append([c.connection_id, c.peer, "o", TCPROS, pub.topic, c.connected, ""])
-        for sub in node.subscribers:
-            for c in sub.connections:
+            for out in pub.connections:
                 info.append(
-                    [c.connection_id, c.publisher_id, "i", TCPROS, sub.topic, c.connected, ""]
+                    [out.connection_id, out.peer, "o", TCPROS, pub.topic, out.connected, ""]
+                )
+        for sub in node.subscribers:
+            for inbound in sub.connections:
+                info.append(
+                    [
+                        inbound.connection_id,
+                        inbound.publisher_id,
+                        "i",
+                        TCPROS,
+                        sub.topic,
+                        inbound.connected,
+                        "",
+                    ]
                 )
         return reply(StatusCode.SUCCESS, "bus info", info)
 

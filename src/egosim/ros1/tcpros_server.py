@@ -11,6 +11,7 @@ import socket
 import threading
 import time
 from collections.abc import Callable, Mapping
+from typing import cast
 
 from .connection_header import read_header
 from .errors import ProtocolError
@@ -38,7 +39,7 @@ class TcprosServer:
 
     @property
     def port(self) -> int:
-        return self._listener.getsockname()[1]
+        return cast(int, self._listener.getsockname()[1])
 
     def _accept(self) -> None:
         failing = False

@@ -7,7 +7,6 @@ Generator the caller passes in.
 from egosim.sensors.errors import MissingRandomGeneratorError, SensorConfigError, SensorError
 from egosim.sensors.frames import (
     MountPose,
-    Pose,
     Transform,
     base_link_to_sensor,
     map_to_base_link,
@@ -19,6 +18,7 @@ from egosim.sensors.lidar import LidarConfig, LidarIntensity, LidarModel
 from egosim.sensors.pcd import encode_pcd
 from egosim.sensors.raycast import ObstacleBoxes
 from egosim.sensors.snapshot import gps_imu_snapshot
+from egosim.world.vehicle import Pose
 
 __all__ = [
     "GPS_STATUS_FIX",

@@ -11,9 +11,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from egosim.sensors.frames import MountPose, Pose, sensor_in_map
+from egosim.sensors.frames import MountPose, sensor_in_map
 from egosim.sensors.noise import gaussian, require_non_negative
 from egosim.world.map.georef import GeoReference
+from egosim.world.vehicle import Pose
 
 GPS_STATUS_FIX = 1
 """GPSMessage.status of a valid fix (0 would mean no fix; the model always has one)."""

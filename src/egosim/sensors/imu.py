@@ -21,6 +21,7 @@ import numpy as np
 from egosim.sensors.frames import MountPose, rotation_of
 from egosim.sensors.noise import gaussian, require_non_negative
 from egosim.sensors.rotation import Matrix3, Quaternion, quaternion_from_matrix, rotation_matrix
+from egosim.world.arrays import FloatArray
 
 STANDARD_GRAVITY = 9.80665
 """m/s^2, the conventional standard gravity (CGPM 1901), used everywhere on the map."""
@@ -103,7 +104,7 @@ def _diagonal_covariance(std: float) -> Covariance:
 # stay numpy's: BLAS rounds them its own way.
 
 
-def _floats(vector: Sequence[float]) -> Vector3Tuple:
+def _floats(vector: Sequence[float] | FloatArray) -> Vector3Tuple:
     return (float(vector[0]), float(vector[1]), float(vector[2]))
 
 

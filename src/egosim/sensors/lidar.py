@@ -17,8 +17,10 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.sensors.errors import SensorConfigError
-from egosim.sensors.frames import MountPose, Pose, sensor_in_map
-from egosim.sensors.raycast import FloatArray, ObstacleBoxes, Surface, cast_rays
+from egosim.sensors.frames import MountPose, sensor_in_map
+from egosim.sensors.raycast import ObstacleBoxes, Surface, cast_rays
+from egosim.world.arrays import FloatArray
+from egosim.world.vehicle import Pose
 
 DEFAULT_LIDAR_MOUNT = MountPose(x=0.0, y=0.0, z=1.8)
 """On the roof above base_link, m."""
@@ -93,13 +95,17 @@ class LidarConfig:
 
     @property
     def azimuths_rad(self) -> FloatArray:
-        return np.arange(self.horizontal_steps) * (2.0 * np.pi / self.horizontal_steps)
+        return np.arange(self.horizontal_steps, dtype=np.float64) * (
+            2.0 * np.pi / self.horizontal_steps
+        )
 
 
 def beam_directions(config: LidarConfig) -> FloatArray:
     """Unit vectors (channels * horizontal_steps, 3) in the sensor frame, azimuth-major."""
-    azimuth, elevation = np.meshgrid(config.azimuths_rad, config.elevations_rad, indexing="ij")
-    azimuth, elevation = azimuth.ravel(), elevation.ravel()
+    azimuth_grid, elevation_grid = np.meshgrid(
+        config.azimuths_rad, config.elevations_rad, indexing="ij"
+    )
+    azimuth, elevation = azimuth_grid.ravel(), elevation_grid.ravel()
     return np.stack(
         [
             np.cos(elevation) * np.cos(azimuth),

@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 import numpy.typing as npt
 
 from egosim.sensors.errors import MissingRandomGeneratorError, SensorConfigError
 
 
-def require_non_negative(name: str, values: npt.ArrayLike) -> None:
+def require_non_negative(name: str, values: Sequence[float]) -> None:
     if np.any(np.asarray(values) < 0.0):
         raise SensorConfigError(f"{name} must be >= 0, got {values}")
 

@@ -228,12 +228,12 @@ def _in_bounding_cone(
 ) -> npt.NDArray[np.bool_]:
     """Whether each pair's ray meets the box's bounding sphere (or starts inside it)."""
     offset = boxes.centres - origin
-    radius_sq = 0.25 * np.einsum("ij,ij->i", boxes.sizes, boxes.sizes)
-    distance_sq = np.einsum("ij,ij->i", offset, offset)
+    radius_sq: FloatArray = 0.25 * np.einsum("ij,ij->i", boxes.sizes, boxes.sizes)
+    distance_sq: FloatArray = np.einsum("ij,ij->i", offset, offset)
     tangent_length = np.sqrt(np.maximum(distance_sq - radius_sq, 0.0))
     # Rays into a sphere the origin is inside of always pass.
     tangent_length[distance_sq <= radius_sq] = -np.inf
-    along = np.einsum("ij,ij->i", pair_direction, offset[box_index])
+    along: FloatArray = np.einsum("ij,ij->i", pair_direction, offset[box_index])
     return along >= tangent_length[box_index]
 
 

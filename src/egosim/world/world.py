@@ -10,6 +10,7 @@ import itertools
 import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
@@ -60,6 +61,7 @@ from egosim.world.traffic.ghosts import GhostPlacement, NpcGhosts
 from egosim.world.traffic.npc_vehicles import NpcSpawn
 from egosim.world.traffic.object_list import ObjectList
 from egosim.world.traffic.obstacles import ObstacleSpawn
+from egosim.world.traffic.pedestrians import PedestrianSpawn
 from egosim.world.vehicle import (
     DEFAULT_EGO_MODEL,
     EgoVehicle,
@@ -70,6 +72,7 @@ from egosim.world.vehicle import (
     ego_vehicle,
 )
 from egosim.world.vehicle.catalogue import VEHICLE_CATALOGUE
+from egosim.yamltext import Problems
 
 DEFAULT_PHYSICS_STEP_S = 0.01
 DEFAULT_OBJECT_LIST_SIZE = 20
@@ -159,7 +162,7 @@ class World:
         """What each ego (by unique id) touches now, as it is now: contacts that last."""
         self.vehicle_contacts: list[VehicleCollision] = []
         """The NPC-NPC contacts of now, time-stamped when they began."""
-        self.network_settings_request: dict | None = None
+        self.network_settings_request: dict[str, Any] | None = None
         """The network settings of the last ScenarioLoad that asked for them."""
         self.recorded = RecordedScene()
         """What a replay shows instead of simulating (nothing by default); see show_recorded."""
@@ -288,7 +291,7 @@ class World:
             sizes=np.array([r[6] for r in rows], dtype=np.float64).reshape(-1, 3),
         )
 
-    def _shown_tables(self) -> list[ObjectTable]:
+    def shown_tables(self) -> list[ObjectTable]:
         """NPCs, pedestrians and obstacles in view: the recorded ones where a replay shows
         them, else the simulated ones."""
         recorded = self.recorded
@@ -302,13 +305,13 @@ class World:
 
     def objects(self) -> ObjectTable:
         """Every object: egos, then NPCs, pedestrians and obstacles."""
-        return ObjectTable.concatenate([self._ego_table(), *self._shown_tables()])
+        return ObjectTable.concatenate([self._ego_table(), *self.shown_tables()])
 
     def object_list(self, ego_index: int = 0, size: int | None = None) -> ObjectList:
         """ObjectStatusList: counts of all spawned objects; the `size` (default
         object_list_size) objects closest to the ego, split by kind, closest first. The
         other egos count and appear among the vehicles."""
-        npcs, pedestrians, obstacles = self._shown_tables()
+        npcs, pedestrians, obstacles = self.shown_tables()
         egos = self._ego_table()
         other_egos = egos.select(egos.unique_ids != self.egos[ego_index].unique_id)
         others = ObjectTable.concatenate([other_egos, npcs, pedestrians, obstacles])
@@ -346,15 +349,15 @@ class World:
         """
         unique_id = self._next_id
         if model_name in OBSTACLE_MODELS:
-            model = OBSTACLE_MODELS[model_name]
-            size = (model.length, model.width, model.height)
+            obstacle = OBSTACLE_MODELS[model_name]
+            size = (obstacle.length, obstacle.width, obstacle.height)
             self.obstacles.spawn([ObstacleSpawn(unique_id, model_name, position, heading, size)])
             self._place_obstacles_on_lanes()
         elif model_name in VEHICLE_CATALOGUE:
             lane = self.map.project(position[0], position[1], heading)
             index = self.map.lane_index(lane.lane_id)
-            model = VEHICLE_CATALOGUE[model_name]
-            self.npcs.spawn([NpcSpawn(unique_id, model, index, lane.s, lane.lateral)])
+            vehicle = VEHICLE_CATALOGUE[model_name]
+            self.npcs.spawn([NpcSpawn(unique_id, vehicle, index, lane.s, lane.lateral)])
         else:
             raise UnknownObjectModelError(model_name)
         self._next_id += 1
@@ -555,8 +558,10 @@ class World:
         if not fresh:
             return
         # Only simulated agents can be halted; recorded ones go where the recording says.
-        npcs = self.npcs.unique_ids if self.recorded.npcs is None else []
-        walkers = self.pedestrians.unique_ids if self.recorded.pedestrians is None else []
+        npcs: IntArray | list[int] = self.npcs.unique_ids if self.recorded.npcs is None else []
+        walkers: IntArray | list[int] = (
+            self.pedestrians.unique_ids if self.recorded.pedestrians is None else []
+        )
         npc_slot = {int(uid): k for k, uid in enumerate(npcs)}
         walker_slot = {int(uid): k for k, uid in enumerate(walkers)}
         for pair in fresh:
@@ -633,11 +638,26 @@ class World:
         options = options or ScenarioLoadOptions()
         check_map(scenario, self.map)
         ids = self._allocate_ids()
-        signals = self._signals_for(scenario)
-        ego = ego_placement(scenario, self.map) if options.load_ego_vehicle_data else None
-        npcs = npc_spawns(scenario, self.map, ids) if options.load_surrounding_vehicle_data else []
-        walkers = pedestrian_spawns(scenario, self.map, ids) if options.load_pedestrian_data else []
-        things = obstacle_spawns(scenario, ids) if options.load_object_data else []
+        # Every section is checked, so that a file's mistakes are all reported at once.
+        problems = Problems()
+        signals = ego = None
+        npcs: list[NpcSpawn] = []
+        walkers: list[PedestrianSpawn] = []
+        things: list[ObstacleSpawn] = []
+        with problems.collecting():
+            signals = self._signals_for(scenario)
+        with problems.collecting():
+            ego = ego_placement(scenario, self.map) if options.load_ego_vehicle_data else None
+        with problems.collecting():
+            if options.load_surrounding_vehicle_data:
+                npcs = npc_spawns(scenario, self.map, ids)
+        with problems.collecting():
+            if options.load_pedestrian_data:
+                walkers = pedestrian_spawns(scenario, self.map, ids)
+        with problems.collecting():
+            things = obstacle_spawns(scenario, ids) if options.load_object_data else []
+        problems.raise_any()
+        assert signals is not None
 
         self._next_id = next(ids)
         self.signals = signals

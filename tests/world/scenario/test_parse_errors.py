@@ -8,7 +8,8 @@ import pytest
 
 from egosim.world import World
 from egosim.world.map import build_builtin_map
-from egosim.world.scenario import ScenarioError, parse_scenario, scenario_schema
+from egosim.world.scenario import Scenario, ScenarioError, parse_scenario, scenario_schema
+from egosim.yamltext import YamlDocument
 
 LABEL = "scenarios/bad.yaml"
 
@@ -141,3 +142,11 @@ def test_a_file_yaml_cannot_safely_build_is_an_error(
     assert error.label == LABEL
     assert error.line is not None and (line is None or error.line == line)
     assert message in str(error)
+
+
+def test_a_scenario_built_in_code_raises_scenario_errors() -> None:
+    document = YamlDocument("my_scenario.py", {"map": "town"}, {("map",): 3})
+    error = Scenario(map_name="town", source=document).error(("map",), "no such map")
+    assert isinstance(error, ScenarioError)
+    assert (error.label, error.line, error.field) == ("my_scenario.py", 3, "map")
+    assert str(error) == "my_scenario.py:3: map: no such map"

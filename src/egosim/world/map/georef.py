@@ -6,14 +6,15 @@ import re
 import warnings
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import TypeVar
+from typing import Any, TypeVar, overload
 
 import numpy as np
-import numpy.typing as npt
 from pyproj import CRS, Transformer, get_ellps_map
 from pyproj.exceptions import CRSError
 
-Coordinate = TypeVar("Coordinate", float, npt.NDArray[np.float64])
+from egosim.world.arrays import FloatArray
+
+Coordinate = TypeVar("Coordinate", float, FloatArray)
 
 UTM_SCALE_FACTOR = 0.9996
 UTM_FALSE_EASTING = 500_000.0
@@ -129,11 +130,29 @@ class GeoReference:
         )
 
 
-def _like_input(sample: object, values: tuple) -> tuple:
-    """Scalars in, Python floats out; arrays in, float64 arrays out."""
+@overload
+def _like_input(sample: float, values: tuple[Any, Any, Any]) -> tuple[float, float, float]: ...
+
+
+@overload
+def _like_input(
+    sample: FloatArray, values: tuple[Any, Any, Any]
+) -> tuple[FloatArray, FloatArray, FloatArray]: ...
+
+
+def _like_input(
+    sample: float | FloatArray, values: tuple[Any, Any, Any]
+) -> tuple[float, float, float] | tuple[FloatArray, FloatArray, FloatArray]:
+    """Scalars in, Python floats out; arrays in, float64 arrays out (`values` are pyproj's
+    and numpy's results, which their stubs leave untyped)."""
+    first, second, third = values
     if np.ndim(sample) == 0:
-        return tuple(float(v) for v in values)
-    return tuple(np.asarray(v, dtype=np.float64) for v in values)
+        return float(first), float(second), float(third)
+    return (
+        np.asarray(first, dtype=np.float64),
+        np.asarray(second, dtype=np.float64),
+        np.asarray(third, dtype=np.float64),
+    )
 
 
 @lru_cache(maxsize=16)
@@ -151,7 +170,7 @@ def _projection_to_geodetic(projection: str) -> Transformer:
 
 
 @lru_cache(maxsize=16)
-def _projection_dict(projection: str) -> dict:
+def _projection_dict(projection: str) -> dict[str, Any]:
     with warnings.catch_warnings():
         # to_dict goes through a PROJ string; its lossy-conversion warning is about datums.
         warnings.simplefilter("ignore", UserWarning)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import copy
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, is_dataclass
 
 import numpy as np
 import numpy.typing as npt
@@ -28,20 +28,25 @@ def _frozen_array(values: object, what: str) -> FloatArray:
     return array
 
 
-def _equal_fields(a: object, b: object) -> bool:
-    """Dataclass equality that compares numpy arrays by value."""
-    if type(a) is not type(b):
-        return NotImplemented
-    for f in fields(a):  # type: ignore[arg-type]
-        x, y = getattr(a, f.name), getattr(b, f.name)
-        same = np.array_equal(x, y) if isinstance(x, np.ndarray) else x == y
-        if not same:
-            return False
-    return True
+class _ArrayFieldsEquality:
+    """Dataclass equality that compares numpy arrays by value (for eq=False dataclasses)."""
+
+    def __eq__(self, other: object) -> bool:
+        if type(self) is not type(other) or not is_dataclass(self):
+            return NotImplemented
+        for f in fields(self):
+            x, y = getattr(self, f.name), getattr(other, f.name)
+            same = np.array_equal(x, y) if isinstance(x, np.ndarray) else x == y
+            if not same:
+                return False
+        return True
+
+    # Unhashable, as an eq=True dataclass is (typeshed types __hash__ as a method only).
+    __hash__ = None  # type: ignore[assignment]
 
 
 @dataclass(frozen=True, eq=False)
-class Lane:
+class Lane(_ArrayFieldsEquality):
     """One directed lane. Station s runs from 0 at the first centreline point to `length`."""
 
     id: str
@@ -76,9 +81,6 @@ class Lane:
         object.__setattr__(self, "length", float(station[-1]))
         if self.stop_line_s is not None and not 0.0 <= self.stop_line_s <= self.length:
             raise MapGeometryError(f"lane {self.id}: stop line outside the lane")
-
-    __eq__ = _equal_fields
-    __hash__ = None  # type: ignore[assignment]
 
 
 @dataclass(frozen=True)
@@ -115,7 +117,7 @@ class Crosswalk:
 
 
 @dataclass(frozen=True, eq=False)
-class Sidewalk:
+class Sidewalk(_ArrayFieldsEquality):
     """A polyline pedestrians walk along; closed when the last point equals the first."""
 
     id: str
@@ -123,9 +125,6 @@ class Sidewalk:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "points", _frozen_array(self.points, f"sidewalk {self.id}"))
-
-    __eq__ = _equal_fields
-    __hash__ = None  # type: ignore[assignment]
 
 
 class LaneMap:

@@ -290,7 +290,9 @@ class RoadNetworkBuilder:
         self._connect(source, lane_id)
         self._connect(lane_id, target)
 
-    def _add_light(self, junction: JunctionSpec, arm: _Arm, light_type: int) -> TrafficLightSite:
+    def _add_light(
+        self, junction: JunctionSpec, arm: _Arm, light_type: LightType
+    ) -> TrafficLightSite:
         light_id = f"TL{junction.id}_{arm.label}"
         setback = CROSSWALK_GAP_M + CROSSWALK_WIDTH_M + STOP_LINE_GAP_M
         for lane_id in arm.incoming:

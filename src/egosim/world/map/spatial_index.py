@@ -49,7 +49,8 @@ class SegmentGrid:
         self._near: dict[tuple[int, int, int], IntArray] = {}
 
     def _cell_of(self, xy: FloatArray) -> IntArray:
-        return np.floor((xy - self.origin) / self.cell_size).astype(np.int64)
+        cell: IntArray = np.floor((xy - self.origin) / self.cell_size).astype(np.int64)
+        return cell
 
     @property
     def max_ring(self) -> int:

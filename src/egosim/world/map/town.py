@@ -122,7 +122,7 @@ def build_town() -> LaneMap:
     return builder.build("town", BUILTIN_GEOREF, _light_type, _block_sidewalks())
 
 
-def _light_type(junction_id: int, arm: str, can_turn_left: bool) -> int:
+def _light_type(junction_id: int, arm: str, can_turn_left: bool) -> LightType:
     if junction_id == FLASHING_JUNCTION:
         return LightType.FLASHING_YELLOW
     if (junction_id, arm) == LEFT_ARROW_ONLY_APPROACH:

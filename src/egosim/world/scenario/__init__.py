@@ -4,7 +4,8 @@ Public API:
     parse_scenario(document, label) -> Scenario     YAML text or data, schema-validated
     load_default_scenario() -> Scenario             the built-in town's scenario
     scenario_schema() -> dict                       the JSON Schema
-    Scenario, EgoSpec, NpcSpec, PedestrianSpec, ObstacleSpec, SignalsSpec, PoseStart, LaneStart
+    Scenario, EgoSpec, NpcSpec, LaneChangeSpec, PedestrianSpec, ObstacleSpec, SignalsSpec,
+    PoseStart, LaneStart
     ScenarioLoadOptions, ScenarioLoadReport         ScenarioLoad flags and outcome
     ScenarioError                                   names file, line and field
 """
@@ -18,6 +19,7 @@ from egosim.world.scenario.errors import ScenarioError
 from egosim.world.scenario.load_options import ScenarioLoadOptions, ScenarioLoadReport
 from egosim.world.scenario.model import (
     EgoSpec,
+    LaneChangeSpec,
     LaneStart,
     NpcSpec,
     ObstacleSpec,
@@ -31,6 +33,7 @@ from egosim.world.scenario.parse import parse_scenario, scenario_schema
 __all__ = [
     "DEFAULT_SCENARIO_FILE",
     "EgoSpec",
+    "LaneChangeSpec",
     "LaneStart",
     "NpcSpec",
     "ObstacleSpec",

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import PurePath
 from typing import Any
 
 from egosim.world.scenario.errors import ScenarioError
@@ -42,6 +43,16 @@ class EgoSpec:
 
 
 @dataclass(frozen=True)
+class LaneChangeSpec:
+    """Move into `lane`, a lane beside the NPC's, `after_s` s after the load (or as soon
+    after as the NPC drives beside it), sliding across over `duration_s` s."""
+
+    lane: str
+    after_s: float = 0.0
+    duration_s: float = 3.0
+
+
+@dataclass(frozen=True)
 class NpcSpec:
     path: FieldPath
     model: str
@@ -53,6 +64,9 @@ class NpcSpec:
     speed_factor: float = 1.0
     route: tuple[str, ...] = ()
     start_delay_s: float = 0.0
+    stalled: bool = False
+    """Stands where it is placed for the whole scenario (a broken-down car)."""
+    lane_change: LaneChangeSpec | None = None
 
 
 @dataclass(frozen=True)
@@ -86,9 +100,17 @@ class SignalsSpec:
     """Where each intersection's entry sits in the file."""
 
 
+def map_name_of(reference: str) -> str:
+    """The name of the map a scenario's `map` field refers to: a map name as it is, a
+    path its last part (`maps/kcity/` -> `kcity`, `maps/track.xodr` -> `track`)."""
+    name = PurePath(reference).name or reference
+    return name[: -len(".xodr")] if name.lower().endswith(".xodr") else name
+
+
 @dataclass(frozen=True)
 class Scenario:
     map_name: str
+    """The map's name, compared with the name of the map the world runs."""
     seed: int = 0
     ego: EgoSpec | None = None
     npcs: tuple[NpcSpec, ...] = ()
@@ -97,10 +119,17 @@ class Scenario:
     signals: SignalsSpec = field(default_factory=SignalsSpec)
     network: dict[str, Any] | None = None
     """The file's network settings, handed to the simulator as they are."""
+    map_reference: str = ""
+    """The `map` field as written: a map name, or a path relative to the scenario file
+    (what `egosim run --scenario FILE` loads); empty: `map_name`."""
     source: YamlDocument = field(
         default_factory=lambda: YamlDocument("<scenario>", None, error_type=ScenarioError)
     )
 
     def error(self, path: FieldPath, message: str) -> ScenarioError:
         """An error naming this scenario's file, the line of `path` and the field."""
-        return self.source.error(path, message)
+        error = self.source.error(path, message)
+        if isinstance(error, ScenarioError):
+            return error
+        # A source made without error_type=ScenarioError still raises what callers catch.
+        return ScenarioError(error.label, error.line, error.field, error.message)

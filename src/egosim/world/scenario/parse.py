@@ -7,13 +7,14 @@ import math
 from collections.abc import Mapping
 from functools import cache
 from importlib import resources
-from typing import Any
+from typing import Any, cast
 
 import jsonschema
 
 from egosim.world.scenario.errors import ScenarioError
 from egosim.world.scenario.model import (
     EgoSpec,
+    LaneChangeSpec,
     LaneStart,
     NpcSpec,
     ObstacleSpec,
@@ -22,11 +23,12 @@ from egosim.world.scenario.model import (
     Scenario,
     SignalsSpec,
     Start,
+    map_name_of,
 )
 from egosim.world.signals import IntersectionProgram, PhaseTiming
 from egosim.world.traffic.catalogue import DEFAULT_OBSTACLE_MODEL, DEFAULT_PEDESTRIAN_MODEL
 from egosim.world.vehicle import DEFAULT_EGO_MODEL
-from egosim.yamltext import FieldPath, YamlDocument, parse_yaml
+from egosim.yamltext import FieldPath, Problems, YamlDocument, YamlFileError, parse_yaml
 
 DEFAULT_NPC_MODEL = DEFAULT_EGO_MODEL
 DEFAULT_WALK_SPEED_MPS = 1.3
@@ -37,7 +39,7 @@ _TIMING_FIELDS = ("green_s", "left_s", "yellow_s", "all_red_s", "flash_s")
 def scenario_schema() -> dict[str, Any]:
     """The JSON Schema of the scenario format."""
     text = resources.files(__package__).joinpath("scenario.schema.json").read_text("utf-8")
-    return json.loads(text)
+    return cast(dict[str, Any], json.loads(text))
 
 
 def parse_scenario(document: str | Mapping[str, Any], label: str = "<scenario>") -> Scenario:
@@ -51,25 +53,48 @@ def parse_scenario(document: str | Mapping[str, Any], label: str = "<scenario>")
 
 
 def _validate(source: YamlDocument) -> None:
+    """Every schema violation of the file, each at its own line, at once."""
     validator = jsonschema.Draft202012Validator(scenario_schema())
-    error = jsonschema.exceptions.best_match(validator.iter_errors(source.data))
-    if error is None:
-        return
-    path = tuple(error.absolute_path)
-    if error.validator == "additionalProperties" and isinstance(error.instance, dict):
-        # Point at the first unexpected key rather than at the mapping holding it.
-        allowed = set(error.schema.get("properties", {}))
-        unexpected = [key for key in error.instance if key not in allowed]
-        if unexpected:
-            raise source.error((*path, unexpected[0]), f"unknown field {unexpected[0]!r}")
-    raise source.error(path, error.message)
+    errors: list[YamlFileError] = []
+    for violation in validator.iter_errors(source.data):
+        error = _telling(violation)
+        path = tuple(error.absolute_path)
+        if error.validator == "additionalProperties" and isinstance(error.instance, dict):
+            # Point at each unexpected key rather than at the mapping holding it.
+            schema = error.schema
+            allowed = set(schema.get("properties", {})) if isinstance(schema, dict) else set()
+            unexpected = [key for key in error.instance if key not in allowed]
+            errors += [source.error((*path, k), f"unknown field {k!r}") for k in unexpected]
+            if unexpected:
+                continue
+        errors.append(source.error(path, error.message))
+    if errors:
+        raise ScenarioError.of_all(errors)
+
+
+def _telling(violation: jsonschema.ValidationError) -> jsonschema.ValidationError:
+    """The error to show for a violation. A oneOf (a start is a pose or a lane start)
+    holds each branch's errors: those of a branch whose fields the entry uses (one with
+    no unknown-field error) tell the user what is wrong with what they wrote."""
+    if violation.validator == "oneOf" and violation.context:
+        branches: dict[object, list[jsonschema.ValidationError]] = {}
+        for error in violation.context:
+            branches.setdefault(error.relative_schema_path[0], []).append(error)
+        meant = [
+            errors
+            for errors in branches.values()
+            if not any(e.validator == "additionalProperties" for e in errors)
+        ]
+        if len(meant) == 1:
+            return cast(jsonschema.ValidationError, jsonschema.exceptions.best_match(meant[0]))
+    return cast(jsonschema.ValidationError, jsonschema.exceptions.best_match([violation]))
 
 
 def _build(source: YamlDocument) -> Scenario:
     data = source.data
     ego = data.get("ego")
     return Scenario(
-        map_name=data["map"],
+        map_name=map_name_of(data["map"]),
         seed=data.get("seed", 0),
         ego=None if ego is None else _ego(ego, ("ego",)),
         npcs=tuple(_npc(n, ("npcs", k)) for k, n in enumerate(data.get("npcs", ()))),
@@ -81,6 +106,7 @@ def _build(source: YamlDocument) -> Scenario:
         ),
         signals=_signals(source, data.get("signals", {})),
         network=data.get("network"),
+        map_reference=data["map"],
         source=source,
     )
 
@@ -111,6 +137,7 @@ def _ego(data: Mapping[str, Any], path: FieldPath) -> EgoSpec:
 
 def _npc(data: Mapping[str, Any], path: FieldPath) -> NpcSpec:
     target = data.get("target_speed_mps")
+    change = data.get("lane_change")
     return NpcSpec(
         path=path,
         model=data.get("model", DEFAULT_NPC_MODEL),
@@ -120,6 +147,16 @@ def _npc(data: Mapping[str, Any], path: FieldPath) -> NpcSpec:
         speed_factor=float(data.get("speed_factor", 1.0)),
         route=tuple(data.get("route", ())),
         start_delay_s=float(data.get("start_delay_s", 0.0)),
+        stalled=bool(data.get("stalled", False)),
+        lane_change=None if change is None else _lane_change(change),
+    )
+
+
+def _lane_change(data: Mapping[str, Any]) -> LaneChangeSpec:
+    return LaneChangeSpec(
+        lane=data["lane"],
+        after_s=float(data.get("after_s", 0.0)),
+        duration_s=float(data.get("duration_s", LaneChangeSpec.duration_s)),
     )
 
 
@@ -158,14 +195,17 @@ def _signals(source: YamlDocument, data: Mapping[str, Any]) -> SignalsSpec:
     default = _timing(data.get("default", {}), PhaseTiming())
     programs: dict[int, IntersectionProgram] = {}
     paths: dict[int, FieldPath] = {}
+    problems = Problems()
     for k, entry in enumerate(data.get("intersections", ())):
         path = ("signals", "intersections", k)
         if entry["id"] in programs:
-            raise source.error((*path, "id"), f"intersection {entry['id']} is listed twice")
+            problems.add(source.error((*path, "id"), f"intersection {entry['id']} is listed twice"))
+            continue
         programs[entry["id"]] = IntersectionProgram(
             timing=_timing(entry, default),
             initial_phase=entry.get("initial_phase", 0),
             initial_elapsed_s=float(entry.get("initial_elapsed_s", 0.0)),
         )
         paths[entry["id"]] = path
+    problems.raise_any()
     return SignalsSpec(default, programs, paths)

@@ -5,15 +5,23 @@ Errors (unknown lanes, sidewalks, models ...) name the scenario's file, line and
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator, Mapping
 from typing import TypeVar
 
 import numpy as np
 
 from egosim.world.map import LaneMap
-from egosim.world.scenario.model import LaneStart, PoseStart, Scenario, Start
+from egosim.world.scenario.model import (
+    LaneStart,
+    NpcSpec,
+    PedestrianSpec,
+    PoseStart,
+    Scenario,
+    Start,
+)
 from egosim.world.traffic.catalogue import OBSTACLE_MODELS, PEDESTRIAN_MODELS, BoxModel
-from egosim.world.traffic.npc_vehicles import NpcSpawn
+from egosim.world.traffic.npc_vehicles import LaneChange, NpcSpawn
 from egosim.world.traffic.obstacles import ObstacleSpawn
 from egosim.world.traffic.pedestrians import (
     PedestrianSpawn,
@@ -21,9 +29,9 @@ from egosim.world.traffic.pedestrians import (
     crosswalk_path,
     sidewalk_path,
 )
-from egosim.world.vehicle import EGO_MODELS, VEHICLE_CATALOGUE, EgoModel
+from egosim.world.vehicle import EGO_MODELS, VEHICLE_CATALOGUE, EgoModel, VehicleModel
 from egosim.world.vehicle import Pose as VehiclePose
-from egosim.yamltext import FieldPath
+from egosim.yamltext import FieldPath, Problems
 
 ModelT = TypeVar("ModelT")
 
@@ -39,7 +47,7 @@ def vehicle_model_at(
     scenario: Scenario,
     name: str,
     path: FieldPath,
-    catalogue: Mapping[str, ModelT] = VEHICLE_CATALOGUE,
+    catalogue: Mapping[str, ModelT],
 ) -> ModelT:
     try:
         return catalogue[name]
@@ -111,72 +119,117 @@ def ego_placement(
 
 def npc_spawns(scenario: Scenario, lane_map: LaneMap, ids: Iterator[int]) -> list[NpcSpawn]:
     spawns = []
+    problems = Problems()
     for npc in scenario.npcs:
-        model = vehicle_model_at(scenario, npc.model, (*npc.path, "model"))
-        lane, s, lateral = lane_position(scenario, lane_map, npc.start, (*npc.path, "start"))
-        route = tuple(
-            _lane_index(scenario, lane_map, lane_id, (*npc.path, "route", k))
-            for k, lane_id in enumerate(npc.route)
-        )
-        spawns.append(
-            NpcSpawn(
-                unique_id=next(ids),
-                model=model,
-                lane=lane,
-                s=s,
-                lateral=lateral,
-                speed=npc.speed,
-                target_speed=npc.target_speed,
-                speed_factor=npc.speed_factor,
-                route=route,
-                start_delay_s=npc.start_delay_s,
-            )
-        )
+        with problems.collecting():
+            spawns.append(_npc_spawn(scenario, lane_map, npc, next(ids)))
+    problems.raise_any()
     return spawns
+
+
+def _npc_spawn(scenario: Scenario, lane_map: LaneMap, npc: NpcSpec, unique_id: int) -> NpcSpawn:
+    problems = Problems()
+    model: VehicleModel | None = None
+    position: tuple[int, float, float] | None = None
+    change: LaneChange | None = None
+    route: list[int] = []
+    with problems.collecting():
+        model = vehicle_model_at(scenario, npc.model, (*npc.path, "model"), VEHICLE_CATALOGUE)
+    with problems.collecting():
+        position = lane_position(scenario, lane_map, npc.start, (*npc.path, "start"))
+    for k, lane_id in enumerate(npc.route):
+        with problems.collecting():
+            route.append(_lane_index(scenario, lane_map, lane_id, (*npc.path, "route", k)))
+    if npc.lane_change is not None:
+        with problems.collecting():
+            target = _lane_index(
+                scenario, lane_map, npc.lane_change.lane, (*npc.path, "lane_change", "lane")
+            )
+            change = LaneChange(target, npc.lane_change.after_s, npc.lane_change.duration_s)
+    problems.raise_any()
+    assert model is not None and position is not None
+    lane, s, lateral = position
+    return NpcSpawn(
+        unique_id=unique_id,
+        model=model,
+        lane=lane,
+        s=s,
+        lateral=lateral,
+        speed=0.0 if npc.stalled else npc.speed,
+        target_speed=npc.target_speed,
+        speed_factor=npc.speed_factor,
+        route=tuple(route),
+        start_delay_s=math.inf if npc.stalled else npc.start_delay_s,
+        lane_change=change,
+    )
 
 
 def pedestrian_spawns(
     scenario: Scenario, lane_map: LaneMap, ids: Iterator[int]
 ) -> list[PedestrianSpawn]:
-    crosswalk_index = {cw: k for k, cw in enumerate(lane_map.crosswalks)}
     spawns = []
+    problems = Problems()
     for walker in scenario.pedestrians:
+        with problems.collecting():
+            spawns.append(_pedestrian_spawn(scenario, lane_map, walker, next(ids)))
+    problems.raise_any()
+    return spawns
+
+
+def _pedestrian_spawn(
+    scenario: Scenario, lane_map: LaneMap, walker: PedestrianSpec, unique_id: int
+) -> PedestrianSpawn:
+    problems = Problems()
+    model = None
+    with problems.collecting():
         model = _box_model(scenario, PEDESTRIAN_MODELS, walker.model, (*walker.path, "model"))
-        path: WalkPath
-        if walker.sidewalk is not None:
-            if walker.sidewalk not in lane_map.sidewalks:
-                raise scenario.error(
-                    (*walker.path, "sidewalk"), f"no sidewalk {walker.sidewalk!r} in the map"
-                )
-            path = sidewalk_path(lane_map.sidewalks[walker.sidewalk])
-        elif walker.crosswalk is not None:
-            if walker.crosswalk not in lane_map.crosswalks:
-                raise scenario.error(
-                    (*walker.path, "crosswalk"), f"no crosswalk {walker.crosswalk!r} in the map"
-                )
-            path = crosswalk_path(
-                lane_map.crosswalks[walker.crosswalk], crosswalk_index[walker.crosswalk]
-            )
-        else:
-            path = WalkPath(np.array(walker.waypoints, dtype=np.float64), closed=walker.loop)
-        if walker.start_s > path.length:
-            raise scenario.error(
+    path = _walk_path(scenario, lane_map, walker)
+    if walker.start_s > path.length:
+        problems.add(
+            scenario.error(
                 (*walker.path, "start_s"),
                 f"{walker.start_s} m is past the path's {path.length:.1f} m",
             )
-        spawns.append(PedestrianSpawn(next(ids), model, path, walker.speed, walker.start_s))
-    return spawns
+        )
+    problems.raise_any()
+    assert model is not None
+    return PedestrianSpawn(unique_id, model, path, walker.speed, walker.start_s)
+
+
+def _walk_path(scenario: Scenario, lane_map: LaneMap, walker: PedestrianSpec) -> WalkPath:
+    if walker.sidewalk is not None:
+        if walker.sidewalk not in lane_map.sidewalks:
+            raise scenario.error(
+                (*walker.path, "sidewalk"), f"no sidewalk {walker.sidewalk!r} in the map"
+            )
+        return sidewalk_path(lane_map.sidewalks[walker.sidewalk])
+    if walker.crosswalk is not None:
+        if walker.crosswalk not in lane_map.crosswalks:
+            raise scenario.error(
+                (*walker.path, "crosswalk"), f"no crosswalk {walker.crosswalk!r} in the map"
+            )
+        index = list(lane_map.crosswalks).index(walker.crosswalk)
+        return crosswalk_path(lane_map.crosswalks[walker.crosswalk], index)
+    return WalkPath(np.array(walker.waypoints, dtype=np.float64), closed=walker.loop)
 
 
 def obstacle_spawns(scenario: Scenario, ids: Iterator[int]) -> list[ObstacleSpawn]:
     spawns = []
+    problems = Problems()
     for obstacle in scenario.obstacles:
         size = obstacle.size
         if size is None:
-            model = _box_model(scenario, OBSTACLE_MODELS, obstacle.model, (*obstacle.path, "model"))
-            size = (model.length, model.width, model.height)
+            with problems.collecting():
+                model = _box_model(
+                    scenario, OBSTACLE_MODELS, obstacle.model, (*obstacle.path, "model")
+                )
+                size = (model.length, model.width, model.height)
         pose = obstacle.pose
-        spawns.append(
-            ObstacleSpawn(next(ids), obstacle.model, (pose.x, pose.y, pose.z), pose.heading, size)
-        )
+        if size is not None:
+            spawns.append(
+                ObstacleSpawn(
+                    next(ids), obstacle.model, (pose.x, pose.y, pose.z), pose.heading, size
+                )
+            )
+    problems.raise_any()
     return spawns

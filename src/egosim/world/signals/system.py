@@ -122,7 +122,7 @@ class TrafficSignals:
 
     def aspects(self) -> npt.NDArray[np.int64]:
         """Aspect of every light, in `light_ids` order (read-only view)."""
-        view = self._aspects.view()
+        view: npt.NDArray[np.int64] = self._aspects.view()
         view.flags.writeable = False
         return view
 

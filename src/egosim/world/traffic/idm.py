@@ -31,7 +31,8 @@ class IntelligentDriverModel:
     def desired_gap(self, v: FloatArray, dv: FloatArray) -> FloatArray:
         """s*, m."""
         brake_term = v * dv / (2.0 * np.sqrt(self.max_accel_mps2 * self.comfortable_decel_mps2))
-        return self.min_gap_m + np.maximum(0.0, v * self.time_headway_s + brake_term)
+        gap: FloatArray = self.min_gap_m + np.maximum(0.0, v * self.time_headway_s + brake_term)
+        return gap
 
     def acceleration(
         self, v: FloatArray, v0: FloatArray, gap: FloatArray, dv: FloatArray
@@ -45,7 +46,9 @@ class IntelligentDriverModel:
 
     def equilibrium_gap(self, v: float, v0: float) -> float:
         """Gap (m) at which a = 0 behind a leader at the same speed v < v0."""
-        return (self.min_gap_m + v * self.time_headway_s) / np.sqrt(1.0 - (v / v0) ** self.delta)
+        return float(
+            (self.min_gap_m + v * self.time_headway_s) / np.sqrt(1.0 - (v / v0) ** self.delta)
+        )
 
     def can_stop_within(self, v: FloatArray, distance: FloatArray) -> npt.NDArray[np.bool_]:
         """True where v (m/s) can be brought to rest within distance (m) at comfortable decel."""

@@ -5,6 +5,9 @@ IDM towards its desired speed behind the nearest of: a road user ahead on its pl
 path (two lanes of look-ahead), a stop line whose light tells it to stop, or the end of
 a dead-end lane. Laterally it sits on its lane's centreline plus a fixed offset; at the
 lane end it moves on to the successor it planned (its route, else a seeded random pick).
+A scripted lane change puts it on the lane beside at once, at the offset it had, and
+slides it to that lane's centreline along a half-cosine (no sideways speed at either
+end), its heading turned with the sideways motion.
 """
 
 from __future__ import annotations
@@ -14,9 +17,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
-import numpy.typing as npt
 
-from egosim.world.arrays import FloatArray, IntArray
+from egosim.world.arrays import BoolArray, FloatArray, Indices, IntArray
 from egosim.world.traffic.idm import IntelligentDriverModel
 from egosim.world.traffic.junction_rules import (
     DECISION_MARGIN_M,
@@ -38,11 +40,22 @@ LOOKAHEAD_LANES = 2
 _PER_NPC_ARRAYS = (
     "unique_ids", "dims", "lane", "next_lanes", "s", "speed", "accel", "lateral",
     "target_speed", "speed_factor", "delay", "crashed", "yellow", "pose", "yaw_rate", "mass",
+    "change_to", "change_timer", "change_duration", "slide_from", "slide_elapsed",
 )  # fmt: skip
 _PER_NPC_LISTS = ("names", "routes", "route_pos")
 
 # Latched reaction to a yellow, reset on every new lane and on every go aspect.
 _YELLOW_UNDECIDED, _YELLOW_STOP, _YELLOW_PASS = 0, 1, 2
+
+
+@dataclass(frozen=True)
+class LaneChange:
+    """Move into lane index `lane`, beside the NPC's, `after_s` s from now or as soon after
+    as the NPC drives beside it, sliding across in `duration_s` s."""
+
+    lane: int
+    after_s: float = 0.0
+    duration_s: float = 3.0
 
 
 @dataclass(frozen=True)
@@ -63,6 +76,7 @@ class NpcSpawn:
     speed_factor: float = 1.0
     route: tuple[int, ...] = field(default=())
     start_delay_s: float = 0.0
+    lane_change: LaneChange | None = None
 
 
 class NpcFleet:
@@ -104,6 +118,14 @@ class NpcFleet:
         self.pose = np.empty((0, 4))
         """x, y, z, heading of each NPC's centre."""
         self.yaw_rate = np.empty(0)
+        self.change_to = np.empty(0, np.int64)
+        """Lane index of a pending lane change, -1: none."""
+        self.change_timer = np.empty(0)
+        self.change_duration = np.empty(0)
+        self.slide_from = np.empty(0)
+        """Offset from the new lane's centreline when a lane change began, m."""
+        self.slide_elapsed = np.empty(0)
+        """Seconds since that lane change began; inf: not changing lanes."""
 
     def __len__(self) -> int:
         return len(self.unique_ids)
@@ -132,6 +154,12 @@ class NpcFleet:
         self.crashed = np.append(self.crashed, np.zeros(len(spawns), bool))
         self.yellow = np.append(self.yellow, np.zeros(len(spawns), np.int8))
         self.yaw_rate = np.append(self.yaw_rate, np.zeros(len(spawns)))
+        changes = [n.lane_change or LaneChange(-1) for n in spawns]
+        self.change_to = np.append(self.change_to, [c.lane for c in changes]).astype(np.int64)
+        self.change_timer = np.append(self.change_timer, [c.after_s for c in changes])
+        self.change_duration = np.append(self.change_duration, [c.duration_s for c in changes])
+        self.slide_from = np.append(self.slide_from, np.zeros(len(spawns)))
+        self.slide_elapsed = np.append(self.slide_elapsed, np.full(len(spawns), np.inf))
         self.next_lanes = np.vstack(
             (self.next_lanes, np.full((len(spawns), LOOKAHEAD_LANES), -1, np.int64))
         )
@@ -145,7 +173,7 @@ class NpcFleet:
                 self.next_lanes[i, k] = previous
         self.pose = self._poses()
 
-    def remove(self, indices: npt.ArrayLike) -> None:
+    def remove(self, indices: Indices) -> None:
         """Take these NPCs out of the fleet (e.g. an NPC ghost takes one over)."""
         keep = np.ones(len(self), bool)
         keep[indices] = False
@@ -176,11 +204,11 @@ class NpcFleet:
     def occupants(self) -> LaneOccupants:
         return LaneOccupants(self.lane, self.s, self.dims[:, 0] / 2.0, self.speed)
 
-    def stop(self, indices: npt.ArrayLike) -> None:
+    def stop(self, indices: Indices) -> None:
         """Crash stop: these NPCs brake to a standstill (CRASH_BRAKE_DECEL_MPS2) and stay."""
         self.crashed[indices] = True
 
-    def parked(self) -> npt.NDArray[np.bool_]:
+    def parked(self) -> BoolArray:
         """Per NPC: still waiting to set off (a parked car, immovable in a contact)."""
         return self.delay > 0.0
 
@@ -196,7 +224,7 @@ class NpcFleet:
         )
         self.lateral[indices] += np.einsum("kd,kd->k", displacement, left)
         self.speed[indices] = np.maximum(np.einsum("kd,kd->k", velocity, along), 0.0)
-        self.pose[indices] = self._poses(indices)
+        self.pose = self._poses()
 
     def step(self, dt: float, lights: LightsView, others: LaneOccupants) -> None:
         """Advance dt s among `others` (ego, pedestrians, obstacles placed on lanes)."""
@@ -206,6 +234,7 @@ class NpcFleet:
         graph = self.graph
         waiting = self.delay > 0.0
         self.delay = np.maximum(self.delay - dt, 0.0)
+        frozen = waiting | self.crashed
 
         occupants = LaneOccupants.concatenate([self.occupants(), others])
         slots = np.arange(n)
@@ -232,6 +261,7 @@ class NpcFleet:
         self.accel = (new_speed - self.speed) / dt
         self.speed = new_speed
         self._advance_lanes()
+        self._change_lanes(dt, frozen)
         old_heading = self.pose[:, 3]
         self.pose = self._poses()
         self.yaw_rate = np.remainder(self.pose[:, 3] - old_heading + math.pi, math.tau) - math.pi
@@ -252,7 +282,10 @@ class NpcFleet:
         approach = np.sqrt(
             next_curve**2 + 2.0 * self.idm.comfortable_decel_mps2 * np.maximum(to_next, 0.0)
         )
-        return np.maximum(np.minimum.reduce([base, graph.curve_speed[self.lane], approach]), 0.1)
+        speed: FloatArray = np.maximum(
+            np.minimum.reduce([base, graph.curve_speed[self.lane], approach]), 0.1
+        )
+        return speed
 
     def _stop_line_gap(self, lights: LightsView, half: FloatArray) -> FloatArray:
         """Bumper-to-stop-line distance (m) where a light says stop, else inf."""
@@ -320,14 +353,58 @@ class NpcFleet:
                 self.s[i] -= length[self.lane[i]]
                 self.lane[i] = nxt
                 self.next_lanes[i, :-1] = self.next_lanes[i, 1:]
-                self.next_lanes[i, -1] = self._choose_successor(i, int(self.next_lanes[i, -2]))
+                self.next_lanes[i, -1] = self._choose_successor(int(i), int(self.next_lanes[i, -2]))
                 self.yellow[i] = _YELLOW_UNDECIDED
 
-    def _poses(self, indices: IntArray | slice = slice(None)) -> FloatArray:
-        pose = self.graph.lane_map.poses_at(self.lane[indices], self.s[indices])
-        heading = pose[:, 3]
-        pose[:, 0] -= self.lateral[indices] * np.sin(heading)
-        pose[:, 1] += self.lateral[indices] * np.cos(heading)
+    def _change_lanes(self, dt: float, frozen: BoolArray) -> None:
+        """Scripted lane changes that are due, and the sideways slides they started."""
+        sliding = np.isfinite(self.slide_elapsed)
+        self.slide_elapsed[sliding] += dt
+        progress = np.clip(self.slide_elapsed / self.change_duration, 0.0, 1.0)
+        self.lateral[sliding] = (self.slide_from * 0.5 * (1.0 + np.cos(math.pi * progress)))[
+            sliding
+        ]
+        self.slide_elapsed[sliding & (progress >= 1.0)] = np.inf
+        pending = self.change_to >= 0
+        self.change_timer[pending] -= dt
+        lanes = self.graph.lane_map.lanes
+        ids = self.graph.lane_map.lane_ids
+        for i in np.flatnonzero(pending & (self.change_timer <= 0.0) & ~frozen):
+            here, target = lanes[ids[self.lane[i]]], ids[self.change_to[i]]
+            if target in (here.left_neighbor, here.right_neighbor):
+                self._move_beside(int(i), int(self.change_to[i]))
+
+    def _move_beside(self, i: int, target: int) -> None:
+        """NPC i onto lane `target` at the same place, then sliding to its centreline."""
+        length = self.graph.length
+        lane_map = self.graph.lane_map
+        x, y, _, _ = self.pose[i]
+        s = min(self.s[i] * length[target] / length[self.lane[i]], length[target])
+        cx, cy, _, heading = lane_map.poses_at(np.array([target]), np.array([s]))[0]
+        self.lateral[i] = -(x - cx) * math.sin(heading) + (y - cy) * math.cos(heading)
+        self.slide_from[i] = self.lateral[i]
+        self.slide_elapsed[i] = 0.0
+        self.lane[i], self.s[i] = target, s
+        self.change_to[i] = -1
+        self.yellow[i] = _YELLOW_UNDECIDED
+        previous = target
+        for k in range(LOOKAHEAD_LANES):
+            previous = self._choose_successor(i, previous)
+            self.next_lanes[i, k] = previous
+
+    def _poses(self) -> FloatArray:
+        pose = self.graph.lane_map.poses_at(self.lane, self.s)
+        heading = pose[:, 3].copy()
+        pose[:, 0] -= self.lateral * np.sin(heading)
+        pose[:, 1] += self.lateral * np.cos(heading)
+        sliding = np.isfinite(self.slide_elapsed)
+        if np.any(sliding):
+            # The heading follows the slide: d(lateral)/dt against the forward speed.
+            duration = self.change_duration[sliding]
+            progress = self.slide_elapsed[sliding] / duration
+            sideways = -self.slide_from[sliding] * math.pi / (2.0 * duration)
+            sideways *= np.sin(math.pi * progress)
+            pose[sliding, 3] += np.arctan2(sideways, np.maximum(self.speed[sliding], 0.1))
         return pose
 
     def table(self) -> ObjectTable:

@@ -11,9 +11,8 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-import numpy.typing as npt
 
-from egosim.world.arrays import BoolArray, FloatArray, IntArray
+from egosim.world.arrays import BoolArray, FloatArray, Indices, IntArray
 from egosim.world.map import Crosswalk, LaneMap, Sidewalk
 from egosim.world.traffic.catalogue import BoxModel
 from egosim.world.traffic.objects import ObjectTable, ObjectType
@@ -82,16 +81,16 @@ class PedestrianCrowd:
 
     def clear(self) -> None:
         self._spawns: list[PedestrianSpawn] = []
-        self.unique_ids = np.empty(0, np.int64)
-        self.s = np.empty(0)
-        self.stopped = np.empty(0, bool)
-        self.shoved = np.empty((0, 2))
+        self.unique_ids: IntArray = np.empty(0, np.int64)
+        self.s: FloatArray = np.empty(0)
+        self.stopped: BoolArray = np.empty(0, bool)
+        self.shoved: FloatArray = np.empty((0, 2))
         """Per pedestrian: how far contacts pushed them off their path, m (map frame)."""
         self._layout(())
-        self.position = np.empty((0, 2))
-        self.heading = np.empty(0)
-        self.velocity = np.empty((0, 2))
-        self.acceleration = np.empty((0, 2))
+        self.position: FloatArray = np.empty((0, 2))
+        self.heading: FloatArray = np.empty(0)
+        self.velocity: FloatArray = np.empty((0, 2))
+        self.acceleration: FloatArray = np.empty((0, 2))
 
     def __len__(self) -> int:
         return len(self.unique_ids)
@@ -118,8 +117,8 @@ class PedestrianCrowd:
         self.dims = np.array([(p.model.length, p.model.width, p.model.height) for p in spawns])
         self.dims = self.dims.reshape(-1, 3)
         self.walk_speed = np.array([p.speed for p in spawns], dtype=np.float64)
-        self.closed = np.array([p.path.closed for p in spawns], dtype=bool)
-        self.on_road = np.array([p.path.on_road for p in spawns], dtype=bool)
+        self.closed: BoolArray = np.array([p.path.closed for p in spawns], dtype=bool)
+        self.on_road: BoolArray = np.array([p.path.on_road for p in spawns], dtype=bool)
         steps = [np.hypot(*np.diff(points, axis=0).T) for points in paths]
         self.length = np.array([float(np.sum(step)) for step in steps])
         counts = np.array([len(points) for points in paths], dtype=np.int64)
@@ -160,7 +159,7 @@ class PedestrianCrowd:
         xy = self._points[j] + t * (self._points[j + 1] - self._points[j])
         return xy, self._point_heading[j]
 
-    def stop(self, indices: npt.ArrayLike) -> None:
+    def stop(self, indices: Indices) -> None:
         """Struck pedestrians stay where they are (or where a contact pushes them)."""
         self.stopped[indices] = True
 
@@ -233,10 +232,21 @@ class CrosswalkLights:
         """
         if self._lights.size == 0:
             return np.ones(len(self._lights), bool)
-        return np.all(stops_traffic[self._lights] | ~self._used, axis=1)
+        walk: BoolArray = np.all(stops_traffic[self._lights] | ~self._used, axis=1)
+        return walk
 
 
 CROSSWALK_SAMPLE_STEP_M = 0.5
+
+
+def _holding_lights(lane_map: LaneMap, lane_id: str) -> set[str | None]:
+    """The lights that hold the traffic on a lane: its own, or for a junction connector
+    those of the lanes leading into it (where a map ends its lanes at the stop line, as
+    MGeo does, a crossing at the junction's mouth lies over connectors)."""
+    lane = lane_map.lanes[lane_id]
+    if lane.traffic_light_id is not None or not lane.is_junction:
+        return {lane.traffic_light_id}
+    return {lane_map.lanes[p].traffic_light_id for p in lane.predecessors}
 
 
 def crossed_lights(lane_map: LaneMap, light_index: Mapping[str, int]) -> list[tuple[int, ...]]:
@@ -250,8 +260,9 @@ def crossed_lights(lane_map: LaneMap, light_index: Mapping[str, int]) -> list[tu
         projection = lane_map.project_many(points)
         inside = np.abs(projection.lateral) <= projection.width / 2.0
         lights = {
-            lane_map.lanes[lane_map.lane_ids[k]].traffic_light_id
-            for k in projection.lane_index[inside]
+            light
+            for k in set(projection.lane_index[inside].tolist())
+            for light in _holding_lights(lane_map, lane_map.lane_ids[k])
         }
         # A road's lanes away from this junction carry the far junction's light.
         own = [

@@ -95,7 +95,8 @@ def _sites(
 ) -> tuple[list[TrafficLightSite], list[IntersectionSite]]:
     numbers = _numbers(controller_ids)
     next_number = max(numbers.values(), default=0) + 1
-    lights, intersections = [], []
+    lights: list[TrafficLightSite] = []
+    intersections: list[IntersectionSite] = []
     for key, draft in drafts.items():
         if not draft.groups:
             continue

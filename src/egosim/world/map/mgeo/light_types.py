@@ -49,7 +49,7 @@ def lamps_of(sub_type: object) -> list[str]:
     return [_LAMP_NAMES.get(word.replace(" ", ""), "unknown") for word in words]
 
 
-def light_type_of(sub_type: object) -> int | None:
+def light_type_of(sub_type: object) -> LightType | None:
     """The trafficLightType of a head, None when the sub_type names no known head."""
     lamps = set(lamps_of(sub_type))
     if "unknown" in lamps:

@@ -27,7 +27,7 @@ class LightHead:
     idx: str
     position: tuple[float, float, float]
     heading: float
-    light_type: int
+    light_type: LightType
     lane_ids: tuple[str, ...]
 
 

@@ -77,7 +77,8 @@ class Record:
 
     def point(self, key: str) -> FloatArray:
         """An [x, y] or [x, y, z] point as a (3,) array."""
-        return self.points(key, single=True)[0]
+        point: FloatArray = self.points(key, single=True)[0]
+        return point
 
     def points(self, key: str, single: bool = False) -> FloatArray:
         """An (N, 3) array from [[x, y, z], ...] (z = 0 for [x, y] points)."""

@@ -13,14 +13,17 @@ DEFAULT_LANE_WIDTH_M = 3.5
 def distance_to_polyline(points: FloatArray, polyline: FloatArray) -> FloatArray:
     """Planar distance from each of (N, 2+) points to an (M >= 1, 2+) polyline."""
     p = points[:, None, :2]
+    distance: FloatArray
     if len(polyline) == 1:
-        return np.hypot(*(points[:, :2] - polyline[0, :2]).T)
+        distance = np.hypot(*(points[:, :2] - polyline[0, :2]).T)
+        return distance
     a = polyline[None, :-1, :2]
     ab = polyline[None, 1:, :2] - a
     length_sq = np.maximum(np.sum(ab * ab, axis=2), 1e-18)
     t = np.clip(np.sum((p - a) * ab, axis=2) / length_sq, 0.0, 1.0)
     gap = p - (a + t[..., None] * ab)
-    return np.sqrt(np.sum(gap * gap, axis=2)).min(axis=1)
+    distance = np.sqrt(np.sum(gap * gap, axis=2)).min(axis=1)
+    return distance
 
 
 def link_widths(
@@ -41,8 +44,12 @@ def link_widths(
     end = link.number("width_end") or start
     if start <= 0.0 or end <= 0.0:
         raise link.fail(f"width_start / width_end must be positive, got {start}, {end}")
-    return start + (end - start) * stations / stations[-1]
+    widths: FloatArray = start + (end - start) * stations / stations[-1]
+    return widths
 
 
 def _nearest(points: FloatArray, polylines: list[FloatArray]) -> FloatArray:
-    return np.minimum.reduce([distance_to_polyline(points, line) for line in polylines])
+    nearest: FloatArray = np.minimum.reduce(
+        [distance_to_polyline(points, line) for line in polylines]
+    )
+    return nearest

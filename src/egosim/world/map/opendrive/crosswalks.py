@@ -50,4 +50,5 @@ def _outline(road: Road, record: CrosswalkRecord, origin: FloatArray) -> FloatAr
     yaw = origin[0, 3] + record.hdg
     u_axis = np.array([np.cos(yaw), np.sin(yaw)])
     v_axis = np.array([-np.sin(yaw), np.cos(yaw)])
-    return lateral_points(origin, record.t) + uv[:, :1] * u_axis + uv[:, 1:] * v_axis
+    corners: FloatArray = lateral_points(origin, record.t) + uv[:, :1] * u_axis + uv[:, 1:] * v_axis
+    return corners

@@ -23,7 +23,7 @@ ARROW_HEAD = "1000011"
 LEFT_ARROW_SUBTYPE = "10"
 
 
-def light_type_of(signal_type: str, subtype: str) -> int | None:
+def light_type_of(signal_type: str, subtype: str) -> LightType | None:
     """The trafficLightType of a dynamic signal, None when it is not a vehicle light."""
     if signal_type == THREE_LAMP_HEAD:
         return LightType.RYG

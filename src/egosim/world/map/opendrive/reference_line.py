@@ -45,7 +45,10 @@ def lateral_points(poses: FloatArray, t: npt.ArrayLike) -> FloatArray:
 def sample_stations(road: Road, step: float) -> FloatArray:
     """Stations every `step` metres, closer on curves (the heading turns at most
     MAX_TURN_RAD between stations), plus every geometry and lane-section boundary."""
-    pieces = [[section.s for section in road.sections], [road.length]]
+    pieces: list[FloatArray | list[float]] = [
+        [section.s for section in road.sections],
+        [road.length],
+    ]
     for start, _, geometry in road.geometries:
         spacing = min(step, MAX_TURN_RAD / max(_max_curvature(geometry), 1e-9))
         spacing = max(spacing, MIN_SPACING_M)

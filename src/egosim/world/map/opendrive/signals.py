@@ -19,6 +19,7 @@ import numpy as np
 
 from egosim.world.map.errors import MapRecordError
 from egosim.world.map.lanes import IntersectionSite, TrafficLightSite
+from egosim.world.map.light_type import LightType
 from egosim.world.map.opendrive.document import SOURCE, Document, Road, SignalRecord
 from egosim.world.map.opendrive.light_types import light_type_of
 from egosim.world.map.opendrive.reference_line import lateral_points, reference_poses
@@ -37,7 +38,7 @@ class _Head:
     id: str
     position: tuple[float, float, float]
     heading: float
-    light_type: int
+    light_type: LightType
     lane_ids: list[str] = field(default_factory=list)
 
 
@@ -106,7 +107,7 @@ def _governed(
 ) -> list[tuple[str, float]]:
     section = max((k for k, sec in enumerate(road.sections) if sec.s <= signal.s + 1e-9), default=0)
     start, end = section_range(road, section)
-    governed = []
+    governed: list[tuple[str, float]] = []
     for lane in lanes.values():
         key = lane.key
         if key.road != road.id or key.section != section:
@@ -187,7 +188,8 @@ def _sites(
     ) == len(junction_ids)
     taken = {int(j) for j in junction_ids} if use_own else set()
     next_id = max(taken, default=0) + 1
-    lights, intersections = [], []
+    lights: list[TrafficLightSite] = []
+    intersections: list[IntersectionSite] = []
     for junction_id, center, groups in numbered:
         if use_own and junction_id is not None:
             number = int(junction_id)

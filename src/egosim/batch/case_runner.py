@@ -1,0 +1,255 @@
+"""Run one case: its simulator and its stack in their own process groups, supervised
+against deadlines; the case's result as plain data. The same function serves the local
+pool and Ray tasks."""
+
+from __future__ import annotations
+
+import json
+import os
+import queue
+import re
+import shutil
+import signal
+import sys
+import threading
+import time
+from pathlib import Path
+from typing import Any
+
+from egosim.batch.case import CaseSpec
+from egosim.batch.files import BAG_FILE, CASE_FILE, SCORE_FILE, SIMULATOR_LOG, STACK_LOG
+from egosim.batch.logs import tail_text
+from egosim.batch.processes import GroupProcess
+from egosim.evaluation import METRIC_NAMES, parse_criterion
+
+SIMULATOR_START_S = 60.0
+POLL_S = 0.05
+MASTER_LINE = re.compile(r"^egosim-batch: master (\S+)$")
+RUNNING_LINE = "egosim-batch: running"
+ENDED_PREFIX = "egosim-batch: ended"
+
+PASSED, FAILED, ERROR = "passed", "failed", "error"
+"""A case passes its criteria, fails them, or could not be scored as asked (the stack
+crashed, hung or never connected; the simulator failed)."""
+
+
+def case_folder_name(name: str) -> str:
+    """A file name for a case name (parameters keep their readable form)."""
+    return re.sub(r"[^A-Za-z0-9_.,=\[\]-]", "_", name)
+
+
+class _Lines:
+    """Marker lines of the simulator's output, handed from its log thread."""
+
+    def __init__(self) -> None:
+        self.queue: queue.Queue[str] = queue.Queue()
+
+    def __call__(self, line: str) -> None:
+        if line.startswith("egosim-batch: "):
+            self.queue.put(line)
+
+    def take(self) -> str | None:
+        try:
+            return self.queue.get_nowait()
+        except queue.Empty:
+            return None
+
+
+def run_case(case: CaseSpec, out_dir: str, cancel: threading.Event | None = None) -> dict[str, Any]:
+    """Run `case` with its folder under `out_dir`; its result (see results.py)."""
+    started = time.monotonic()
+    folder = Path(out_dir) / case_folder_name(case.name)
+    if folder.exists():
+        shutil.rmtree(folder)
+    folder.mkdir(parents=True)
+    (folder / CASE_FILE).write_text(json.dumps(case.as_dict(), indent=1), encoding="utf-8")
+    supervisor = _Supervisor(case, folder, cancel or threading.Event())
+    try:
+        problem = supervisor.run()
+    except KeyboardInterrupt:  # a Ray task cancelled
+        problem = "interrupted"
+    finally:
+        supervisor.stop_all()
+    result = _result(case, folder, problem)
+    if case.bags == "failed" and result["status"] == PASSED and result["bag"] is not None:
+        (folder / BAG_FILE).unlink()
+        result["bag"] = None
+    result["timings"] = {
+        "case_wall_s": round(time.monotonic() - started, 3),
+        "drive_wall_s": result.pop("drive_wall_s", None),
+    }
+    return result
+
+
+class _Supervisor:
+    def __init__(self, case: CaseSpec, folder: Path, cancel: threading.Event) -> None:
+        self.case = case
+        self.folder = folder
+        self.cancel = cancel
+        self.lines = _Lines()
+        self.simulator: GroupProcess | None = None
+        self.stack: GroupProcess | None = None
+        self.stack_status: int | None = None
+        self.drive_ended = False
+
+    def run(self) -> str | None:
+        """Drive the case to its end; the reason it could not be scored, if any."""
+        case = self.case
+        self.simulator = GroupProcess(
+            [sys.executable, "-m", "egosim.batch.simulate", str(self.folder)],
+            self.folder / SIMULATOR_LOG,
+            env=_simulator_env(),
+            cwd=self.folder,
+            on_line=self.lines,
+        )
+        master = self._wait_for("master", SIMULATOR_START_S)
+        if master is None:
+            return self._simulator_failure("did not start its ROS master")
+        uri = MASTER_LINE.match(master).group(1)  # type: ignore[union-attr]
+        self.stack = self._start_stack(uri)
+        running = self._wait_for("running", case.stack.connect_timeout_s, watch_stack=True)
+        if running is None:
+            if self.stack_status is not None:
+                return f"stack exited with status {self.stack_status} before connecting"
+            if self.simulator.poll() is not None:
+                return self._simulator_failure("stopped before the drive began")
+            return f"stack never connected within {case.stack.connect_timeout_s:g} s"
+        return self._drive(started=time.monotonic())
+
+    def _start_stack(self, master_uri: str) -> GroupProcess:
+        case = self.case
+        ros_home = self.folder / "ros"
+        ros_home.mkdir(exist_ok=True)
+        values = case.placeholders(str(self.folder))
+        env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
+        env.update({k: v.format_map(values) for k, v in case.stack.env.items()})
+        env.update(
+            ROS_MASTER_URI=master_uri,
+            ROS_IP="127.0.0.1",
+            ROS_HOME=str(ros_home),
+            ROS_LOG_DIR=str(ros_home / "log"),
+            PYTHONUNBUFFERED="1",
+            EGOSIM_CASE=case.name,
+            EGOSIM_CASE_DIR=str(self.folder),
+        )
+        for key in case.parameters:
+            env[f"EGOSIM_PARAM_{key.upper()}"] = values[key]
+        command = case.stack.command.format_map(values)
+        return GroupProcess(
+            ["/bin/sh", "-c", command], self.folder / STACK_LOG, env=env, cwd=self.folder
+        )
+
+    def _wait_for(self, what: str, timeout_s: float, watch_stack: bool = False) -> str | None:
+        """The simulator's `egosim-batch: <what>` line, None if it did not come in time
+        (or the simulator, or with `watch_stack` the stack, ended first)."""
+        assert self.simulator is not None
+        deadline = time.monotonic() + timeout_s
+        while time.monotonic() < deadline:
+            self._check_cancel()
+            line = self.lines.take()
+            if line is not None and line.startswith(f"egosim-batch: {what}"):
+                return line
+            if line is None:
+                if self.simulator.poll() is not None and self.lines.queue.empty():
+                    return None
+                if watch_stack and self._stack_ended():
+                    return None
+                time.sleep(POLL_S)
+        return None
+
+    def _stack_ended(self) -> bool:
+        if self.stack is not None and self.stack_status is None:
+            self.stack_status = self.stack.poll()
+        return self.stack_status is not None
+
+    def _drive(self, started: float) -> str | None:
+        assert self.simulator is not None
+        deadline = started + self.case.wall_limit_s
+        while self.simulator.poll() is None:
+            self._check_cancel()
+            if time.monotonic() > deadline:
+                return f"case exceeded its wall-clock limit of {self.case.wall_limit_s:g} s"
+            line = self.lines.take()
+            self.drive_ended |= line is not None and line.startswith(ENDED_PREFIX)
+            if self.drive_ended:
+                # A stack may fail once its simulator has gone: not the stack's fault.
+                time.sleep(POLL_S)
+                continue
+            if self._stack_ended():
+                # The drive ends with the stack; the simulator writes the score so far.
+                self.simulator.stop(signal.SIGINT)
+                if self.stack_status != 0:
+                    return f"stack exited with status {self.stack_status} during the drive"
+                return None
+            time.sleep(POLL_S)
+        if self.simulator.poll() != 0:
+            return self._simulator_failure(f"exited with status {self.simulator.poll()}")
+        return None
+
+    def _check_cancel(self) -> None:
+        if self.cancel.is_set():
+            raise KeyboardInterrupt
+
+    def _simulator_failure(self, what: str) -> str:
+        tail = tail_text(self.folder / SIMULATOR_LOG, 600)
+        return f"simulator {what}" + (f": {tail}" if tail else "")
+
+    def stop_all(self) -> None:
+        """Stop the stack first (the simulator then writes what it saw), then the simulator."""
+        if self.stack is not None:
+            status = self.stack.stop(signal.SIGINT)
+            if self.stack_status is None:
+                self.stack_status = status
+        if self.simulator is not None and self.simulator.poll() is None:
+            self.simulator.stop(signal.SIGINT)
+        elif self.simulator is not None:
+            self.simulator.log.join(5.0)
+
+
+def _simulator_env() -> dict[str, str]:
+    env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
+    env["PYTHONUNBUFFERED"] = "1"
+    return env
+
+
+def _result(case: CaseSpec, folder: Path, problem: str | None) -> dict[str, Any]:
+    score_path = folder / SCORE_FILE
+    try:
+        drive = json.loads(score_path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        drive = None
+    score = None if drive is None else drive.get("score")
+    result: dict[str, Any] = {
+        "name": case.name,
+        "parameters": case.parameters,
+        "scenario": os.path.relpath(case.scenario_file, case.suite_dir),
+        "folder": folder.name,
+        "bag": f"{folder.name}/{BAG_FILE}" if (folder / BAG_FILE).exists() else None,
+        "end": None if drive is None else drive["end"],
+        "sim_time_s": None if drive is None else round(drive["sim_time_s"], 6),
+        "drive_wall_s": None if drive is None else round(drive["drive_wall_s"], 3),
+        "metrics": None if score is None else _rounded(score["metrics"]),
+        "infractions": None if score is None else score["infractions"],
+        "criteria": [],
+    }
+    if problem is None and drive is not None and drive["end"].startswith("bad route"):
+        problem = drive["end"]
+    if problem is None and score is None:
+        problem = "the drive was not scored (the simulator wrote no score)"
+    if score is not None:
+        checks = [parse_criterion(c, METRIC_NAMES).check(score["metrics"]) for c in case.criteria]
+        result["criteria"] = [c.as_dict() for c in checks]
+        failed = [c.text + (f" ({c.reason})" if c.reason else "") for c in checks if not c.passed]
+    else:
+        failed = []
+    if problem is not None:
+        result.update(status=ERROR, reason=problem)
+    elif failed:
+        result.update(status=FAILED, reason="; ".join(failed))
+    else:
+        result.update(status=PASSED, reason="")
+    return result
+
+
+def _rounded(metrics: dict[str, Any]) -> dict[str, Any]:
+    return {k: round(v, 6) if isinstance(v, float) else v for k, v in metrics.items()}

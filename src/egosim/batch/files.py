@@ -1,0 +1,11 @@
+"""The files of a case's folder."""
+
+CASE_FILE = "case.json"
+"""The CaseSpec the simulator runs."""
+SCENARIO_FILE = "scenario.yaml"
+"""The scenario with the case's parameters applied (egosim run --scenario takes it)."""
+SCORE_FILE = "score.json"
+"""How the drive ended and its score, written by the simulator."""
+BAG_FILE = "drive.bag"
+SIMULATOR_LOG = "simulator.log"
+STACK_LOG = "stack.log"

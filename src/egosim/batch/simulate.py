@@ -1,0 +1,182 @@
+"""The simulator of one case: `python -m egosim.batch.simulate CASE_DIR`.
+
+Reads CASE_DIR/case.json, starts its own ROS master on a port the system picks (so two
+cases never share one), runs `egosim run` with the case's scenario and a drive observer
+on the tick pipeline, and writes CASE_DIR/score.json however the drive ends (route done,
+blocked, time limit, or SIGINT/SIGTERM from the case's supervisor).
+
+Lines on stdout tell the supervisor how far it got:
+    egosim-batch: master URI     the master is up (the stack may be started)
+    egosim-batch: running        the stack is connected and the drive has begun
+    egosim-batch: ended REASON   the drive is over (the simulator then stops)
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import threading
+import time
+from pathlib import Path
+
+import yaml
+
+from egosim.app.attachments import RunningSimulator
+from egosim.app.options import RunOptions
+from egosim.app.runner import run
+from egosim.batch.case import CaseSpec
+from egosim.batch.files import BAG_FILE, CASE_FILE, SCENARIO_FILE, SCORE_FILE
+from egosim.batch.ros_graph import stack_connected
+from egosim.bridge import ClockMode
+from egosim.bridge.context import BridgeContext
+from egosim.bridge.pipeline import Stage, Tick
+from egosim.evaluation import DriveEvaluator, EvaluationSettings, InfractionKind, Route
+from egosim.evaluation.route import RouteError
+from egosim.ros1 import Master
+from egosim.world import World
+from egosim.world.map import LaneMap
+
+CONNECT_POLL_S = 0.25
+PHYSICS_RATE_HZ = 100.0
+
+
+def evaluation_settings(scoring: dict) -> EvaluationSettings:
+    defaults = EvaluationSettings()
+    penalties = dict(defaults.penalties)
+    penalties.update({InfractionKind(k): float(v) for k, v in scoring.get("penalties", {}).items()})
+    return EvaluationSettings(
+        penalties=penalties,
+        blocked_after_s=float(scoring.get("blocked_after_s", defaults.blocked_after_s)),
+        lane_departure_margin_m=float(
+            scoring.get("lane_departure_margin_m", defaults.lane_departure_margin_m)
+        ),
+    )
+
+
+def build_route(lane_map: LaneMap, spec: dict | None) -> Route | None:
+    if spec is None:
+        return None
+    if "lanes" in spec:
+        route = Route.through_lanes(lane_map, spec["lanes"])
+    else:
+        route = Route(spec["waypoints"])
+    return route.first(spec["first_m"]) if "first_m" in spec else route
+
+
+class CaseDrive:
+    """The drive stage of the tick pipeline (right after the world's step): holds the
+    world until the stack is connected (sim clock), then evaluates every step and ends
+    the run (sets `stop`) when the drive is over."""
+
+    def __init__(self, case: CaseSpec, master_uri: str, stop: threading.Event) -> None:
+        self.case = case
+        self.master_uri = master_uri
+        self.stop = stop
+        self.over = False
+        self.evaluator: DriveEvaluator | None = None
+        self.end = "stopped"
+        self.started_wall: float | None = None
+        self.start_sim_s = 0.0
+        self._next_poll = 0.0
+        self._gate = case.clock == ClockMode.SIM.value
+        self.world: World | None = None
+
+    def attach(self, running: RunningSimulator) -> CaseDrive:
+        """Ride on the run: the drive stage right after the world's step."""
+        context = running.context
+        context.pipeline = context.pipeline.with_stage(Stage("drive", self.run), after="world")
+        return self
+
+    def close(self) -> None:
+        """Nothing to stop: the stage ends with the run."""
+
+    def run(self, context: BridgeContext, tick: Tick) -> None:
+        if self.over:  # the loop ends after this tick
+            return
+        self.world = context.world
+        self.over = self._observe(context.world)
+        if self.over:
+            print(f"egosim-batch: ended {self.end}", flush=True)
+            self.stop.set()
+
+    def _observe(self, world: World) -> bool:
+        if self.evaluator is None:
+            if self._gate and not self._stack_ready(world):
+                return False
+            return self._start(world)
+        self.evaluator.observe(world)
+        if (reason := self.evaluator.finish_reason) is not None:
+            self.end = reason
+            return True
+        if world.sim_time - self.start_sim_s >= self.case.time_limit_s - 1e-9:
+            self.end = "time_limit"
+            return True
+        return False
+
+    def _stack_ready(self, world: World) -> bool:
+        """Paused, at about real-time pace, until the stack has joined the graph."""
+        world.paused = True
+        now = time.monotonic()
+        if now >= self._next_poll:
+            self._next_poll = now + CONNECT_POLL_S
+            if stack_connected(self.master_uri):
+                return True
+        time.sleep(world.physics_step_s)
+        return False
+
+    def _start(self, world: World) -> bool:
+        """Begin the drive; True (end the run) when the case's route does not fit the map."""
+        try:
+            route = build_route(world.map, self.case.route)
+        except RouteError as error:
+            self.end = f"bad route: {error}"
+            return True
+        world.paused = False
+        self.start_sim_s = world.sim_time
+        self.started_wall = time.monotonic()
+        self.evaluator = DriveEvaluator(world, route, evaluation_settings(self.case.scoring))
+        print("egosim-batch: running", flush=True)
+        return False
+
+    def result(self) -> dict:
+        wall = 0.0 if self.started_wall is None else time.monotonic() - self.started_wall
+        score = None
+        if self.evaluator is not None:
+            score = self.evaluator.score(timed_out=self.end == "time_limit").as_dict()
+        sim_time = 0.0 if self.world is None else self.world.sim_time - self.start_sim_s
+        return {"end": self.end, "sim_time_s": sim_time, "drive_wall_s": wall, "score": score}
+
+
+def main(case_dir: Path) -> int:
+    case = CaseSpec.from_dict(json.loads((case_dir / CASE_FILE).read_text(encoding="utf-8")))
+    scenario_path = case_dir / SCENARIO_FILE
+    scenario_path.write_text(yaml.safe_dump(case.scenario, sort_keys=False), encoding="utf-8")
+    master = Master("http://127.0.0.1:0/").start()
+    try:
+        os.environ["ROS_MASTER_URI"] = master.uri
+        os.environ.setdefault("ROS_IP", "127.0.0.1")
+        print(f"egosim-batch: master {master.uri}", flush=True)
+        stop = threading.Event()
+        drive = CaseDrive(case, master.uri, stop)
+
+        options = RunOptions(
+            map=case.map,
+            scenario=scenario_path,
+            clock=ClockMode(case.clock),
+            rtf=case.rtf if case.clock == ClockMode.SIM.value else 1.0,
+            record=None if case.bags == "none" else case_dir / BAG_FILE,
+            log_level="WARNING",
+            physics_rate_hz=PHYSICS_RATE_HZ,
+            data_roots=(case_dir,),
+        )
+        status = run(options, [drive.attach], stop)
+        result = {"exit_status": status, **drive.result()}
+        (case_dir / SCORE_FILE).write_text(json.dumps(result), encoding="utf-8")
+        return status
+    finally:
+        master.shutdown()
+
+
+if __name__ == "__main__":
+    sys.exit(main(Path(sys.argv[1])))

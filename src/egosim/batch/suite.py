@@ -1,0 +1,222 @@
+"""Suite files (YAML, validated against suite.schema.json) -> concrete cases."""
+
+from __future__ import annotations
+
+import copy
+import csv
+import json
+import string
+from collections.abc import Mapping
+from functools import cache
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import jsonschema
+
+from egosim.batch.case import CaseSpec, StackSpec
+from egosim.batch.errors import SuiteError
+from egosim.batch.sweep import Value, case_name, parameter_sets
+from egosim.evaluation import METRIC_NAMES, CriterionError, InfractionKind, parse_criterion
+from egosim.world.map import BUILTIN_MAP_NAMES
+from egosim.world.scenario import ScenarioError, parse_scenario
+from egosim.yamltext import FieldPath, YamlDocument, YamlFileError, parse_yaml
+
+DEFAULT_TIME_LIMIT_S = 60.0
+DEFAULT_CRITERIA = ("no_collision",)
+COUNTED_LISTS = {"npc_count": "npcs", "pedestrian_count": "pedestrians"}
+"""Parameters that keep the first N entries of a scenario list."""
+SCENARIO_FIELDS = {"seed": "seed"}
+"""Parameters that set a scenario field directly."""
+
+
+@cache
+def suite_schema() -> dict[str, Any]:
+    """The JSON Schema of suite files."""
+    text = resources.files(__package__).joinpath("suite.schema.json").read_text("utf-8")
+    return json.loads(text)
+
+
+def load_suite(path: Path) -> list[CaseSpec]:
+    """The concrete cases of the suite file at `path`, in file and sweep order."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        raise SuiteError(str(path), None, "", f"cannot read: {error}") from None
+    source = parse_yaml(text, str(path), SuiteError)
+    _validate(source)
+    suite_dir = path.resolve().parent
+    data = source.data
+    cases: list[CaseSpec] = []
+    for k, entry in enumerate(data["cases"]):
+        cases.extend(_expand(source, ("cases", k), entry, suite_dir))
+    names = [case.name for case in cases]
+    for k, name in enumerate(names):
+        if name in names[:k]:
+            raise source.error(("cases",), f"two cases are named {name!r}")
+    return cases
+
+
+def _validate(source: YamlDocument) -> None:
+    validator = jsonschema.Draft202012Validator(suite_schema())
+    error = jsonschema.exceptions.best_match(validator.iter_errors(source.data))
+    if error is not None:
+        raise source.error(tuple(error.absolute_path), error.message)
+    data = source.data
+    for path, criteria in _criteria_lists(data):
+        for k, text in enumerate(criteria):
+            try:
+                parse_criterion(text, METRIC_NAMES)
+            except CriterionError as problem:
+                raise source.error((*path, k), str(problem)) from None
+    kinds = {kind.value for kind in InfractionKind}
+    for kind in data.get("scoring", {}).get("penalties", {}):
+        if kind not in kinds:
+            known = ", ".join(sorted(kinds))
+            raise source.error(("scoring", "penalties", kind), f"no infraction {kind!r}; {known}")
+
+
+def _criteria_lists(data: dict[str, Any]) -> list[tuple[FieldPath, list[str]]]:
+    found: list[tuple[FieldPath, list[str]]] = []
+    if "criteria" in data:
+        found.append((("criteria",), data["criteria"]))
+    for k, case in enumerate(data["cases"]):
+        if "criteria" in case:
+            found.append((("cases", k, "criteria"), case["criteria"]))
+    return found
+
+
+def _expand(
+    source: YamlDocument, path: FieldPath, entry: dict[str, Any], suite_dir: Path
+) -> list[CaseSpec]:
+    data = source.data
+    scenario_path = suite_dir / entry["scenario"]
+    try:
+        scenario_text = scenario_path.read_text(encoding="utf-8")
+        scenario_data = parse_yaml(scenario_text, str(scenario_path), ScenarioError).data
+    except (OSError, UnicodeDecodeError) as error:
+        raise source.error((*path, "scenario"), f"cannot read: {error}") from None
+    except YamlFileError as error:
+        raise source.error((*path, "scenario"), str(error)) from None
+    try:
+        sets = parameter_sets(entry.get("sweep"), entry.get("combinations"))
+    except ValueError as error:
+        raise source.error((*path, "sweep"), str(error)) from None
+    stack = data["stack"]
+    stack_spec = StackSpec(
+        command=stack["command"],
+        env={k: str(v) for k, v in stack.get("env", {}).items()},
+        connect_timeout_s=float(stack.get("connect_timeout_s", 30.0)),
+    )
+    clock = data.get("clock", "sim")
+    mode, rtf = (clock, 0.0) if isinstance(clock, str) else (clock["mode"], clock.get("rtf", 0.0))
+    time_limit = float(entry.get("time_limit_s", data.get("time_limit_s", DEFAULT_TIME_LIMIT_S)))
+    route = _route(source, path, entry.get("route"), suite_dir)
+    map_name = entry.get(
+        "map", scenario_data.get("map") if isinstance(scenario_data, dict) else None
+    )
+    if map_name is not None and map_name not in BUILTIN_MAP_NAMES and "map" in entry:
+        map_name = str(suite_dir / map_name)
+    cases = []
+    defaults = {**data.get("parameters", {}), **entry.get("parameters", {})}
+    for swept in sets:
+        name = case_name(entry["name"], swept)
+        where = (*path, "sweep") if swept else path
+        parameters = {**defaults, **swept}
+        scenario = _apply(source, where, name, scenario_data, parameters, stack_spec)
+        cases.append(
+            CaseSpec(
+                name=name,
+                scenario=scenario,
+                scenario_file=str(scenario_path),
+                parameters=parameters,
+                stack=stack_spec,
+                suite_dir=str(suite_dir),
+                map=str(map_name),
+                route=route,
+                clock=mode,
+                rtf=float(rtf),
+                time_limit_s=time_limit,
+                wall_limit_s=float(data.get("wall_limit_s", 120.0 + 10.0 * time_limit)),
+                criteria=tuple(entry.get("criteria", data.get("criteria", DEFAULT_CRITERIA))),
+                scoring=dict(data.get("scoring", {})),
+                bags=data.get("bags", "all"),
+            )
+        )
+    return cases
+
+
+def _route(
+    source: YamlDocument, path: FieldPath, route: dict[str, Any] | None, suite_dir: Path
+) -> dict[str, Any] | None:
+    if route is None or "csv" not in route:
+        return route
+    csv_path = suite_dir / route["csv"]
+    try:
+        with csv_path.open(encoding="utf-8", newline="") as file:
+            points = [[float(row["x"]), float(row["y"])] for row in csv.DictReader(file)]
+    except (OSError, UnicodeDecodeError, KeyError, ValueError, TypeError) as error:
+        message = f"cannot read x, y columns from {csv_path}: {error!r}"
+        raise source.error((*path, "route", "csv"), message) from None
+    resolved = {k: v for k, v in route.items() if k != "csv"}
+    resolved["waypoints"] = points
+    return resolved
+
+
+def _apply(
+    source: YamlDocument,
+    path: FieldPath,
+    name: str,
+    scenario: dict[str, Any],
+    parameters: Mapping[str, Value],
+    stack: StackSpec,
+) -> dict[str, Any]:
+    """The scenario with `$parameter` values replaced, the seed set and lists cut to
+    their counts; every parameter must be used somewhere (scenario or stack)."""
+    used: set[str] = set()
+
+    def substitute(value: Any) -> Any:
+        if isinstance(value, dict):
+            return {k: substitute(v) for k, v in value.items()}
+        if isinstance(value, list):
+            return [substitute(v) for v in value]
+        if isinstance(value, str) and value.startswith("$"):
+            key = value[1:]
+            if key not in parameters:
+                raise source.error(path, f"case {name}: the scenario uses {value}, not set")
+            used.add(key)
+            return parameters[key]
+        return value
+
+    result = substitute(copy.deepcopy(scenario))
+    for key, value in parameters.items():
+        if key in SCENARIO_FIELDS:
+            result[SCENARIO_FIELDS[key]] = value
+            used.add(key)
+        elif key in COUNTED_LISTS:
+            entries = result.get(COUNTED_LISTS[key], [])
+            if not isinstance(value, int) or not 0 <= value <= len(entries):
+                message = f"case {name}: {key} must be 0..{len(entries)} (the scenario's list)"
+                raise source.error(path, message)
+            result[COUNTED_LISTS[key]] = entries[:value]
+            used.add(key)
+    used |= _stack_fields(stack) & set(parameters)
+    unused = [key for key in parameters if key not in used]
+    if unused:
+        message = f"case {name}: parameter {unused[0]!r} is used by neither scenario nor stack"
+        raise source.error(path, message)
+    try:
+        parse_scenario(result, f"{name} ({source.label})")
+    except ScenarioError as error:
+        raise source.error(path, str(error)) from None
+    return result
+
+
+def _stack_fields(stack: StackSpec) -> set[str]:
+    """The {names} the stack's command and environment use."""
+    names: set[str] = set()
+    for text in (stack.command, *stack.env.values()):
+        for _, field_name, _, _ in string.Formatter().parse(text):
+            if field_name:
+                names.add(field_name)
+    return names

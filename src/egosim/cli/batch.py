@@ -1,0 +1,153 @@
+"""`egosim batch`: run a stack through a suite of scenario cases and report."""
+
+from __future__ import annotations
+
+import argparse
+import fnmatch
+import importlib.util
+import sys
+import time
+from pathlib import Path
+
+from ..batch.case import CaseSpec
+from ..batch.errors import SuiteError
+from ..batch.html_report import write_html_report
+from ..batch.junit import write_junit
+from ..batch.pool import default_workers, failed, run_local, run_ray
+from ..batch.progress import BatchProgress
+from ..batch.results import (
+    needs_rerun,
+    previous_results,
+    results_document,
+    summary,
+    write_results,
+)
+from ..batch.suite import load_suite
+
+EXIT_ALL_PASSED = 0
+EXIT_SOME_FAILED = 1
+EXIT_BAD_INPUT = 2
+EXIT_INTERRUPTED = 130
+LOCAL_RAY = "local"
+
+
+def positive_int(text: str) -> int:
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 1, got {text}")
+    return value
+
+
+def add_parser(subparsers: argparse._SubParsersAction) -> None:
+    parser = subparsers.add_parser(
+        "batch",
+        help="run a stack through a suite of scenarios and score every drive",
+        description="Run the suite's stack once per case, each case with its own simulator "
+        "and ROS master, score every drive from the world, and write results.json, "
+        "junit.xml, report.html and a bag per case to the output folder.",
+    )
+    parser.add_argument("suite", type=Path, metavar="SUITE.yaml")
+    parser.add_argument(
+        "--workers",
+        type=positive_int,
+        default=None,
+        metavar="N",
+        help="cases at a time on this machine (default: the number of cores)",
+    )
+    parser.add_argument(
+        "--ray",
+        nargs="?",
+        const=LOCAL_RAY,
+        default=None,
+        metavar="ADDRESS",
+        help="one Ray task per case: on the cluster at ADDRESS, else the one `ray start` "
+        "runs here, else a new local one (needs pip install egosim[ray])",
+    )
+    parser.add_argument(
+        "--filter",
+        action="append",
+        default=[],
+        metavar="GLOB",
+        help="run only cases whose name matches (or equals) GLOB; repeatable",
+    )
+    parser.add_argument(
+        "--rerun-failed",
+        action="store_true",
+        help="run only the cases that did not pass in the output folder's results.json",
+    )
+    parser.add_argument(
+        "--out",
+        type=Path,
+        default=None,
+        metavar="DIR",
+        help="output folder (default: egosim-batch/<suite name>)",
+    )
+    parser.set_defaults(handler=run)
+
+
+def selected(cases: list[CaseSpec], patterns: list[str]) -> list[CaseSpec]:
+    if not patterns:
+        return cases
+    return [
+        case
+        for case in cases
+        if any(case.name == p or fnmatch.fnmatchcase(case.name, p) for p in patterns)
+    ]
+
+
+def run(args: argparse.Namespace) -> int:
+    if args.ray is not None and args.workers is not None:
+        print("egosim batch: --workers is for local runs; Ray places the cases", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    try:
+        cases = selected(load_suite(args.suite), args.filter)
+    except SuiteError as error:
+        print(f"egosim batch: {error}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    out_dir = (args.out or Path("egosim-batch") / args.suite.stem).resolve()
+    out_dir.mkdir(parents=True, exist_ok=True)
+    results = previous_results(out_dir) if args.rerun_failed else {}
+    to_run = [c for c in cases if needs_rerun(results.get(c.name))] if args.rerun_failed else cases
+    if args.ray is not None and importlib.util.find_spec("ray") is None:
+        print("egosim batch: --ray needs Ray: pip install 'egosim[ray]'", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    workers = args.workers or default_workers()
+    started = time.monotonic()
+    interrupted = False
+    done = failures = 0
+    new: dict[str, dict] = {}
+    with BatchProgress(len(to_run)) as bar:
+
+        def on_result(result: dict, running: int) -> None:
+            nonlocal done, failures
+            done += 1
+            failures += failed(result)
+            bar.log(f"{result['status'].upper():7} {result['name']}  {result.get('reason', '')}")
+            bar.update(done, failures, running)
+
+        try:
+            if args.ray is not None:
+                address = None if args.ray == LOCAL_RAY else args.ray
+                run_ray(to_run, str(out_dir), address, on_result, new)
+            else:
+                run_local(to_run, str(out_dir), workers, on_result, new)
+        except KeyboardInterrupt:
+            interrupted = True
+    results.update(new)
+    execution = {
+        "runner": "ray" if args.ray is not None else "local",
+        "workers": None if args.ray is not None else workers,
+        "cases_run": len(to_run),
+        "wall_s": round(time.monotonic() - started, 3),
+        "interrupted": interrupted,
+    }
+    document = results_document(args.suite, cases, results, execution)
+    written = [write_results(out_dir, document), write_junit(out_dir, args.suite.stem, document)]
+    written.append(write_html_report(out_dir, f"egosim batch: {args.suite.name}", document))
+    counts = summary(document["cases"])
+    print(", ".join(f"{v} {k}" for k, v in counts.items()), flush=True)
+    for path in written:
+        print(path, flush=True)
+    if interrupted:
+        return EXIT_INTERRUPTED
+    return EXIT_ALL_PASSED if counts["passed"] == counts["cases"] else EXIT_SOME_FAILED

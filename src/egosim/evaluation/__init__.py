@@ -1,0 +1,39 @@
+"""Scoring a drive from the world, in-process and pure (no I/O, no ROS).
+
+Public API:
+    DriveEvaluator, EvaluationSettings, DriveScore, METRIC_NAMES   observe a world, score it
+    Infraction, InfractionKind                                     what went wrong, when, where
+    Route, RouteError                                              the route to drive
+    CARLA_LEADERBOARD_1_PENALTIES, driving_score, penalty_factor   the driving score
+    Criterion, CriterionResult, CriterionError, parse_criterion    pass criteria
+"""
+
+from egosim.evaluation.criteria import Criterion, CriterionError, CriterionResult, parse_criterion
+from egosim.evaluation.evaluator import (
+    METRIC_NAMES,
+    DriveEvaluator,
+    DriveScore,
+    EvaluationSettings,
+)
+from egosim.evaluation.infractions import COLLISION_KINDS, Infraction, InfractionKind
+from egosim.evaluation.penalties import CARLA_LEADERBOARD_1_PENALTIES, driving_score, penalty_factor
+from egosim.evaluation.route import Route, RouteError
+
+__all__ = [
+    "CARLA_LEADERBOARD_1_PENALTIES",
+    "COLLISION_KINDS",
+    "METRIC_NAMES",
+    "Criterion",
+    "CriterionError",
+    "CriterionResult",
+    "DriveEvaluator",
+    "DriveScore",
+    "EvaluationSettings",
+    "Infraction",
+    "InfractionKind",
+    "Route",
+    "RouteError",
+    "driving_score",
+    "parse_criterion",
+    "penalty_factor",
+]

@@ -1,0 +1,239 @@
+"""What the page's buttons and keys do to the simulation.
+
+Requests arrive as JSON objects from the browser; the server hands each to the loop
+thread through the app's inbox (like any ROS command) and `ViewControls.apply` runs it
+there, between two steps. Bad requests are answered with an error, never raised.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, ClassVar
+
+from ..bridge import BridgeContext, ControlMode
+from ..bridge.scenarios import scenario_path
+from ..datapaths import PathOutsideRootsError, read_regular_file
+from ..replay.codes import SET_START_TIME, CommandResult, PlaybackStatus, ProcessCommand
+from ..world.scenario import Scenario, ScenarioError, parse_scenario
+from ..world.vehicle import Vehicle
+from .keyboard import HeldKeys, KeyboardDriver
+
+log = logging.getLogger(__name__)
+
+#: Control modes the page offers: keyboard, external (ROS /ctrl_cmd), autopilot.
+PAGE_CTRL_MODES = (ControlMode.KEYBOARD, ControlMode.EXTERNAL, ControlMode.AUTO)
+SCENARIO_SUFFIXES = (".yaml", ".yml")
+#: At most this many scenario files are listed (a data root may be a large tree).
+MAX_LISTED_SCENARIOS = 200
+
+
+class ControlError(Exception):
+    """A request the simulation cannot honour; the message says why, for the page."""
+
+
+@dataclass(frozen=True)
+class _Read:
+    """A scenario read from its file, and what reads that file again (reload)."""
+
+    scenario: Scenario
+    again: Callable[[], Scenario]
+
+
+def _read_file(path: Path) -> _Read | ControlError:
+    def parse() -> Scenario:
+        return parse_scenario(read_regular_file(path).decode("utf-8"), str(path))
+
+    try:
+        return _Read(parse(), parse)
+    except (OSError, UnicodeDecodeError, ScenarioError) as error:
+        return ControlError(f"scenario {path.name!r} not loaded: {error}")
+
+
+@dataclass(frozen=True)
+class _ReplayCommand:
+    """A MoraiSimProcHandle as the replay session reads it, made by the page."""
+
+    sim_process_status: int
+    replay_option: int = 0
+    rosbag_file_name: str = ""
+    replay_target_option: int = 0
+    replay_speed: int = 1
+    start_time: int = 0  # ms
+
+
+@dataclass
+class ViewControls:
+    """Applies page requests to the world (loop thread only)."""
+
+    context: BridgeContext
+    reload_source: Callable[[], Scenario] | None
+    """The scenario the run started with (None: nothing to reload)."""
+    pause_after_step: bool = False
+    """Set by a single-step request: the view stage pauses the world after the next step."""
+    _keyboards: dict[int, KeyboardDriver] = field(default_factory=dict)
+
+    def apply(self, request: Any) -> dict[str, Any]:
+        """Run one request; the reply for the page ({"ok": ...} and an "error" text)."""
+        if not isinstance(request, dict) or not isinstance(request.get("op"), str):
+            return {"ok": False, "error": "a request is an object with an 'op' string"}
+        handler = self._HANDLERS.get(request["op"])
+        if handler is None:
+            return {"ok": False, "error": f"unknown request {request['op']!r}"}
+        try:
+            result = handler(self, request)
+        except ControlError as error:
+            log.warning("view: %s refused: %s", request["op"], error)
+            return {"ok": False, "op": request["op"], "error": str(error)}
+        return {"ok": True, "op": request["op"], **(result or {})}
+
+    # -- time -------------------------------------------------------------------------
+
+    def _own_time(self, action: str) -> None:
+        if self.context.sync.holds_time:
+            raise ControlError(f"cannot {action} in sync mode: the client steps the simulation")
+
+    def pause(self, _: dict[str, Any]) -> None:
+        self._own_time("pause")
+        self.context.world.paused = True
+
+    def resume(self, _: dict[str, Any]) -> None:
+        self._own_time("resume")
+        self.pause_after_step = False
+        self.context.world.paused = False
+
+    def step(self, _: dict[str, Any]) -> None:
+        self._own_time("step")
+        self.context.world.paused = False
+        self.pause_after_step = True
+
+    # -- scenarios --------------------------------------------------------------------
+
+    def scenarios(self, _: dict[str, Any]) -> dict[str, Any]:
+        """Scenario files in the data roots, as names a load request takes."""
+        names: list[str] = []
+        for root in self.context.data_roots:
+            base = Path(root).resolve()
+            for path in sorted(base.rglob("*")):
+                if len(names) >= MAX_LISTED_SCENARIOS:
+                    break
+                if path.suffix in SCENARIO_SUFFIXES and path.is_file():
+                    names.append(path.relative_to(base).as_posix())
+        return {"scenarios": names}
+
+    def prepare(self, request: Any) -> Any:
+        """`request` with its file work done (server thread): a load or reload reads and
+        parses its scenario here, so the loop only applies it."""
+        op = request.get("op") if isinstance(request, dict) else None
+        if op == "load":
+            return {**request, "read": self._read_named(request.get("name"))}
+        if op == "reload":
+            return {**request, "read": self._read_again()}
+        return request
+
+    def _read_named(self, name: Any) -> _Read | ControlError:
+        if not isinstance(name, str) or not name:
+            return ControlError("load needs a scenario 'name'")
+        try:
+            path = scenario_path(name, self.context.data_roots)
+        except (PathOutsideRootsError, OSError) as error:
+            return ControlError(f"scenario {name!r} not loaded: {error}")
+        return _read_file(path)
+
+    def _read_again(self) -> _Read | ControlError:
+        source = self.reload_source
+        if source is None:
+            return ControlError("this run started without a scenario: nothing to reload")
+        try:
+            return _Read(source(), source)
+        except (OSError, UnicodeDecodeError, ScenarioError) as error:
+            return ControlError(f"scenario not reloaded: {error}")
+
+    def load(self, request: dict[str, Any]) -> dict[str, Any]:
+        read = request.get("read") or self._read_named(request.get("name"))
+        if isinstance(read, ControlError):
+            raise read
+        self._load(read.scenario)
+        self.reload_source = read.again
+        return {"loaded": request["name"]}
+
+    def reload(self, request: dict[str, Any]) -> None:
+        read = request.get("read") or self._read_again()
+        if isinstance(read, ControlError):
+            raise read
+        self._load(read.scenario)
+
+    def _load(self, scenario: Scenario) -> None:
+        try:
+            self.context.world.load_scenario(scenario)
+        except ScenarioError as error:
+            raise ControlError(str(error)) from error
+        self._keyboards.clear()
+        log.info("view: scenario %s loaded", scenario.source.label)
+
+    # -- driving ----------------------------------------------------------------------
+
+    def _ego_index(self, request: dict[str, Any]) -> int:
+        index = request.get("ego", 0)
+        if not isinstance(index, int) or not 0 <= index < len(self.context.world.egos):
+            raise ControlError(f"no ego {index!r}")
+        return index
+
+    def ctrl_mode(self, request: dict[str, Any]) -> None:
+        mode = request.get("mode")
+        if mode not in PAGE_CTRL_MODES:
+            raise ControlError(f"control mode {mode!r} is not one of {PAGE_CTRL_MODES}")
+        ego = self.context.world.egos[self._ego_index(request)]
+        self.context.settings_of(ego.unique_id).ctrl_mode = ControlMode(mode)
+
+    def keys(self, request: dict[str, Any]) -> None:
+        ego = self.context.world.egos[self._ego_index(request)]
+        if self.context.settings_of(ego.unique_id).ctrl_mode is not ControlMode.KEYBOARD:
+            raise ControlError("the ego is not in keyboard control mode")
+        if not isinstance(ego.vehicle, Vehicle):
+            raise ControlError("keyboard driving needs a road vehicle")
+        held = HeldKeys(*(request.get(k) is True for k in ("throttle", "brake", "left", "right")))
+        driver = self._keyboards.setdefault(ego.unique_id, KeyboardDriver())
+        driver.drive(ego.vehicle, held)
+
+    # -- replay -----------------------------------------------------------------------
+
+    def replay(self, request: dict[str, Any]) -> None:
+        session = self.context.replay
+        if session.timeline is None:
+            raise ControlError("no bag loaded for replay")
+        action = request.get("action")
+        if action == "play":
+            command = _ReplayCommand(int(ProcessCommand.PLAY))
+        elif action == "pause":
+            command = _ReplayCommand(int(ProcessCommand.PAUSE))
+        elif action == "seek":
+            position = request.get("position")
+            if not isinstance(position, int | float):
+                raise ControlError("seek needs a 'position' in seconds")
+            status = session.playback_status
+            keep = ProcessCommand.PLAY if status is PlaybackStatus.RUNNING else ProcessCommand.PAUSE
+            command = _ReplayCommand(
+                int(keep), replay_option=SET_START_TIME[0], start_time=round(position * 1000)
+            )
+        else:
+            raise ControlError(f"replay action {action!r} is not play, pause or seek")
+        result = session.handle(command, received_ns=round(self.context.world.sim_time * 1e9))
+        if result is not CommandResult.SUCCESS:
+            raise ControlError(f"replay {action} failed: {result.name.lower()}")
+
+    _HANDLERS: ClassVar[
+        dict[str, Callable[[ViewControls, dict[str, Any]], dict[str, Any] | None]]
+    ] = {
+        "pause": pause,
+        "resume": resume,
+        "step": step,
+        "scenarios": scenarios,
+        "load": load,
+        "reload": reload,
+        "ctrl_mode": ctrl_mode,
+        "keys": keys,
+        "replay": replay,
+    }

@@ -1,0 +1,305 @@
+"""World -> plain data for the browser: the map once per client, then frames.
+
+A frame is taken in two halves so the simulation loop pays as little as possible:
+`capture_frame` runs on the loop thread between two steps and only copies numbers and
+small arrays out of the world; `encode` runs on the server thread and turns them into
+JSON (rounded to the centimetre / milliradian, arrays as flat lists). Everything stays
+in SI units (m, s, rad, m/s): the page converts for display.
+"""
+
+from __future__ import annotations
+
+import base64
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import orjson
+
+from ..bridge import BridgeContext
+from ..world import World
+from ..world.map import LaneMap
+from ..world.map.lanes import Lane
+from ..world.signals import OFF, RED
+from ..world.signals.aspects import GREEN, GREEN_LEFT, YELLOW
+from ..world.traffic import ObjectState, ObjectTable, ObjectType
+
+FloatArray = npt.NDArray[np.float64]
+
+#: How long a collision keeps flashing on the page, s of simulation time.
+COLLISION_FLASH_S = 2.0
+#: Decimal places sent for lengths (cm) and angles (mrad).
+METRE_DIGITS = 2
+RADIAN_DIGITS = 3
+
+
+@dataclass(frozen=True)
+class SensorImage:
+    """The latest image of one image sensor (a camera), ready for an <img> tag."""
+
+    name: str
+    mime: str
+    """e.g. image/jpeg."""
+    data: bytes
+    stamp: float
+    """Simulation time it was taken, s."""
+
+
+ImageSource = Callable[[], SensorImage | None]
+"""Called on the loop thread when a frame is taken; its latest image or None."""
+
+
+# -- the map -----------------------------------------------------------------------------
+
+
+def _round(values: npt.ArrayLike, digits: int = METRE_DIGITS) -> Any:
+    return np.round(np.asarray(values, dtype=np.float64), digits).tolist()
+
+
+def lane_edges(lane: Lane) -> tuple[FloatArray, FloatArray]:
+    """(left, right) boundary polylines (N, 2) of a lane, half its width off the centreline."""
+    points = lane.centerline[:, :2]
+    tangent = np.gradient(points, axis=0)
+    tangent /= np.maximum(np.hypot(tangent[:, 0], tangent[:, 1]), 1e-12)[:, None]
+    normal = np.column_stack((-tangent[:, 1], tangent[:, 0]))  # to the left
+    half = (lane.widths / 2.0)[:, None]
+    return points + normal * half, points - normal * half
+
+
+def _markings(lane: Lane, left: FloatArray, right: FloatArray) -> list[dict[str, Any]]:
+    """Painted lines of one lane (none inside junctions).
+
+    The right edge is dashed white between lanes of one direction and solid white at the
+    kerb; a left edge with no same-direction neighbour is the solid yellow centre line. A
+    shared edge is drawn once, by the lane on its left.
+    """
+    if lane.is_junction:
+        return []
+    style = "dashed" if lane.right_neighbor is not None else "solid"
+    lines = [{"points": _round(right), "style": style, "color": "white"}]
+    if lane.left_neighbor is None:
+        lines.append({"points": _round(left), "style": "solid", "color": "yellow"})
+    return lines
+
+
+def _stop_line(lane_map: LaneMap, lane: Lane) -> list[Any] | None:
+    if lane.stop_line_s is None:
+        return None
+    x, y, _, heading = lane_map.pose_at(lane.id, lane.stop_line_s)
+    half = float(np.interp(lane.stop_line_s, lane.stations, lane.widths)) / 2.0
+    nx, ny = -math.sin(heading) * half, math.cos(heading) * half
+    return _round([[x + nx, y + ny], [x - nx, y - ny]])
+
+
+def map_snapshot(lane_map: LaneMap) -> dict[str, Any]:
+    """Everything static the page draws: lanes (as road surface outlines), markings,
+    junctions, crosswalks, stop lines, sidewalks and the light heads."""
+    lanes = []
+    markings: list[dict[str, Any]] = []
+    stop_lines = []
+    for lane in lane_map.lanes.values():
+        left, right = lane_edges(lane)
+        lanes.append(
+            {
+                "id": lane.id,
+                "junction": lane.is_junction,
+                "outline": _round(np.concatenate((left, right[::-1]))),
+            }
+        )
+        markings.extend(_markings(lane, left, right))
+        line = _stop_line(lane_map, lane)
+        if line is not None:
+            stop_lines.append(line)
+    return {
+        "type": "map",
+        "name": lane_map.name,
+        "bounds": _round(lane_map.bounds()),
+        "lanes": lanes,
+        "markings": markings,
+        "stop_lines": stop_lines,
+        "junctions": [
+            {"id": site.id, "centre": _round(site.center)}
+            for site in lane_map.intersections.values()
+        ],
+        "crosswalks": [
+            {"id": c.id, "start": _round(c.start), "end": _round(c.end), "width": c.width}
+            for c in lane_map.crosswalks.values()
+        ],
+        "sidewalks": [_round(s.points[:, :2]) for s in lane_map.sidewalks.values()],
+        "lights": [
+            {
+                "id": light.id,
+                "position": _round(light.position[:2]),
+                "heading": round(light.heading, RADIAN_DIGITS),
+                "type": light.light_type,
+            }
+            for light in lane_map.traffic_lights.values()
+        ],
+        # The lamp bits of an aspect, so the page decodes aspects with the world's codes.
+        "aspect_bits": {"red": RED, "yellow": YELLOW, "green": GREEN, "left": GREEN_LEFT},
+        "aspect_off": OFF,
+        "object_kinds": {kind.name.lower(): int(kind) for kind in ObjectType},
+    }
+
+
+# -- frames ------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class FrameInfo:
+    """What the app knows beside the world: clock mode, pace, ROS graph, control state."""
+
+    clock_mode: str
+    real_time_factor: float | None
+    controls_enabled: bool
+
+
+def _egos(context: BridgeContext) -> list[dict[str, Any]]:
+    world = context.world
+    egos = []
+    for index, ego in enumerate(world.egos):
+        status = world.ego_status(index)
+        lane = world.ego_lane_state(index)
+        model = ego.vehicle.model
+        egos.append(
+            {
+                "id": ego.unique_id,
+                "model": model.name,
+                "x": status.pose.x,
+                "y": status.pose.y,
+                "yaw": status.pose.yaw,
+                "length": model.length,
+                "width": model.width,
+                # Footprint centre ahead of the reference point (rear axle).
+                "centre_offset": model.bounding_box_center_offset,
+                "speed": status.speed,
+                "forward_speed": status.velocity[0],
+                "acceleration": status.acceleration[0],
+                "gear": status.gear.name.lower(),
+                "ctrl_mode": int(context.settings_of(ego.unique_id).ctrl_mode),
+                "steer": status.front_steer,
+                "accel_pedal": status.accel_pedal,
+                "brake_pedal": status.brake_pedal,
+                "lane_offset": lane.lateral_offset,
+                "lane_id": lane.lane_id,
+            }
+        )
+    return egos
+
+
+def _collisions(world: World) -> list[dict[str, Any]]:
+    """Collisions of the last COLLISION_FLASH_S, newest first: when, and where the struck
+    object stood (ego collisions) or the first vehicle of the pair (NPC collisions)."""
+    since = world.sim_time - COLLISION_FLASH_S
+    recent = []
+    for entry in reversed(world.ego_collision_log):
+        if entry.time_s < since:
+            break
+        recent.append(_collision_at(entry.time_s, entry.other))
+    for pair in reversed(world.vehicle_collisions):
+        if pair.time_s < since:
+            break
+        recent.append(_collision_at(pair.time_s, pair.vehicles[0]))
+    return recent
+
+
+def _collision_at(time_s: float, thing: ObjectState) -> dict[str, Any]:
+    return {"t": time_s, "x": thing.position[0], "y": thing.position[1]}
+
+
+def _replay(context: BridgeContext) -> dict[str, Any] | None:
+    replay = context.replay
+    if replay.timeline is None:
+        return None
+    return {
+        "mode": replay.mode.name.lower(),
+        "status": replay.playback_status.name.lower(),
+        "position": replay.playback_time,
+        "duration": replay.timeline.duration,
+        "speed": replay.speed,
+    }
+
+
+def capture_frame(
+    context: BridgeContext,
+    info: FrameInfo,
+    lidar: FloatArray | None = None,
+    images: Sequence[ImageSource] = (),
+) -> dict[str, Any]:
+    """The world now, as numbers and array copies (loop thread; see `encode`).
+
+    `lidar`: LiDAR points (N, 2+) already in the map frame, or None when not shown.
+    """
+    world = context.world
+    shown_images = [image for source in images if (image := source()) is not None]
+    return {
+        "type": "frame",
+        "sim_time": world.sim_time,
+        "paused": world.paused,
+        "clock_mode": info.clock_mode,
+        "real_time_factor": info.real_time_factor,
+        "sync_frame": context.sync.frame if context.sync.holds_time else None,
+        "controls": info.controls_enabled,
+        "followed": context.session.camera_index,
+        "egos": _egos(context),
+        # The tables themselves: the world replaces, never edits, their arrays, so the
+        # server thread may read them later (see _objects).
+        "objects": world.shown_tables(),
+        # In the order of the map's lights (both follow the map's light table).
+        "light_aspects": world.signals.aspects().copy(),
+        "collisions": _collisions(world),
+        "replay": _replay(context),
+        "lidar": None if lidar is None else lidar[:, :2].copy(),
+        "images": shown_images,
+    }
+
+
+_ANGLE_KEYS = frozenset({"yaw", "steer"})
+
+
+def _objects(tables: list[ObjectTable]) -> dict[str, Any]:
+    """NPCs, pedestrians and obstacles as columns (server thread)."""
+    table = ObjectTable.concatenate(tables)
+    return {
+        "id": table.unique_ids,
+        "kind": table.object_types,
+        "x": table.positions[:, 0],
+        "y": table.positions[:, 1],
+        "yaw": table.headings,
+        "length": table.sizes[:, 0],
+        "width": table.sizes[:, 1],
+        "speed": np.hypot(table.velocities[:, 0], table.velocities[:, 1]),
+    }
+
+
+def _plain(value: Any, key: str = "") -> Any:
+    digits = RADIAN_DIGITS if key in _ANGLE_KEYS else METRE_DIGITS
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind == "f":
+            return np.round(value, digits).reshape(-1)
+        return np.ascontiguousarray(value).reshape(-1)
+    if isinstance(value, float):
+        return round(value, digits) if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: _plain(v, k) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [v if isinstance(v, str | int) else _plain(v, key) for v in value]
+    if isinstance(value, SensorImage):
+        return {
+            "name": value.name,
+            "mime": value.mime,
+            "data": base64.b64encode(value.data).decode("ascii"),
+            "stamp": round(value.stamp, 3),
+        }
+    return value
+
+
+def encode(message: dict[str, Any]) -> str:
+    """JSON text of a map or a captured frame (server thread)."""
+    if message.get("type") == "frame":
+        message = {**message, "objects": _objects(message["objects"])}
+    # orjson writes numpy arrays itself (NaN as null), several times faster than json.
+    return orjson.dumps(_plain(message), option=orjson.OPT_SERIALIZE_NUMPY).decode()

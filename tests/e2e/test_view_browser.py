@@ -1,0 +1,202 @@
+"""The live view in a real browser: Debian's headless Chromium on `egosim run`'s page,
+with a real rospy node on the ROS side."""
+
+from __future__ import annotations
+
+import math
+import socket
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from tests.browser import ARTIFACTS, open_browser, wait_for
+from tests.conftest import free_port
+from tests.e2e.conftest import Simulator
+
+pytestmark = pytest.mark.ros
+
+EGO = ("/Ego_topic", "morai_msgs/EgoVehicleStatus")
+SET_LIGHT = ("/SetTrafficLight", "morai_msgs/SetTrafficLight")
+RED = 1
+EGO_COLOUR = (0x3A, 0xA0, 0xFF)
+RED_COLOUR = "#ff3b30"
+
+
+@pytest.fixture
+def browser(tmp_path: Path) -> Iterator[Any]:
+    driver = open_browser(tmp_path / "chromium-profile")
+    try:
+        yield driver
+    finally:
+        driver.quit()
+
+
+@pytest.fixture
+def viewed(egosim: Callable[..., Simulator], browser: Any) -> Callable[..., tuple[Simulator, Any]]:
+    """`viewed(*args)`: egosim run with its view on a free port, open in the browser."""
+
+    def start(*args: str) -> tuple[Simulator, Any]:
+        port = free_port()
+        simulator = egosim("--view-port", str(port), *args)
+        browser.get(f"http://127.0.0.1:{port}/")
+        wait_for(lambda: page(browser, "s.map && s.frame && s.connected"), "map and a frame")
+        return simulator, browser
+
+    return start
+
+
+def page(browser: Any, expression: str) -> Any:
+    """Evaluate a JS expression on the page; `s` is the view's page state."""
+    return browser.execute_script(f"const s = window.egosimView; return ({expression});")
+
+
+def sim_time(browser: Any) -> float:
+    return page(browser, "s.frame.sim_time")
+
+
+def pixel_at(browser: Any, x: float, y: float) -> tuple[int, int, int]:
+    """Colour of the map canvas where world point (x, y) m is drawn."""
+    return tuple(
+        page(
+            browser,
+            f"""(() => {{
+              const [px, py] = s.worldToScreen({x}, {y});
+              const c = document.getElementById('world'), r = window.devicePixelRatio || 1;
+              const g = c.getContext('2d');
+              const d = g.getImageData(Math.round(px * r), Math.round(py * r), 1, 1).data;
+              return [d[0], d[1], d[2]];
+            }})()""",
+        )
+    )
+
+
+def severe_console_entries(browser: Any) -> list[dict[str, Any]]:
+    return [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
+
+
+def look_at(browser: Any, x: float, y: float, scale: float) -> None:
+    """Stop following and centre the view on (x, y) m at `scale` px/m."""
+    page(browser, f"(s.follow = false, s.view.cx = {x}, s.view.cy = {y}, s.view.scale = {scale})")
+    frames = page(browser, "s.framesReceived")
+    wait_for(lambda: page(browser, "s.framesReceived") > frames + 1, "a redraw")
+
+
+def test_page_loads_without_console_errors_and_shows_the_town(viewed) -> None:
+    _, browser = viewed()
+    assert page(browser, "s.map.name") == "town"
+    assert page(browser, "s.map.lanes.length") > 100
+    assert page(browser, "s.frame.objects.id.length") > 0
+    nodes = browser.find_element("id", "nodes")
+    wait_for(lambda: "/egosim" in nodes.text, "the ROS graph to list /egosim")
+    browser.find_element("id", "fit").click()
+    frames = page(browser, "s.framesReceived")
+    wait_for(lambda: page(browser, "s.framesReceived") > frames + 1, "a redraw")
+    assert not page(browser, "s.follow")
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    browser.save_screenshot(str(ARTIFACTS / "view_town.png"))
+    ego = page(browser, "s.frame.egos[0]")
+    look_at(browser, ego["x"] + 25, ego["y"] + 10, 9)
+    browser.save_screenshot(str(ARTIFACTS / "view_ego.png"))
+    assert severe_console_entries(browser) == []
+    assert page(browser, "s.errors") == []
+
+
+def test_the_ego_is_drawn_where_ego_topic_says(viewed, rospy_client) -> None:
+    simulator, browser = viewed()
+    client = rospy_client(simulator)
+    client.subscribe(*EGO)
+    status = client.next_message(EGO[0])
+    x, y = status["position"]["x"], status["position"]["y"]
+    drawn = page(browser, "s.frame.egos[0]")
+    assert math.hypot(drawn["x"] - x, drawn["y"] - y) < 0.05
+    assert math.isclose(math.degrees(drawn["yaw"]), status["heading"], abs_tol=0.1)
+    look_at(browser, x, y, 20)
+    # Half a metre ahead of the reference point lies inside the ego's body.
+    colour = pixel_at(browser, x + 0.5 * math.cos(drawn["yaw"]), y + 0.5 * math.sin(drawn["yaw"]))
+    assert colour == EGO_COLOUR
+
+
+def test_pause_stops_sim_time_and_resume_restarts_it(viewed) -> None:
+    _, browser = viewed()
+    pause = browser.find_element("id", "pause")
+    pause.click()
+    wait_for(lambda: page(browser, "s.frame.paused"), "the world to pause")
+    held = sim_time(browser)
+    frames = page(browser, "s.framesReceived")
+    wait_for(lambda: page(browser, "s.framesReceived") > frames + 10, "frames while paused")
+    assert sim_time(browser) == held
+    assert pause.text == "Resume"
+    step = browser.find_element("id", "step")
+    step.click()
+    wait_for(lambda: sim_time(browser) > held, "a single step")
+    stepped = sim_time(browser)
+    assert page(browser, "s.frame.paused")
+    pause.click()
+    wait_for(lambda: sim_time(browser) > stepped + 0.5, "sim time to run again")
+    assert stepped - held < 0.05  # one physics step, not a run
+
+
+def test_keyboard_driving_moves_the_ego_forward(viewed) -> None:
+    from selenium.webdriver.common.action_chains import ActionChains  # noqa: PLC0415
+    from selenium.webdriver.common.keys import Keys  # noqa: PLC0415
+    from selenium.webdriver.support.ui import Select  # noqa: PLC0415
+
+    _, browser = viewed()
+    Select(browser.find_element("id", "ctrl-mode")).select_by_value("1")
+    wait_for(lambda: page(browser, "s.frame.egos[0].ctrl_mode") == 1, "keyboard mode")
+    start = page(browser, "s.frame.egos[0]")
+    browser.find_element("id", "world").click()
+    ActionChains(browser).key_down(Keys.ARROW_UP).perform()
+    try:
+        wait_for(lambda: page(browser, "s.frame.egos[0].speed") > 3.0, "the ego to speed up")
+        end = page(browser, "s.frame.egos[0]")
+    finally:
+        ActionChains(browser).key_up(Keys.ARROW_UP).perform()
+    ahead = (end["x"] - start["x"]) * math.cos(start["yaw"]) + (end["y"] - start["y"]) * math.sin(
+        start["yaw"]
+    )
+    assert ahead > 1.0
+    assert end["gear"] == "drive"
+    assert end["accel_pedal"] > 0
+
+
+def test_a_light_set_red_by_ros_is_drawn_red(viewed, rospy_client) -> None:
+    simulator, browser = viewed()
+    ids = page(browser, "s.map.lights.map((light) => light.id)")
+    aspects = page(browser, "s.frame.light_aspects")
+    not_red = [
+        light_id
+        for light_id, aspect in zip(ids, aspects, strict=True)
+        if aspect > 0 and not aspect & RED
+    ]
+    assert not_red, "some light shows something other than red"
+    light_id = not_red[0]
+    client = rospy_client(simulator)
+    client.publish(*SET_LIGHT, {"trafficLightIndex": light_id, "trafficLightStatus": RED})
+    wait_for(lambda: page(browser, f"s.lightColour({light_id!r})") == RED_COLOUR, "a red light")
+    x, y = page(browser, f"s.map.lights.find((l) => l.id === {light_id!r}).position")
+    page(browser, "document.getElementById('layers').hidden = true")
+    look_at(browser, x, y, 10)
+    assert pixel_at(browser, x, y) == (0xFF, 0x3B, 0x30)
+
+
+def test_a_read_only_view_shows_the_controls_disabled(viewed) -> None:
+    _, browser = viewed("--view-readonly")
+    assert page(browser, "s.hello.readonly")
+    for control in ("pause", "reload", "load", "ctrl-mode"):
+        assert not browser.find_element("id", control).is_enabled(), control
+    browser.execute_script("send({op: 'pause'})")  # as a page with the buttons forced on would
+    wait_for(lambda: "read-only" in browser.find_element("id", "message").text, "the refusal")
+    assert not page(browser, "s.frame.paused")
+
+
+def test_a_taken_view_port_leaves_the_simulator_running(egosim) -> None:
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        simulator = egosim("--view-port", str(port))
+    assert any(line.startswith("egosim: no view") for line in simulator.process.output)
+    assert simulator.process.popen.poll() is None
