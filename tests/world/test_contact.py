@@ -240,3 +240,26 @@ def test_npcs_never_interpenetrate_in_a_crash() -> None:
     assert deepest <= PENETRATION_SLOP_M + 1e-9
     assert world.npcs.crashed.all()
     assert np.all(world.npcs.speed == 0.0)
+
+
+def test_the_ego_pushes_a_cone_along_and_the_contact_lasts() -> None:
+    world = world_from(
+        {
+            "map": "straight",
+            "ego": {"start": {"lane": "R1_E_1", "s": 20.0}, "speed_mps": 5.0},
+            "obstacles": [{"model": "Cone", "pose": {"x": 40.0, "y": -1.75, "heading_deg": 0}}],
+        }
+    )
+    world.egos[0].vehicle.command(ControlCommand(mode=LongitudinalMode.VELOCITY, velocity=5.0))
+    run(world, 8.0)
+    cone = world.obstacles.table()
+    assert cone.positions[0, 0] > 45.0  # pushed along ahead of the ego
+    assert _front_overlap_with(world, cone.positions[0, 0] - 0.2) <= PENETRATION_SLOP_M + 1e-9
+    assert len(world.ego_collision_log) == 1
+    assert world.ego_status().speed == pytest.approx(5.0, abs=0.3)
+
+
+def _front_overlap_with(world, face_x: float) -> float:
+    table = world.objects()
+    ego = int(np.flatnonzero(table.unique_ids == world.egos[0].unique_id)[0])
+    return float(table.positions[ego, 0] + table.sizes[ego, 0] / 2.0 - face_x)

@@ -411,6 +411,8 @@ class World:
         if recorded.pedestrians is None:
             stops_traffic = (lights.aspects == RED) | (lights.aspects == OFF) | lights.flashing
             self.pedestrians.step(dt, self._crosswalk_lights.walk_signals(stops_traffic))
+        if recorded.obstacles is None and self.obstacles.step(dt):
+            self._place_obstacles_on_lanes()
         self.sim_time += dt
         self._collide()
 
@@ -527,7 +529,7 @@ class World:
         pairs = touching_pairs(before, now)
         self.ego_contacts, self.vehicle_contacts = {}, []
         if len(pairs) == 0:
-            self._contacts.begin([])
+            self._contacts.begin([], self.sim_time)
             return
         kinds = table.object_types[pairs]
         vehicles = (kinds == ObjectType.EGO) | (kinds == ObjectType.NPC_VEHICLE)
@@ -582,9 +584,9 @@ class World:
     def _bodies(self, table: ObjectTable, footprints: Footprints) -> Bodies:
         """The objects of `table` (the order of objects()) as contact bodies.
 
-        Movable, with their mass: simulated egos, moving NPCs, pedestrians. Immovable:
-        obstacles, parked NPCs (still waiting to set off), NPC ghosts and whatever a
-        replay shows (its motion is dictated, not simulated).
+        Movable, with their mass: simulated egos, moving NPCs, pedestrians, light obstacles
+        (cones, drums, boxes). Immovable: barriers, parked NPCs (still waiting to set
+        off), NPC ghosts and whatever a replay shows (its motion is dictated).
         """
         recorded = self.recorded
         ego_mass = [ego.vehicle.model.mass for ego in self.egos]
@@ -594,9 +596,11 @@ class World:
         others = np.zeros(len(table) - len(self.egos))
         if recorded.npcs is None:
             others[: len(self.npcs)] = np.where(self.npcs.parked(), 0.0, 1.0 / self.npcs.mass)
+        start = self._shown_npc_count()
         if recorded.pedestrians is None:
-            start = self._shown_npc_count()
             others[start : start + len(self.pedestrians)] = 1.0 / PEDESTRIAN_MASS_KG
+        if recorded.obstacles is None:
+            others[len(others) - len(self.obstacles) :] = self.obstacles.inverse_masses()
         return Bodies(footprints, table.velocities[:, :2], np.concatenate((ego_inverse, others)))
 
     def _shown_npc_count(self) -> int:
@@ -623,6 +627,12 @@ class World:
             rows = np.flatnonzero(moved[start : start + len(self.pedestrians)])
             if rows.size:
                 self.pedestrians.shove(rows, displacement[start + rows])
+        if self.recorded.obstacles is None:
+            start = len(moved) - len(self.obstacles)
+            rows = np.flatnonzero(moved[start:])
+            if rows.size:
+                self.obstacles.shove(rows, displacement[start + rows], velocity[start + rows])
+                self._place_obstacles_on_lanes()
 
     # -- scenarios ---------------------------------------------------------------------
 
