@@ -87,6 +87,7 @@ def simulation_context(
         if open_renderer is not None and camera_row.enabled
         else None
     )
+    world.command_timeout_s = settings.command_timeout_s
     clock = (
         HeaderClock(clock_mode, world)
         if wall_clock is None
