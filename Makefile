@@ -7,12 +7,14 @@ ARGS ?=
 ROS_PEER_DEBS := python3-rospy python3-rosmaster python3-rostopic python3-rosservice \
 	python3-rosparam python3-rosnode python3-rosbag python3-genpy ros-core-dev \
 	python3-visualization-msgs \
-	g++ pkg-config
+	g++ pkg-config python3-opencv python3-sensor-msgs
 # Debian's headless Chromium and its WebDriver: the live view's browser tests.
 BROWSER_DEBS := chromium chromium-driver
+# Cameras render with OpenGL on a headless EGL context (Mesa's llvmpipe on the CPU).
+RENDER_DEBS := libegl1 libgl1 libegl-mesa0 libgl1-mesa-dri
 SOURCES := $(wildcard src tests benchmarks examples)
 
-.PHONY: run test lint ros-peers browser-peers benchmarks clean
+.PHONY: run test lint ros-peers browser-peers render-libs benchmarks clean
 
 $(BIN)/python:
 	@$(PYTHON) -m venv $(VENV) 2>/dev/null || { \
@@ -32,11 +34,24 @@ $(VENV)/.installed-test: $(BIN)/python pyproject.toml
 	$(BIN)/pip install -q -e ".[test]"
 	@touch $@ $(VENV)/.installed
 
-run: $(VENV)/.installed
+run: $(VENV)/.installed render-libs
 	$(BIN)/egosim run $(ARGS)
 
+render-libs:
+	@if ldconfig -p 2>/dev/null | grep -q 'libEGL.so.1 ' && ldconfig -p | grep -q 'libGL.so.1 ' \
+		&& ls /usr/lib/*/dri/swrast_dri.so >/dev/null 2>&1; then \
+		echo "camera rendering libraries: present"; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+		echo "camera rendering libraries: installing $(RENDER_DEBS)"; \
+		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+			--no-install-recommends $(RENDER_DEBS); \
+	else \
+		echo "WARNING: EGL/Mesa libraries are missing and this is not root: cameras will be off."; \
+		echo "         Install them: sudo apt-get install $(RENDER_DEBS)"; \
+	fi
+
 ros-peers:
-	@if /usr/bin/python3 -c "import rospy, rosmaster, rostopic, rosservice, rosbag, genpy, visualization_msgs" 2>/dev/null \
+	@if /usr/bin/python3 -c "import rospy, rosmaster, rostopic, rosservice, rosbag, genpy, cv2, sensor_msgs.msg, visualization_msgs" 2>/dev/null \
 		&& [ -f /usr/include/ros/ros.h ]; then \
 		echo "ROS 1 test peers: present"; \
 	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
@@ -68,7 +83,7 @@ lint: $(VENV)/.installed-test
 	$(BIN)/ruff format --check $(SOURCES)
 	$(BIN)/mypy
 
-test: $(VENV)/.installed-test ros-peers browser-peers lint
+test: $(VENV)/.installed-test ros-peers browser-peers render-libs lint
 	$(BIN)/pytest
 
 benchmarks: $(VENV)/.installed-test

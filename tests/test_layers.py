@@ -18,6 +18,7 @@ LAYERS = (
     "view",
     "app",
     "report",
+    "render",
     "plots",
     "bridge",
     "replay",

@@ -78,6 +78,13 @@ def test_overrides_rename_rerate_and_disable() -> None:
     assert not settings.row("ctrl_cmd").enabled
 
 
+def test_the_dead_man_timeout_is_off_unless_set() -> None:
+    assert default_network_settings().command_timeout_s is None
+    assert parse_network_settings("command_timeout_s: null\n", "n.yaml").command_timeout_s is None
+    settings = parse_network_settings("command_timeout_s: 0.5\n", "net.yaml")
+    assert settings.command_timeout_s == 0.5
+
+
 @pytest.mark.parametrize(
     ("text", "line", "field"),
     [
@@ -88,6 +95,11 @@ def test_overrides_rename_rerate_and_disable() -> None:
         ("rows:\n  ctrl_cmd:\n    enabled: true\n", 3, "rows.ctrl_cmd.enabled"),
         ("ego_input: Joystick\n", 1, "ego_input"),
         ("rows:\n  lamps: {name: 'bad name'}\n", 2, "rows.lamps.name"),
+        ("command_timeout_s: 0\n", 1, "command_timeout_s"),
+        ("command_timeout_s: -1\n", 1, "command_timeout_s"),
+        ("command_timeout_s: .nan\n", 1, "command_timeout_s"),
+        ("command_timeout_s: 1.0e+9\n", 1, "command_timeout_s"),
+        ("command_timeout_s: yes\n", 1, "command_timeout_s"),
     ],
 )
 def test_errors_name_file_line_and_field(text: str, line: int, field: str) -> None:
@@ -122,7 +134,8 @@ def test_topics_command_reports_a_bad_file(tmp_path, capsys: pytest.CaptureFixtu
 def test_every_row_of_the_table_is_served() -> None:
     assert [row.key for row in ROWS if row.key not in HANDLERS] == []
     kinds = {
-        Direction.PUBLISH: HANDLERS.publishers,
+        # Rows with an opener publish on topics of their own (one per camera).
+        Direction.PUBLISH: {**HANDLERS.publishers, **HANDLERS.openers},
         Direction.SUBSCRIBE: HANDLERS.subscribers,
         Direction.SERVICE: HANDLERS.services,
     }

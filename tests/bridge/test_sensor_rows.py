@@ -27,9 +27,12 @@ from egosim.sensors import LidarConfig
 from egosim.world import World
 from egosim.world.map import build_builtin_map
 from egosim.world.scenario import parse_scenario
+from egosim.world.vehicle import DEFAULT_EGO_MODEL, sensor_mount_origin, vehicle_model
 
 PROFILE = get_profile("26.r1")
-LIDAR_HEIGHT_M = 1.8
+# Mounts are MORAI's: from the rear-axle midpoint at wheel-centre height.
+MOUNT_ORIGIN = sensor_mount_origin(vehicle_model(DEFAULT_EGO_MODEL))
+LIDAR_HEIGHT_M = 1.8 + MOUNT_ORIGIN[2]
 # The ego starts at x = 0 heading east on the straight map's first lane (y = -1.75).
 BOX_NEAR_FACE_X_M = 20.0
 BOX_SCENARIO = f"""
@@ -90,7 +93,8 @@ def test_a_beam_at_a_box_returns_its_distance() -> None:
     points = cloud_points(published("lidar", context_for(world, config)))
     level_ahead = points[(np.abs(points[:, 2]) < 1e-4) & (np.abs(points[:, 1]) < 1e-4)]
     assert len(level_ahead) == 1
-    assert level_ahead[0, 0] == pytest.approx(BOX_NEAR_FACE_X_M, abs=1e-4)
+    # The LiDAR stands on the mount origin, MOUNT_ORIGIN[0] ahead of base_link.
+    assert level_ahead[0, 0] == pytest.approx(BOX_NEAR_FACE_X_M - MOUNT_ORIGIN[0], abs=1e-4)
     assert level_ahead[0, 3] > 0.0
 
 
@@ -109,12 +113,14 @@ def test_tf_places_base_link_at_the_ego_and_sensors_at_their_mounts() -> None:
     frames = {(t.header.frame_id, t.child_frame_id): t.transform for t in message.transforms}
     assert set(frames) == {
         ("map", "base_link"),
-        *(("base_link", f) for f in ("gps", "imu", "lidar")),
+        *(("base_link", f) for f in ("gps", "imu", "lidar", "Camera", "radar")),
+        ("Camera", "Camera_optical"),
     }
     pose = world.ego_status().pose
     base = frames[("map", "base_link")].translation
     assert (base.x, base.y, base.z) == pytest.approx((pose.x, pose.y, pose.z))
-    assert frames[("base_link", "lidar")].translation.z == pytest.approx(LIDAR_HEIGHT_M)
+    lidar = frames[("base_link", "lidar")].translation
+    assert (lidar.x, lidar.z) == pytest.approx((MOUNT_ORIGIN[0], LIDAR_HEIGHT_M))
 
 
 def sensor_pos_control(**arrays):
@@ -140,12 +146,13 @@ def test_sensor_pos_control_moves_the_lidar_and_its_ground_ring() -> None:
     sensor_rows.on_sensor_pos_control(context, context.row("sensor_pos_control"), command)
     transforms = sensor_rows.publish_tf(context, context.row("tf")).transforms
     lidar = next(t.transform for t in transforms if t.child_frame_id == "lidar")
-    assert (lidar.translation.x, lidar.translation.z) == pytest.approx((1.0, 1.0))
+    x, _, z = MOUNT_ORIGIN
+    assert (lidar.translation.x, lidar.translation.z) == pytest.approx((1.0 + x, 1.0 + z))
     assert (lidar.rotation.z, lidar.rotation.w) == pytest.approx((math.sqrt(0.5), math.sqrt(0.5)))
     points = cloud_points(sensor_rows.publish_lidar(context, context.row("lidar")))
-    # At 1 m height a -30 deg beam meets the ground 2 m away along the beam.
+    # At h = 1 m + the origin's height a -30 deg beam meets the ground 2 h along the beam.
     assert np.linalg.norm(points[:, :3], axis=1) == pytest.approx(
-        np.full(len(points), 2.0), abs=1e-4
+        np.full(len(points), 2.0 * (1.0 + z)), abs=1e-4
     )
 
 

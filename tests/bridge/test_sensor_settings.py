@@ -72,7 +72,7 @@ def test_every_field_of_the_section_is_read() -> None:
 @pytest.mark.parametrize(
     ("text", "line", "field", "problem"),
     [
-        ("sensors:\n  radar: {}\n", 2, "sensors.radar", "unknown field"),
+        ("sensors:\n  sonar: {}\n", 2, "sensors.sonar", "unknown field"),
         ("sensors:\n  seed: -1\n", 2, "sensors.seed", "non-negative integer"),
         ("sensors:\n  gps:\n    mount: {x: fast}\n", 3, "sensors.gps.mount.x", "expected a number"),
         ("sensors:\n  gps:\n    mount: {roll: 1}\n", 3, "sensors.gps.mount.roll", "unknown field"),

@@ -21,7 +21,7 @@ sensors:
   lidar:
     channels: 16.5
     horizontal_resolution_deg: 0
-  radar: {}
+  sonar: {}
 """
 
 
@@ -42,7 +42,7 @@ def test_every_mistake_is_reported_with_its_line() -> None:
         (10, "sensors.gps.mount.yaw_deg"),
         (12, "sensors.lidar.channels"),
         (13, "sensors.lidar.horizontal_resolution_deg"),
-        (14, "sensors.radar"),
+        (14, "sensors.sonar"),
     ]
     lines = str(caught.value).splitlines()
     assert len(lines) == 13

@@ -14,6 +14,7 @@ from typing import Any
 import pytest
 
 from egosim.bridge.bindings import HANDLERS
+from egosim.bridge.camera_rows import camera_topic_names
 from egosim.bridge.network import load_network_settings
 from egosim.bridge.table import Direction
 from egosim.replay import needs_repair
@@ -36,17 +37,24 @@ from tests.replay.test_debian_rosbag import rosbag_info
 
 pytestmark = pytest.mark.ros
 
-# Rows whose builders have nothing to say in a plain simulation run.
-SILENT_OUTSIDE = {"replay_info": "replay", "sync_mode_info": "sync mode"}
+# Rows whose builders have nothing to say in a plain simulation run. (/SyncModeInfo is
+# not one: any run can be switched into sync mode, so it always reports its status.)
+SILENT_OUTSIDE = {"replay_info": "replay"}
 
 
 def published_rows() -> dict[str, str]:
-    """Topic -> type of every row egosim publishes by default."""
-    return {
+    """Topic -> type of every row egosim publishes by default (the default camera's image
+    and its CameraInfo for the camera row)."""
+    settings = load_network_settings(None)
+    topics = {
         row.name: row.type_name
-        for row in load_network_settings(None).enabled_rows()
+        for row in settings.enabled_rows()
         if row.direction is Direction.PUBLISH and row.key in HANDLERS.publishers
     }
+    image, info = camera_topic_names(settings)
+    topics[image] = settings.row("camera").type_name
+    topics[info] = "sensor_msgs/CameraInfo"
+    return topics
 
 
 def silent_topics() -> set[str]:

@@ -9,6 +9,7 @@ import pyproj
 import pytest
 
 from egosim.world.map import build_builtin_map
+from egosim.world.vehicle import DEFAULT_EGO_MODEL, sensor_mount_origin, vehicle_model
 from tests.ros1.helpers import wait_until
 
 pytestmark = pytest.mark.ros
@@ -31,8 +32,14 @@ def test_gps_round_trip_gives_back_the_ego_position(egosim, rospy_client) -> Non
     zone = build_builtin_map("straight").georef.utm_zone
     utm = pyproj.Proj(proj="utm", zone=zone, ellps="WGS84")
     east, north = utm(fix["longitude"], fix["latitude"])
-    assert east - fix["eastOffset"] == pytest.approx(ego["position"]["x"], abs=0.01)
-    assert north - fix["northOffset"] == pytest.approx(ego["position"]["y"], abs=0.01)
+    # The default antenna (x 0, y 0) stands on MORAI's mount origin, the rear axle's
+    # midpoint, behind the ego's reported position.
+    behind = sensor_mount_origin(vehicle_model(DEFAULT_EGO_MODEL))[0]
+    heading = math.radians(ego["heading"])
+    expected_x = ego["position"]["x"] + behind * math.cos(heading)
+    expected_y = ego["position"]["y"] + behind * math.sin(heading)
+    assert east - fix["eastOffset"] == pytest.approx(expected_x, abs=0.01)
+    assert north - fix["northOffset"] == pytest.approx(expected_y, abs=0.01)
     assert fix["status"] == 1
     assert fix["header"]["frame_id"] == "gps"
 
@@ -56,8 +63,9 @@ def test_lidar_cloud_on_open_ground_and_its_tf(egosim, rospy_client) -> None:
     client.subscribe(*LIDAR)
     client.subscribe(*TF)
     cloud = client.next_message(LIDAR[0])
-    # The default 16 x 1800 beams from 1.8 m: the 7 channels from -15 to -3 deg meet
-    # the ground within 100 m (-1 deg does so at 103 m); the others miss.
+    # The default 16 x 1800 beams from 1.8 m above MORAI's mount origin (the wheel radius
+    # above the road): the 7 channels from -15 to -3 deg meet the ground within 100 m
+    # (-1 deg does so beyond 103 m); the others miss.
     assert (cloud["height"], cloud["width"]) == (1, 7 * 1800)
     assert [f["name"] for f in cloud["fields"]] == ["x", "y", "z", "intensity"]
     assert cloud["point_step"] == 16
@@ -70,6 +78,9 @@ def test_lidar_cloud_on_open_ground_and_its_tf(egosim, rospy_client) -> None:
         ("base_link", "gps"),
         ("base_link", "imu"),
         ("base_link", "lidar"),
+        ("base_link", "Camera"),
+        ("Camera", "Camera_optical"),
+        ("base_link", "radar"),
     }
 
 

@@ -12,6 +12,7 @@ from pathlib import Path
 from ..bridge import HANDLERS, Bridge, ClockMode, simulation_context
 from ..bridge.network import load_network_settings
 from ..maps import MapLoadError, load_map, scenario_map_location
+from ..render import open_renderer
 from ..replay import RecorderError
 from ..ros1 import Node, Ros1Error
 from ..world import World
@@ -147,6 +148,7 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
             data_roots=options.data_roots or (Path.cwd(),),
             bridge=bridge,
             hold_output=node.holding_output,
+            open_renderer=open_renderer,
         )
         if recorder is not None:
             bridge.taps.append(recorder.tap())

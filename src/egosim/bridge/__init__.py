@@ -20,8 +20,10 @@ from pathlib import Path
 
 from ..msgs import get_profile
 from ..replay import ReplaySession
+from ..sensors.camera_render import CameraRenderer
 from ..world import World
 from .bindings import HANDLERS
+from .camera_rig import open_camera_rig
 from .clock import ClockMode, HeaderClock
 from .codes import ControlMode
 from .context import BridgeContext, SessionState
@@ -69,13 +71,23 @@ def simulation_context(
     bridge: Bridge | None = None,
     hold_output: Callable[[], AbstractContextManager[None]] = nullcontext,
     wall_clock: Callable[[], float] | None = None,
+    open_renderer: Callable[[], CameraRenderer] | None = None,
 ) -> BridgeContext:
     """Everything the row handlers need around `world`, with the standard tick pipeline.
 
     With a `bridge` (bound to a ROS node) the pipeline publishes and additional egos'
-    rows open at run time; without one, the simulation runs in-process.
+    rows open at run time; without one, the simulation runs in-process. With
+    `open_renderer` (the camera engine), the configured cameras render.
     """
     settings = settings or default_network_settings()
+    camera_row = settings.row("camera")
+    sensors = SensorRig(settings.sensors, world.map.georef, camera_row_topic=camera_row.name)
+    cameras = (
+        open_camera_rig(sensors, open_renderer, world.map)
+        if open_renderer is not None and camera_row.enabled
+        else None
+    )
+    world.command_timeout_s = settings.command_timeout_s
     clock = (
         HeaderClock(clock_mode, world)
         if wall_clock is None
@@ -87,7 +99,8 @@ def simulation_context(
         clock=clock,
         pipeline=standard_pipeline(bridge),
         settings=settings,
-        sensors=SensorRig(settings.sensors, world.map.georef),
+        sensors=sensors,
+        cameras=cameras,
         replay=ReplaySession(data_roots, profile=CANONICAL_PROFILE, topics=replay_topics(settings)),
         sync=SyncSession(awaiting_client=clock_mode is ClockMode.SYNC),
         data_roots=tuple(data_roots),

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from . import (
+    camera_rows,
     ego,
     events,
     extended_status,
@@ -36,6 +37,7 @@ HANDLERS = Handlers(
         "gps": sensor_rows.publish_gps,
         "imu": sensor_rows.publish_imu,
         "lidar": sensor_rows.publish_lidar,
+        "radar": sensor_rows.publish_radar,
         "tf": sensor_rows.publish_tf,
         "clock": sim_clock.publish_clock,
         "sync_mode_info": sync_mode.publish_sync_mode_info,
@@ -73,6 +75,7 @@ HANDLERS = Handlers(
         "sync_mode_remove_object": sync_objects.serve_remove_object,
         "sim_proc": replay_rows.serve_sim_proc,
     },
+    openers={"camera": camera_rows.open_camera_rows},
     release_adapters={
         ("sync_mode_wait_for_tick", "2021.08"): sync_mode.apply_tick_command,
     },

@@ -30,6 +30,7 @@ from .table import Row
 
 if TYPE_CHECKING:
     from ..world.traffic.autopilot import LaneAutopilot
+    from .camera_rig import CameraRig
 
 log = logging.getLogger(__name__)
 throttle = LogThrottle(log)
@@ -104,6 +105,8 @@ class BridgeContext:
     """Synchronous mode: whether a client owns time, the frame, requests kept for later."""
     data_roots: tuple[Path, ...] = ()
     """Where file names from the network (scenarios, bags, sensor data) resolve."""
+    cameras: CameraRig | None = None
+    """Renders the main ego's cameras; None when none is configured or no renderer runs."""
     rows: RowBinder | None = None
     """Binds rows at run time (the bridge); None in-process, without a ROS node."""
     hold_output: Callable[[], AbstractContextManager[None]] = nullcontext

@@ -1,19 +1,30 @@
 """What EventInfo.ctrl_mode means for an ego (bridge/events.py and MultiEgoSetting set it).
 
 3 external: the ego obeys its command input (the default). 1 keyboard and 2 gamepad:
-a headless simulator has no human input, so the ego gets no command at all and its
-command timeout brakes it to a stop. 4 auto: MORAI's internal controller drives, here
-the lane-following autopilot of world.traffic.autopilot, commanded before every step.
+a headless simulator has no human input, so the ego gets no command at all and holds
+its brake. 4 auto: MORAI's internal controller drives, here the lane-following
+autopilot of world.traffic.autopilot, commanded before every step. Commands hold
+until the next one, so a change of mode drops the command the old input left in
+force: the ego brakes until its new input commands it.
 """
 
 from __future__ import annotations
 
+from ..world import Ego
 from ..world.traffic import LightsView
 from ..world.traffic.autopilot import LaneAutopilot
 from ..world.traffic.road_users import lane_occupants_of
 from ..world.vehicle import Vehicle
 from .codes import ControlMode
 from .context import BridgeContext
+
+
+def switch_ctrl_mode(context: BridgeContext, ego: Ego, mode: ControlMode) -> None:
+    """Put `ego` in control mode `mode`; a change releases the command in force."""
+    settings = context.settings_of(ego.unique_id)
+    if settings.ctrl_mode is not mode:
+        settings.ctrl_mode = mode
+        ego.vehicle.release_command()
 
 
 def drive_autopilots(context: BridgeContext) -> None:

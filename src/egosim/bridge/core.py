@@ -60,6 +60,9 @@ ReleaseAdapter = Callable[[BridgeContext, Row, Any], None]
 # (context, row, message or request) -> what the row's handler gets instead: work done on
 # the transport's thread, such as reading a user's file, so the loop never waits on it
 Preparer = Callable[[BridgeContext, Row, Any], Any]
+# (bridge, row): advertises the topics a row stands for (Bridge.advertise); returns what
+# withdraws them
+Opener = Callable[["Bridge", Row], Callable[[], None]]
 
 
 class Inbox(Protocol):
@@ -79,12 +82,20 @@ class Handlers:
     # release has, before the row's handler answers
     release_adapters: dict[tuple[str, str], ReleaseAdapter] = field(default_factory=dict)
     preparers: dict[str, Preparer] = field(default_factory=dict)
+    # publishing rows that open topics of their own, given the bridge and the effective
+    # row (the camera row: one topic per configured camera name)
+    openers: dict[str, Opener] = field(default_factory=dict)
     # publisher row key -> the row's static part: built once, before the row's first
     # message, and latched (every subscriber gets it first; later messages never replace it)
     latched: dict[str, Builder] = field(default_factory=dict)
 
     def __contains__(self, key: str) -> bool:
-        return key in self.publishers or key in self.subscribers or key in self.services
+        return (
+            key in self.publishers
+            or key in self.subscribers
+            or key in self.services
+            or key in self.openers
+        )
 
 
 @dataclass
@@ -162,6 +173,10 @@ class Bridge:
             if old is None or old.name != row.name:
                 self._bind(row)
                 changes.append(f"{row.name} opened")
+            elif old.rate_hz != row.rate_hz and key in self.handlers.openers:
+                self._unbinders.pop(key)()
+                self._bind(row)
+                changes.append(f"{row.name} at {row.rate_hz:g} Hz")
             elif old.rate_hz != row.rate_hz:
                 outlet = next(o for o in self.outlets if o.row.key == key and o.row == old)
                 outlet.row, outlet.period = row, 1.0 / row.rate_hz if row.rate_hz else None
@@ -169,7 +184,9 @@ class Bridge:
         return changes
 
     def _bind(self, row: Row) -> None:
-        if row.direction is Direction.PUBLISH:
+        if row.key in self.handlers.openers:
+            self._unbinders[row.key] = self.handlers.openers[row.key](self, row)
+        elif row.direction is Direction.PUBLISH:
             outlet = self._advertise(row, self.handlers.publishers[row.key])
             self._unbinders[row.key] = lambda: self._withdraw(outlet)
         elif row.direction is Direction.SUBSCRIBE:
@@ -198,6 +215,12 @@ class Bridge:
         if row.direction is not Direction.PUBLISH:
             raise ValueError(f"{row.name}: only topics are opened at run time")
         outlet = self._advertise(row, handler)
+        return lambda: self._withdraw(outlet)
+
+    def advertise(self, row: Row, build: Builder) -> Callable[[], None]:
+        """Advertise a publishing row made at run time from a table row (an opener's);
+        returns what withdraws it."""
+        outlet = self._advertise(row, build)
         return lambda: self._withdraw(outlet)
 
     def publish_due(self, now: float) -> None:

@@ -15,6 +15,7 @@ from typing import Any
 from ..world.vehicle import Gear
 from .codes import ControlMode
 from .context import BridgeContext, Lamps
+from .control_modes import switch_ctrl_mode
 from .table import Row
 
 log = logging.getLogger(__name__)
@@ -53,9 +54,11 @@ def serve_event_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
     option = int(event.option) & 0xFF
     if option & OPTION_CTRL_MODE:
         try:
-            settings.ctrl_mode = ControlMode(int(event.ctrl_mode))
+            mode = ControlMode(int(event.ctrl_mode))
         except ValueError:
             log.warning("%s: ctrl_mode %s is not 1..4; ignored", row.name, event.ctrl_mode)
+        else:
+            switch_ctrl_mode(context, ego, mode)
     if option & OPTION_GEAR and event.gear != GEAR_NO_CHANGE:
         try:
             ego.vehicle.set_gear(Gear(int(event.gear)))

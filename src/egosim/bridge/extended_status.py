@@ -29,14 +29,15 @@ FRONT, REAR = 0, 1
 
 def wheel_speeds(vehicle: Vehicle, status: VehicleStatus) -> tuple[float, float, float, float]:
     """(front left, front right, rear left, rear right) contact-point speeds along each
-    wheel's heading (m/s): the rigid body's velocity at the wheel, turned by its steer."""
+    wheel's heading (m/s): the rigid body's velocity at the wheel, turned by its steer.
+    The status's velocity is the reference point's, the rear axle's midpoint."""
     model = vehicle.model
     vx, vy, _ = status.velocity
     r = status.yaw_rate
     speeds = []
     for axle_x, steer in (
-        (model.cg_to_front_axle, status.front_steer),
-        (-model.cg_to_rear_axle, status.rear_steer),
+        (model.wheelbase, status.front_steer),
+        (0.0, status.rear_steer),
     ):
         for side_y in (model.track_width / 2.0, -model.track_width / 2.0):
             wx, wy = vx - r * side_y, vy + r * axle_x

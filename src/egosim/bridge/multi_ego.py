@@ -24,6 +24,7 @@ from typing import Any
 from ..world.vehicle import Gear, Pose
 from .codes import ControlMode
 from .context import BridgeContext, RowBinder
+from .control_modes import switch_ctrl_mode
 from .ego import drive_with_ctrl_cmd, ego_status_of
 from .table import Row
 from .units import mps, rad
@@ -146,7 +147,7 @@ def _apply(context: BridgeContext, k: int, entry: dict[str, Any]) -> None:
         vehicle.set_gear(Gear(int(entry["gear"])))
     settings = context.settings_of(ego.unique_id)
     if "ctrl_mode" in entry:
-        settings.ctrl_mode = CTRL_MODES[int(entry["ctrl_mode"])]
+        switch_ctrl_mode(context, ego, CTRL_MODES[int(entry["ctrl_mode"])])
     if "turn_signal" in entry:
         settings.lamps.turn_signal, settings.lamps.emergency = TURN_SIGNAL_LAMPS[
             int(entry["turn_signal"])

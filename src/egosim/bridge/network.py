@@ -7,6 +7,7 @@ rows:
   collision: {enabled: false}
 sensors:                           # mounts, noise, LiDAR geometry (bridge/sensor_settings.py)
   lidar: {channels: 32}
+command_timeout_s: 0.5             # dead-man brake after this silence; off when absent
 """
 
 from __future__ import annotations
@@ -22,6 +23,8 @@ from .table import DEFAULT_EGO_INPUT, EGO_INPUT_ROWS, ROWS, ROWS_BY_KEY, Directi
 
 ROS_NAME = re.compile(r"^[~/]?[A-Za-z][\w/]*$")
 ROW_FIELDS = {"name", "rate_hz", "enabled"}
+SETTINGS = ("ego_input", "rows", "sensors", "command_timeout_s")
+MAX_COMMAND_TIMEOUT_S = 3600.0
 
 
 @dataclass(frozen=True)
@@ -31,6 +34,9 @@ class NetworkSettings:
     ego_input: str
     rows: tuple[Row, ...]
     sensors: SensorSettings = field(default_factory=SensorSettings)
+    command_timeout_s: float | None = None
+    """Dead-man timeout of the ego commands (s of simulation time without a CtrlCmd or
+    SyncModeCtrlCmd before the ego brakes); None: the last command holds."""
 
     def row(self, key: str) -> Row:
         return next(row for row in self.rows if row.key == key)
@@ -72,10 +78,10 @@ def network_settings_of(document: YamlDocument) -> NetworkSettings:
     problem of the document is reported at once."""
     data = document.data if document.data is not None else {}
     if not isinstance(data, dict):
-        raise document.error((), "expected a mapping with 'ego_input', 'rows' and/or 'sensors'")
+        raise document.error((), f"expected a mapping with any of {', '.join(SETTINGS)}")
     problems = Problems()
-    for key in sorted(set(data) - {"ego_input", "rows", "sensors"}, key=str):
-        problems.add(document.error((key,), "unknown setting (known: ego_input, rows, sensors)"))
+    for key in sorted(set(data) - set(SETTINGS), key=str):
+        problems.add(document.error((key,), f"unknown setting (known: {', '.join(SETTINGS)})"))
     ego_input = data.get("ego_input", DEFAULT_EGO_INPUT)
     if ego_input not in EGO_INPUT_ROWS:
         problems.add(document.error(("ego_input",), f"must be one of {', '.join(EGO_INPUT_ROWS)}"))
@@ -90,8 +96,23 @@ def network_settings_of(document: YamlDocument) -> NetworkSettings:
     sensors = SensorSettings()
     with problems.collecting():
         sensors = parse_sensor_settings(document, data.get("sensors"))
+    timeout = None
+    with problems.collecting():
+        timeout = _command_timeout(document, data.get("command_timeout_s"))
     problems.raise_any()
-    return replace(settings_for(ego_input, overrides), sensors=sensors)
+    return replace(settings_for(ego_input, overrides), sensors=sensors, command_timeout_s=timeout)
+
+
+def _command_timeout(document: YamlDocument, value: Any) -> float | None:
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise document.error(("command_timeout_s",), "expected a number of seconds, or null")
+    if not 0.0 < value <= MAX_COMMAND_TIMEOUT_S:
+        raise document.error(
+            ("command_timeout_s",), f"must be in (0, {MAX_COMMAND_TIMEOUT_S:g}] s, or null (off)"
+        )
+    return float(value)
 
 
 def _override(document: YamlDocument, key: Any, value: Any) -> Row:

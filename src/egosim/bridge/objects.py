@@ -13,6 +13,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from ..msgs import Profile
+from ..world.collision import VehicleCollision
 from ..world.traffic import ObjectState
 from .context import BridgeContext
 from .messages import vector3
@@ -62,19 +63,22 @@ def publish_object_list(context: BridgeContext, row: Row) -> Any:
 
 
 def publish_collision(context: BridgeContext, row: Row) -> Any:
-    """/CollisionData: the main ego's collisions that began since the last message.
+    """/CollisionData: the main ego's collisions that began since the last message, then
+    the objects it still touches (a contact is reported as long as it lasts).
 
-    An empty collision_object list means no new collision; global_offset_* is the
-    position of the most recent collided object, in every message after it (zeros
+    An empty collision_object list means no collision and no contact; global_offset_* is
+    the position of the most recent collided object, in every message after it (zeros
     before the first).
     """
     world = context.world
     ego_id = world.egos[0].unique_id
     new = [
-        c
+        c.other
         for c in context.unreported("ego_collisions", world.ego_collision_log)
         if c.ego_id == ego_id
     ]
+    listed = {other.unique_id for other in new}
+    lasting = [o for o in world.ego_contacts.get(ego_id, []) if o.unique_id not in listed]
     latest = world.ego_collision(0)
     offset = latest.other.position if latest is not None else (0.0, 0.0, 0.0)
     return context.profile.message("morai_msgs/CollisionData").new(
@@ -82,15 +86,18 @@ def publish_collision(context: BridgeContext, row: Row) -> Any:
         global_offset_x=offset[0],
         global_offset_y=offset[1],
         global_offset_z=offset[2],
-        collision_object=[object_status(context.profile, c.other) for c in new],
+        collision_object=[object_status(context.profile, o) for o in new + lasting],
     )
 
 
 def publish_vehicle_collisions(context: BridgeContext, row: Row) -> Any:
-    """/VehicleCollisionData: NPC-NPC collisions that began since the last message."""
+    """/VehicleCollisionData: NPC-NPC collisions that began since the last message, then
+    the NPC-NPC contacts that last."""
     profile = context.profile
     collision_type = profile.message("morai_msgs/VehicleCollision")
     new = context.unreported("vehicle_collisions", context.world.vehicle_collisions)
+    listed = {_pair(c) for c in new}
+    new += [c for c in context.world.vehicle_contacts if _pair(c) not in listed]
     return profile.message("morai_msgs/VehicleCollisionData").new(
         header=context.header(),
         collisions=[
@@ -98,3 +105,7 @@ def publish_vehicle_collisions(context: BridgeContext, row: Row) -> Any:
             for c in new
         ],
     )
+
+
+def _pair(collision: VehicleCollision) -> frozenset[int]:
+    return frozenset(v.unique_id for v in collision.vehicles)

@@ -107,7 +107,8 @@ def load_requested_scenario(context: BridgeContext, prepared: ScenarioRequest) -
 def apply_network_settings(context: BridgeContext, scenario: Scenario) -> None:
     """A scenario's `network:` section (load_network_connection_data) becomes the table in
     force at once: rows renamed, re-rated, enabled or disabled, the ego input switched,
-    the sensors reconfigured; a section with a mistake changes nothing."""
+    the egos' command timeout set, the sensors reconfigured; a section with a mistake
+    changes nothing."""
     try:
         settings = network_settings_of(section_of(scenario.source, "network"))
     except YamlFileError as error:
@@ -115,6 +116,9 @@ def apply_network_settings(context: BridgeContext, scenario: Scenario) -> None:
         return
     changes = context.rows.apply_settings(settings) if context.rows is not None else []
     context.settings = settings
+    if settings.command_timeout_s != context.world.command_timeout_s:
+        context.world.command_timeout_s = settings.command_timeout_s
+        changes.append(f"command timeout {settings.command_timeout_s} s")
     if settings.sensors != context.sensors.settings:
         context.sensors = SensorRig(settings.sensors, context.world.map.georef)
         changes.append("sensors reconfigured")

@@ -1,11 +1,13 @@
 """/SaveSensorData: write the sensors' current frames to files.
 
 file_dir comes from the network, so it resolves only inside the data roots (a
-relative name is taken in each root; the directory must exist). Two files are
-written: `<name>.pcd` (the LiDAR cloud, PCD v0.7 binary, sensor frame) and
-`<name>.json` (the GPS fix and IMU reading, GPSMessage / sensor_msgs/Imu field
-names). `<name>` is custom_file_name when is_custom_file_name is true (a plain file
-name, no directories), else `sensor_data_<sim time in µs>`.
+relative name is taken in each root; the directory must exist). Written:
+`<name>.pcd` (the LiDAR cloud, PCD v0.7 binary, sensor frame), `<name>.json` (the
+GPS fix and IMU reading, GPSMessage / sensor_msgs/Imu field names) and, for each
+camera, `<name>_<frame_id>.jpg` or `.png` (its topic's format) or, for a depth
+camera, `<name>_<frame_id>.tiff` (32-bit float metres, lossless). `<name>` is
+custom_file_name when is_custom_file_name is true (a plain file name, no directories),
+else `sensor_data_<sim time in µs>`.
 """
 
 from __future__ import annotations
@@ -17,6 +19,8 @@ from typing import Any
 
 from ..datapaths import PathOutsideRootsError, resolve_in_roots
 from ..sensors import encode_pcd, gps_imu_snapshot
+from ..sensors.camera import CameraMode
+from ..sensors.image_encoding import ImageFormat, encode_depth_tiff, encode_image
 from .context import BridgeContext
 from .table import Row
 
@@ -55,26 +59,49 @@ def file_stem(context: BridgeContext, request: Any) -> str:
     return name
 
 
-def save_sensor_data(context: BridgeContext, request: Any) -> tuple[Path, Path]:
-    """Write the PCD and JSON files; their paths."""
+def camera_files(context: BridgeContext, directory: Path, stem: str) -> dict[Path, bytes]:
+    """Each camera's current frame as the file it is saved to."""
+    if context.cameras is None or context.sensors is None:
+        return {}
+    rig, files = context.sensors, {}
+    for k, camera in enumerate(rig.cameras):
+        image = context.cameras.image(rig, context.world, k)
+        name = f"{stem}_{rig.camera_frame_ids[k]}"
+        if camera.config.mode is CameraMode.DEPTH:
+            files[directory / f"{name}.tiff"] = encode_depth_tiff(image)  # type: ignore[arg-type]
+            continue
+        suffix = "jpg" if camera.format is ImageFormat.JPEG else "png"
+        data = encode_image(image, camera.format, camera.config.jpeg_quality)  # type: ignore[arg-type]
+        files[directory / f"{name}.{suffix}"] = data
+    return files
+
+
+def save_sensor_data(context: BridgeContext, request: Any) -> tuple[Path, ...]:
+    """Write the PCD, JSON and camera files; their paths."""
     directory = save_directory(request.file_dir, context.data_roots)
     stem = file_stem(context, request)
     rig, world = context.sensors, context.world
     snapshot = gps_imu_snapshot(context.stamp(), rig.gps_fix(world), rig.imu_reading(world))
     cloud_path = target_path(directory / f"{stem}.pcd", context.data_roots)
     readings_path = target_path(directory / f"{stem}.json", context.data_roots)
+    images = {
+        target_path(path, context.data_roots): data
+        for path, data in camera_files(context, directory, stem).items()
+    }
     try:
         cloud_path.write_bytes(encode_pcd(rig.scan(world)))
         readings_path.write_text(json.dumps(snapshot, indent=2), encoding="utf-8")
+        for path, data in images.items():
+            path.write_bytes(data)
     except OSError as error:
         raise SaveRequestError(f"cannot write {directory}: {error}") from error
-    return cloud_path, readings_path
+    return (cloud_path, readings_path, *images)
 
 
 def on_save_sensor_data(context: BridgeContext, row: Row, request: Any) -> None:
     try:
-        cloud_path, readings_path = save_sensor_data(context, request)
+        paths = save_sensor_data(context, request)
     except SaveRequestError as error:
         log.error("%s: not saved: %s", row.name, error)
         return
-    log.info("%s: wrote %s and %s", row.name, cloud_path, readings_path)
+    log.info("%s: wrote %s", row.name, ", ".join(str(path) for path in paths))

@@ -9,8 +9,10 @@ import numpy as np
 
 from ..msgs import Profile
 from ..sensors import GpsFix, ImuReading, Transform
+from ..sensors.radar import RadarDetections
 from .messages import header as make_header
 from .messages import quaternion, vector3
+from .units import deg
 
 POINT_FIELDS = ("x", "y", "z", "intensity")
 FLOAT32 = 7  # sensor_msgs/PointField datatype code
@@ -83,3 +85,29 @@ def tf_message(profile: Profile, stamp_s: float, transforms: Iterable[Transform]
 
 def clock_message(profile: Profile, stamp: Any) -> Any:
     return profile.message("rosgraph_msgs/Clock").new(clock=stamp)
+
+
+def radar_message(profile: Profile, header: Any, detections: RadarDetections) -> Any:
+    """morai_msgs/RadarDetections: azimuth in degrees, detection_id the object's id (16 bit)."""
+    detection = profile.message("morai_msgs/RadarDetection")
+    point = profile.message("geometry_msgs/Point")
+    return profile.message("morai_msgs/RadarDetections").new(
+        header=header,
+        detections=[
+            detection.new(
+                detection_id=int(uid) & 0xFFFF,
+                position=point.new(x=float(p[0]), y=float(p[1]), z=float(p[2])),
+                azimuth=deg(float(azimuth)),
+                rangerate=float(rate),
+                amplitude=float(amplitude),
+            )
+            for uid, p, azimuth, rate, amplitude in zip(
+                detections.unique_ids.tolist(),
+                detections.positions.tolist(),
+                detections.azimuths.tolist(),
+                detections.range_rates.tolist(),
+                detections.amplitudes.tolist(),
+                strict=True,
+            )
+        ],
+    )

@@ -1,4 +1,4 @@
-"""The sensor rows: /gps, /imu, /lidar3D and /tf out, /SensorPosControl in.
+"""The sensor rows: /gps, /imu, /lidar3D, /radar and /tf out, /SensorPosControl in.
 
 Readings are taken from the main ego's current state when a row is due (and has a
 subscriber or a tap, so the LiDAR is only cast when someone listens). Frames: GPS
@@ -13,7 +13,7 @@ import logging
 from typing import Any
 
 from .context import BridgeContext
-from .sensor_messages import gps_message, imu_message, point_cloud, tf_message
+from .sensor_messages import gps_message, imu_message, point_cloud, radar_message, tf_message
 from .sensor_rig import GPS_INDEX, IMU_INDEX, LIDAR_INDEX, finite_mount
 from .table import Row
 
@@ -38,6 +38,12 @@ def publish_lidar(context: BridgeContext, row: Row) -> Any:
     rig = context.sensors
     header = context.header(rig.frame_ids[LIDAR_INDEX])
     return point_cloud(context.profile, header, rig.scan(context.world))
+
+
+def publish_radar(context: BridgeContext, row: Row) -> Any:
+    rig = context.sensors
+    header = context.header(rig.frame_ids[rig.radar_index])
+    return radar_message(context.profile, header, rig.radar_detections(context.world))
 
 
 def publish_tf(context: BridgeContext, row: Row) -> Any:

@@ -22,6 +22,30 @@ sensors:
     horizontal_resolution_deg: 0.2
     min_range_m: 0.5
     max_range_m: 100
+  cameras:                       # a list; absent: one default front camera; []: none
+    - frame_id: Camera           # default Camera, or Camera-1, Camera-2... on a shared topic
+      topic: /image_jpeg/compressed   # default: the camera row's topic (depth: /image)
+      mode: rgb                  # rgb | semantic | instance | depth
+      width: 640
+      height: 480
+      fov_deg: 90
+      fov_axis: vertical         # vertical (MORAI, Unity) | horizontal
+      rate_hz: 30                # default: the camera row's rate
+      format: jpeg               # jpeg | png; default jpeg for rgb, png for labels
+      jpeg_quality: 90
+      mount: {x: 1.5, y: 0.0, z: 1.2, roll_deg: 0, pitch_deg: 0, yaw_deg: 0}
+  radar:
+    frame_id: radar
+    mount: {x: 3.7, z: 0.2}
+    horizontal_fov_deg: 90
+    vertical_fov_deg: 20
+    min_range_m: 0.5
+    max_range_m: 150
+    max_detections: 64
+    noise: {range_std_m: 0, azimuth_std_rad: 0, range_rate_std_m_s: 0}
+
+Mounts (x, y, z, roll, pitch, yaw) are MORAI's: from the midpoint of the rear axle at
+wheel-centre height (see egosim.world.vehicle.mount_origin).
 """
 
 from __future__ import annotations
@@ -29,16 +53,34 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields, replace
+from enum import Enum
 from typing import Any, TypeVar, cast
 
 from ..sensors import GpsNoise, ImuNoise, LidarConfig, MountPose, SensorConfigError
+from ..sensors.camera import CameraConfig, CameraMode, FovAxis
+from ..sensors.image_encoding import ImageFormat
+from ..sensors.radar import RadarConfig, RadarNoise
 from ..yamltext import Problems, YamlDocument, YamlFileError
 from .units import rad
 
 T = TypeVar("T")
+E = TypeVar("E", bound=Enum)
 
 SENSOR_KINDS = ("gps", "imu", "lidar")
-"""Also the sensor indices of SensorPosControl: 0 GPS, 1 IMU, 2 LiDAR."""
+"""Also the sensor indices of SensorPosControl: 0 GPS, 1 IMU, 2 LiDAR; the cameras follow
+(3, 4, ... in the order of `cameras:`), then the radar."""
+SECTION_KEYS = ("seed", *SENSOR_KINDS, "cameras", "radar")
+CAMERA_NUMBERS = ("width", "height", "fov_deg", "rate_hz", "jpeg_quality")
+CAMERA_INTEGERS = ("width", "height", "jpeg_quality")
+RADAR_NUMBERS = (
+    "horizontal_fov_deg",
+    "vertical_fov_deg",
+    "min_range_m",
+    "max_range_m",
+    "max_detections",
+)
+DEPTH_TOPIC = "/image"
+"""MORAI's default topic of a depth camera (sensor_msgs/Image)."""
 
 MOUNT_FIELDS = {
     "x": "x",
@@ -80,6 +122,17 @@ RANGES: dict[str, tuple[float, float]] = {
     "linear_acceleration_std_m_s2": (0.0, 1000.0),
     "angular_velocity_bias_rad_s": (-100.0, 100.0),
     "linear_acceleration_bias_m_s2": (-1000.0, 1000.0),
+    "width": (1, 8192),
+    "height": (1, 8192),
+    "fov_deg": (0.01, 179.99),
+    "rate_hz": (0.1, 1000.0),
+    "jpeg_quality": (1, 100),
+    "horizontal_fov_deg": (0.01, 360.0),
+    "vertical_fov_deg": (0.01, 180.0),
+    "max_detections": (0, 65535),
+    "range_std_m": (0.0, 100.0),
+    "azimuth_std_rad": (0.0, 3.2),
+    "range_rate_std_m_s": (0.0, 100.0),
 }
 #: A LiDAR scan casts channels x 360 / horizontal_resolution_deg rays.
 MAX_LIDAR_RAYS = 1_000_000
@@ -108,11 +161,44 @@ class LidarSettings:
 
 
 @dataclass(frozen=True)
+class CameraSettings:
+    """One camera. topic and rate None: the camera row's (depth: DEPTH_TOPIC); frame_id
+    None: `Camera`, or `Camera-<n>` when several cameras share the topic."""
+
+    config: CameraConfig = field(default_factory=CameraConfig)
+    frame_id: str | None = None
+    topic: str | None = None
+    rate_hz: float | None = None
+    image_format: ImageFormat | None = None
+
+    @property
+    def format(self) -> ImageFormat:
+        if self.image_format is not None:
+            return self.image_format
+        return ImageFormat.JPEG if self.config.mode is CameraMode.RGB else ImageFormat.PNG
+
+
+def camera_topic(camera: CameraSettings, row_topic: str) -> str:
+    """Where a camera publishes: its own topic, else the camera row's (depth: /image)."""
+    if camera.topic is not None:
+        return camera.topic
+    return DEPTH_TOPIC if camera.config.mode is CameraMode.DEPTH else row_topic
+
+
+@dataclass(frozen=True)
+class RadarSettings:
+    frame_id: str = "radar"
+    config: RadarConfig = field(default_factory=RadarConfig)
+
+
+@dataclass(frozen=True)
 class SensorSettings:
     seed: int = 0
     gps: GpsSettings = field(default_factory=GpsSettings)
     imu: ImuSettings = field(default_factory=ImuSettings)
     lidar: LidarSettings = field(default_factory=LidarSettings)
+    cameras: tuple[CameraSettings, ...] = (CameraSettings(),)
+    radar: RadarSettings = field(default_factory=RadarSettings)
 
 
 Path = tuple[str, ...]
@@ -126,7 +212,7 @@ def parse_sensor_settings(document: YamlDocument, data: Any) -> SensorSettings:
         return SensorSettings()
     problems = Problems()
     with problems.collecting():
-        _check_keys(document, path, data, ("seed", *SENSOR_KINDS))
+        _check_keys(document, path, data, SECTION_KEYS)
     if not isinstance(data, dict):
         problems.raise_any()
     seed = data.get("seed", 0)
@@ -144,8 +230,79 @@ def parse_sensor_settings(document: YamlDocument, data: Any) -> SensorSettings:
         settings = replace(settings, imu=imu)
     with problems.collecting():
         settings = replace(settings, lidar=_lidar(document, (*path, "lidar"), data.get("lidar")))
+    with problems.collecting():
+        settings = replace(settings, cameras=_cameras(document, (*path, "cameras"), data))
+    with problems.collecting():
+        settings = replace(settings, radar=_radar(document, (*path, "radar"), data.get("radar")))
     problems.raise_any()
     return settings
+
+
+def _cameras(document: YamlDocument, path: Path, section: dict) -> tuple[CameraSettings, ...]:
+    if "cameras" not in section:
+        return SensorSettings().cameras
+    data = section["cameras"]
+    if data is None:
+        return ()
+    if not isinstance(data, list):
+        raise document.error(path, "expected a list of cameras")
+    return tuple(_camera(document, (*path, str(k)), item) for k, item in enumerate(data))
+
+
+def _camera(document: YamlDocument, path: Path, data: Any) -> CameraSettings:
+    if data is None:
+        return CameraSettings()
+    known = ("frame_id", "topic", "mode", "fov_axis", "format", "mount", *CAMERA_NUMBERS)
+    _check_keys(document, path, data, known)
+    values: dict[str, Any] = {}
+    for name in CAMERA_NUMBERS:
+        if name in data:
+            values[name] = _number(
+                document, (*path, name), data[name], integer=name in CAMERA_INTEGERS
+            )
+    rate = values.get("rate_hz")
+    values["mode"] = _choice(document, (*path, "mode"), data.get("mode", "rgb"), CameraMode)
+    values["fov_axis"] = _choice(
+        document, (*path, "fov_axis"), data.get("fov_axis", "vertical"), FovAxis
+    )
+    defaults = CameraConfig()
+    values["mount"] = _mount(document, (*path, "mount"), data.get("mount"), defaults.mount)
+    config = _built(document, path, lambda: replace(defaults, **values))
+    image_format = None
+    if "format" in data:
+        image_format = _choice(document, (*path, "format"), data["format"], ImageFormat)
+        if config.mode is CameraMode.DEPTH:
+            raise document.error((*path, "format"), "a depth camera sends raw 32FC1 images")
+    topic = data.get("topic")
+    if topic is not None and (not isinstance(topic, str) or not topic.startswith("/")):
+        raise document.error((*path, "topic"), f"expected a topic name like /camera, got {topic!r}")
+    frame_id = _frame_id(document, path, data, "Camera") if "frame_id" in data else None
+    return CameraSettings(config, frame_id, topic, rate, image_format)
+
+
+def _radar(document: YamlDocument, path: Path, data: Any) -> RadarSettings:
+    defaults = RadarSettings()
+    if data is None:
+        return defaults
+    _check_keys(document, path, data, ("frame_id", "mount", "noise", *RADAR_NUMBERS))
+    values: dict[str, Any] = {}
+    for name in RADAR_NUMBERS:
+        if name in data:
+            values[name] = _number(
+                document, (*path, name), data[name], integer=name == "max_detections"
+            )
+    values["mount"] = _mount(document, (*path, "mount"), data.get("mount"), defaults.config.mount)
+    values["noise"] = _noise(document, (*path, "noise"), data.get("noise"), RadarNoise)
+    config = _built(document, path, lambda: replace(defaults.config, **values))
+    return RadarSettings(frame_id=_frame_id(document, path, data, defaults.frame_id), config=config)
+
+
+def _choice(document: YamlDocument, path: Path, value: Any, kind: type[E]) -> E:
+    for member in kind:  # type: ignore[attr-defined]
+        if value == member.value:
+            return member  # type: ignore[no-any-return]
+    known = ", ".join(m.value for m in kind)  # type: ignore[attr-defined]
+    raise document.error(path, f"expected one of {known}, got {value!r}")
 
 
 def _point_sensor(

@@ -146,7 +146,10 @@ def _tick(context: BridgeContext, session: SyncSession) -> None:
     for name, action in session.due(frame):
         if not action(context):
             log.error("%s for frame %d failed", name, frame)
-    context.tick(session.time_step_ms / 1000.0)
+    try:
+        context.tick(session.time_step_ms / 1000.0)
+    finally:
+        session.capture_cameras = False
     session.frame = frame
 
 
@@ -167,19 +170,23 @@ def at_frame(context: BridgeContext, row: Row, frame: int, action: Action) -> bo
     return True
 
 
-def driving(row: Row, command: Any) -> Action:
-    """The action that hands the main ego a (26.r1) CtrlCmd requested on `row`."""
+def driving(row: Row, command: Any, sensor_capture: bool = False) -> Action:
+    """The action that hands the main ego a (26.r1) CtrlCmd requested on `row` (and, with
+    `sensor_capture`, has the tick publish the camera frames)."""
 
     def drive(context: BridgeContext) -> bool:
         on_ctrl_cmd(context, row, command)
+        context.sync.capture_cameras = context.sync.capture_cameras or sensor_capture
         return True
 
     return drive
 
 
 def serve_ctrl_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
-    """/SyncModeCtrlCmd: the main ego's CtrlCmd from the tick producing `frame` on."""
-    drive = driving(row, request.request.command)
+    """/SyncModeCtrlCmd: the main ego's CtrlCmd from the tick producing `frame` on; with
+    sensor_capture, that tick renders and publishes the cameras' frames (before the
+    WaitForTick reply, like every output of the tick)."""
+    drive = driving(row, request.request.command, bool(request.request.sensor_capture))
     ok = at_frame(context, row, int(request.request.frame), drive)
     return service_response(context, "MoraiSyncModeCtrlCmdSrv", result_message(context, ok))
 

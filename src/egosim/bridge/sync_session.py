@@ -30,6 +30,9 @@ class SyncSession:
     user_id: str = ""
     frame: int = 0
     time_step_ms: int = 0
+    capture_cameras: bool = False
+    """The tick being produced publishes the camera frames (SyncModeCtrlCmd's
+    sensor_capture); cleared when the tick ends."""
     _pending: dict[int, list[tuple[str, Action]]] = field(default_factory=dict)
     _pending_count: int = 0
 

@@ -39,6 +39,7 @@ EGO_INPUT_ROWS: dict[str, str] = {
     "GhostCtrlCmd": "ghost_ctrl_cmd",
 }
 DEFAULT_EGO_INPUT = "MoraiCmdController"
+DEFAULT_CAMERA_TOPIC = "/image_jpeg/compressed"
 
 ROWS: tuple[Row, ...] = (
     # Ego network: command inputs (user -> sim)
@@ -155,6 +156,9 @@ ROWS: tuple[Row, ...] = (
     Row("gps", "GPS", "morai_msgs/GPSMessage", P, "/gps", 10),
     Row("imu", "IMU", "sensor_msgs/Imu", P, "/imu", 100),
     Row("lidar", "3D LiDAR", "sensor_msgs/PointCloud2", P, "/lidar3D", 10),
+    # Every camera of the sensors: section (one topic per distinct name, see camera_rows)
+    Row("camera", "Camera", "sensor_msgs/CompressedImage", P, DEFAULT_CAMERA_TOPIC, 30),
+    Row("radar", "Radar", "morai_msgs/RadarDetections", P, "/radar", 20),
     Row("tf", "TF2Publisher", "tf2_msgs/TFMessage", P, "/tf", 50),
     # The scene for RViz (an egosim row, not MORAI's): the map latched, then what moves
     Row("markers", "EgosimMarkers", "visualization_msgs/MarkerArray", P, "/egosim/markers", 10),

@@ -10,6 +10,7 @@ from pathlib import Path
 
 from ..app.recording import TopicRecorder, open_recorder, record_from_network
 from ..app.signals import stop_on_signals
+from ..bridge.camera_rows import camera_topic_names
 from ..bridge.network import load_network_settings
 from ..bridge.table import Direction
 from ..replay import RecorderError
@@ -46,9 +47,10 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
 
 
 def published_topics(network: Path | None) -> list[str]:
-    """Every topic of the effective table that egosim publishes."""
+    """Every topic of the effective table that egosim publishes, and the cameras'."""
     settings = load_network_settings(str(network) if network is not None else None)
-    return [row.name for row in settings.enabled_rows() if row.direction is Direction.PUBLISH]
+    rows = [row.name for row in settings.enabled_rows() if row.direction is Direction.PUBLISH]
+    return rows + [name for name in camera_topic_names(settings) if name not in rows]
 
 
 def record(args: argparse.Namespace) -> int:

@@ -1,10 +1,15 @@
-"""Sensor models over world state: GPS, IMU, 3D LiDAR and their tf frames.
+"""Sensor models over world state: GPS, IMU, 3D LiDAR, cameras, radar and their tf frames.
 
 Pure and deterministic: SI units, no I/O; randomness only through a numpy
 Generator the caller passes in.
 """
 
-from egosim.sensors.errors import MissingRandomGeneratorError, SensorConfigError, SensorError
+from egosim.sensors.errors import (
+    MissingRandomGeneratorError,
+    RendererUnavailableError,
+    SensorConfigError,
+    SensorError,
+)
 from egosim.sensors.frames import (
     MountPose,
     Transform,
@@ -37,6 +42,7 @@ __all__ = [
     "MountPose",
     "ObstacleBoxes",
     "Pose",
+    "RendererUnavailableError",
     "SensorConfigError",
     "SensorError",
     "Transform",

@@ -13,3 +13,7 @@ class SensorConfigError(SensorError, ValueError):
 
 class MissingRandomGeneratorError(SensorError, ValueError):
     """A noisy sensor was asked to measure without a random generator."""
+
+
+class RendererUnavailableError(SensorError):
+    """No camera renderer can run here (no OpenGL driver...); the message says why."""

@@ -96,7 +96,7 @@ def _interpolate(
     )
 
 
-def _corners(boxes: Footprints) -> FloatArray:
+def corners(boxes: Footprints) -> FloatArray:
     """(N, 4, 2) corners, counter-clockwise."""
     c, s = np.cos(boxes.headings), np.sin(boxes.headings)
     along = np.stack((c, s), axis=1) * (boxes.lengths / 2.0)[:, None]
@@ -115,7 +115,7 @@ def _corners(boxes: Footprints) -> FloatArray:
 
 def _overlap(a: Footprints, b: Footprints) -> npt.NDArray[np.bool_]:
     """Separating-axis test on the four edge normals of two rectangles, pairwise."""
-    corners_a, corners_b = _corners(a), _corners(b)
+    corners_a, corners_b = corners(a), corners(b)
     separated = np.zeros(len(a.headings), dtype=bool)
     for heading in (a.headings, a.headings + math.pi / 2, b.headings, b.headings + math.pi / 2):
         axis = np.stack((np.cos(heading), np.sin(heading)), axis=1)[:, None, :]
@@ -127,22 +127,38 @@ def _overlap(a: Footprints, b: Footprints) -> npt.NDArray[np.bool_]:
     return ~separated
 
 
+REJOIN_S = 1.0
+"""A pair touching again within this long (s) of parting goes on with the same collision:
+a crash that bounces, or a car pushing a cone it keeps catching up with, is one."""
+
+
 class ContactTracker:
-    """Remembers which pairs (by unique id) touched at the last step, so a contact is
-    reported once, when it begins, not at every step it lasts."""
+    """Remembers which pairs (by unique id) touch, since when and when they last did, so a
+    collision is recorded once, when it begins, and a lasting contact is known as one."""
 
     def __init__(self) -> None:
-        self._touching: set[tuple[int, int]] = set()
+        self.began_at: dict[tuple[int, int], float] = {}
+        """Each pair touching at the last call: the time (s) its collision began."""
+        self._touch: dict[tuple[int, int], tuple[float, float]] = {}
+        """Pairs that touched within REJOIN_S: (collision began, last touched), s."""
 
-    def begin(self, pairs: list[tuple[int, int]]) -> list[tuple[int, int]]:
-        """The pairs of `pairs` (touching now) that were not touching at the last call."""
-        current = set(pairs)
-        fresh = [p for p in pairs if p not in self._touching]
-        self._touching = current
+    def begin(self, pairs: list[tuple[int, int]], now: float = 0.0) -> list[tuple[int, int]]:
+        """The pairs of `pairs` (touching at time `now`, s) whose collision begins now: not
+        touching at the last call, nor within REJOIN_S before."""
+        fresh = []
+        for pair in pairs:
+            known = self._touch.get(pair)
+            if known is None or now - known[1] > REJOIN_S:
+                fresh.append(pair)
+                known = (now, now)
+            self._touch[pair] = (known[0], now)
+        self._touch = {p: t for p, t in self._touch.items() if now - t[1] <= REJOIN_S}
+        self.began_at = {pair: self._touch[pair][0] for pair in pairs}
         return fresh
 
     def clear(self) -> None:
-        self._touching.clear()
+        self.began_at.clear()
+        self._touch.clear()
 
 
 @dataclass(frozen=True)

@@ -22,6 +22,7 @@ from egosim.world.collision import (
     VehicleCollision,
     touching_pairs,
 )
+from egosim.world.contact import Bodies, ContactModel, Response, respond
 from egosim.world.map import LaneMap, LaneProjections
 from egosim.world.recorded_scene import RecordedScene
 from egosim.world.scenario import Scenario, ScenarioLoadOptions, ScenarioLoadReport
@@ -80,6 +81,7 @@ PEDESTRIAN_LANE_MARGIN_M = 1.0
 PEDESTRIAN_HALF_DEPTH_M = 0.5
 # Length of lane over which the grade under an ego is measured, m.
 GRADE_BASE_M = 1.0
+PEDESTRIAN_MASS_KG = 75.0
 
 
 class UnknownObjectModelError(ValueError):
@@ -99,7 +101,7 @@ class Ego:
 
     def box_centre(self, status: VehicleStatus) -> tuple[float, float]:
         """Footprint centre, m: the reference point moved to the middle of the body."""
-        offset = self.vehicle.model.bounding_box_center_offset
+        offset = self.vehicle.model.box_centre_ahead_of_reference
         yaw = status.pose.yaw
         return status.pose.x + offset * math.cos(yaw), status.pose.y + offset * math.sin(yaw)
 
@@ -144,15 +146,22 @@ class World:
         self.obstacles = StaticObstacles()
         self._obstacle_occupants = LaneOccupants.empty()
         self._next_id = 1
+        self._command_timeout_s: float | None = None
         self.egos: list[Ego] = []
         self.add_ego(DEFAULT_EGO_MODEL, self._first_lane_pose())
         self._contacts = ContactTracker()
+        self.contact_model = ContactModel()
+        """Restitution and friction of every contact (world/contact.py)."""
         self.ego_collisions: dict[int, EgoCollision] = {}
         """Most recent collision of each ego, by the ego's unique id."""
         self.ego_collision_log: list[EgoCollision] = []
         """Every ego collision since the objects were last deleted, oldest first."""
         self.vehicle_collisions: list[VehicleCollision] = []
         """Every NPC-NPC collision since the objects were last deleted, oldest first."""
+        self.ego_contacts: dict[int, list[ObjectState]] = {}
+        """What each ego (by unique id) touches now, as it is now: contacts that last."""
+        self.vehicle_contacts: list[VehicleCollision] = []
+        """The NPC-NPC contacts of now, time-stamped when they began."""
         self.network_settings_request: dict[str, Any] | None = None
         """The network settings of the last ScenarioLoad that asked for them."""
         self.recorded = RecordedScene()
@@ -176,10 +185,23 @@ class World:
 
     def add_ego(self, model_name: str, pose: Pose) -> Ego:
         """A further ego vehicle (the first one is the main ego)."""
-        ego = Ego(self._next_id, ego_vehicle(ego_model(model_name), pose))
+        vehicle = ego_vehicle(ego_model(model_name), pose, self._command_timeout_s)
+        ego = Ego(self._next_id, vehicle)
         self._next_id += 1
         self.egos.append(ego)
         return ego
+
+    @property
+    def command_timeout_s(self) -> float | None:
+        """Every ego's dead-man timeout: s of simulation time without a command before it
+        brakes (stops); None, the default: the last command holds until the next one."""
+        return self._command_timeout_s
+
+    @command_timeout_s.setter
+    def command_timeout_s(self, seconds: float | None) -> None:
+        self._command_timeout_s = seconds
+        for ego in self.egos:
+            ego.vehicle.command_timeout = seconds
 
     def keep_egos(self, count: int) -> None:
         """Remove the egos after the first `count` (the main ego always stays)."""
@@ -389,6 +411,8 @@ class World:
         if recorded.pedestrians is None:
             stops_traffic = (lights.aspects == RED) | (lights.aspects == OFF) | lights.flashing
             self.pedestrians.step(dt, self._crosswalk_lights.walk_signals(stops_traffic))
+        if recorded.obstacles is None and self.obstacles.step(dt):
+            self._place_obstacles_on_lanes()
         self.sim_time += dt
         self._collide()
 
@@ -491,30 +515,50 @@ class World:
         )
 
     def _collide(self) -> None:
-        """Record contacts that began this step and stop the vehicles involved.
+        """Record the contacts that began this step and answer every contact physically.
 
-        Ego against anything: a CollisionData record, the ego's speed set to zero, a
-        struck NPC or pedestrian halted for good. NPC against NPC: a VehicleCollision
-        record and both halted. Other contacts are not physical events here.
+        Ego against anything: a CollisionData record. NPC against NPC: a VehicleCollision
+        record. A struck NPC brakes to a standstill and stays (crashed); a struck
+        pedestrian stops. Every contact with a vehicle in it gets the response of
+        world/contact.py (see _bodies for who is movable); pedestrians pass each other.
         """
         table = self.objects()
         now = self._current_footprints(table)
         before = self._footprints if len(self._footprints.headings) == len(table) else now
         self._footprints = now
         pairs = touching_pairs(before, now)
+        self.ego_contacts, self.vehicle_contacts = {}, []
         if len(pairs) == 0:
-            self._contacts.begin([])
+            self._contacts.begin([], self.sim_time)
             return
-        types = table.object_types
-        kinds = types[pairs]
+        kinds = table.object_types[pairs]
+        vehicles = (kinds == ObjectType.EGO) | (kinds == ObjectType.NPC_VEHICLE)
+        self._record_contacts(table, pairs, kinds)
+        bodies = self._bodies(table, now)
+        response = respond(bodies, pairs[np.any(vehicles, axis=1)], self.contact_model)
+        if response.moved.any():
+            self._apply(response, bodies)
+            # Contacts move bodies, never turn them: the next sweep starts from here.
+            self._footprints = replace(now, centres=now.centres + response.displacements)
+
+    def _record_contacts(self, table: ObjectTable, pairs: IntArray, kinds: IntArray) -> None:
         ego_pair = np.any(kinds == ObjectType.EGO, axis=1)
         npc_pair = np.all(kinds == ObjectType.NPC_VEHICLE, axis=1)
         relevant = pairs[ego_pair | npc_pair]
         ids = table.unique_ids
-        fresh = self._contacts.begin([(int(ids[i]), int(ids[j])) for i, j in relevant])
+        rows = {(int(ids[i]), int(ids[j])): (int(i), int(j)) for i, j in relevant}
+        touching = list(rows)
+        fresh = self._contacts.begin(touching, self.sim_time)
+        for pair, (i, j) in rows.items():
+            records = (table.record(i), table.record(j))
+            for me, other in (records, records[::-1]):
+                if me.object_type == ObjectType.EGO:
+                    self.ego_contacts.setdefault(me.unique_id, []).append(other)
+            if not any(r.object_type == ObjectType.EGO for r in records):
+                began = self._contacts.began_at.get(pair, self.sim_time)
+                self.vehicle_contacts.append(VehicleCollision(began, records))
         if not fresh:
             return
-        slot = {int(uid): k for k, uid in enumerate(ids)}
         # Only simulated agents can be halted; recorded ones go where the recording says.
         npcs: IntArray | list[int] = self.npcs.unique_ids if self.recorded.npcs is None else []
         walkers: IntArray | list[int] = (
@@ -522,9 +566,9 @@ class World:
         )
         npc_slot = {int(uid): k for k, uid in enumerate(npcs)}
         walker_slot = {int(uid): k for k, uid in enumerate(walkers)}
-        egos = {ego.unique_id: ego for ego in self.egos}
-        for a, b in fresh:
-            records = (table.record(slot[a]), table.record(slot[b]))
+        for pair in fresh:
+            i, j = rows[pair]
+            records = (table.record(i), table.record(j))
             if not any(r.object_type == ObjectType.EGO for r in records):
                 self.vehicle_collisions.append(VehicleCollision(self.sim_time, records))
             for me, other in (records, records[::-1]):
@@ -532,16 +576,63 @@ class World:
                     record = EgoCollision(self.sim_time, me.unique_id, other)
                     self.ego_collisions[me.unique_id] = record
                     self.ego_collision_log.append(record)
-                    self._halt_ego(egos[me.unique_id])
                 elif me.object_type == ObjectType.NPC_VEHICLE and me.unique_id in npc_slot:
                     self.npcs.stop([npc_slot[me.unique_id]])
                 elif me.object_type == ObjectType.PEDESTRIAN and me.unique_id in walker_slot:
                     self.pedestrians.stop([walker_slot[me.unique_id]])
 
-    @staticmethod
-    def _halt_ego(ego: Ego) -> None:
-        status = ego.vehicle.status()
-        ego.vehicle.teleport(status.pose, 0.0, status.front_steer, status.rear_steer)
+    def _bodies(self, table: ObjectTable, footprints: Footprints) -> Bodies:
+        """The objects of `table` (the order of objects()) as contact bodies.
+
+        Movable, with their mass: simulated egos, moving NPCs, pedestrians, light obstacles
+        (cones, drums, boxes). Immovable: barriers, parked NPCs (still waiting to set
+        off), NPC ghosts and whatever a replay shows (its motion is dictated).
+        """
+        recorded = self.recorded
+        ego_mass = [ego.vehicle.model.mass for ego in self.egos]
+        ego_inverse = 1.0 / np.array(ego_mass)
+        if recorded.ego is not None:
+            ego_inverse[0] = 0.0
+        others = np.zeros(len(table) - len(self.egos))
+        if recorded.npcs is None:
+            others[: len(self.npcs)] = np.where(self.npcs.parked(), 0.0, 1.0 / self.npcs.mass)
+        start = self._shown_npc_count()
+        if recorded.pedestrians is None:
+            others[start : start + len(self.pedestrians)] = 1.0 / PEDESTRIAN_MASS_KG
+        if recorded.obstacles is None:
+            others[len(others) - len(self.obstacles) :] = self.obstacles.inverse_masses()
+        return Bodies(footprints, table.velocities[:, :2], np.concatenate((ego_inverse, others)))
+
+    def _shown_npc_count(self) -> int:
+        """Rows of vehicles in objects() after the egos: simulated NPCs and ghosts, or the
+        replayed ones."""
+        recorded = self.recorded.npcs
+        return len(self.npcs) + len(self.npc_ghosts) if recorded is None else len(recorded)
+
+    def _apply(self, response: Response, bodies: Bodies) -> None:
+        """Hand each moved simulated body its share of the response."""
+        moved = response.moved
+        displacement, velocity = response.displacements, response.velocities
+        change = velocity - bodies.velocities
+        for k, ego in enumerate(self.egos):
+            if moved[k]:
+                ego.vehicle.shove(tuple(displacement[k]), tuple(change[k]))
+        start = len(self.egos)
+        if self.recorded.npcs is None:
+            rows = np.flatnonzero(moved[start : start + len(self.npcs)])
+            if rows.size:
+                self.npcs.shove(rows, displacement[start + rows], velocity[start + rows])
+        start += self._shown_npc_count()
+        if self.recorded.pedestrians is None:
+            rows = np.flatnonzero(moved[start : start + len(self.pedestrians)])
+            if rows.size:
+                self.pedestrians.shove(rows, displacement[start + rows])
+        if self.recorded.obstacles is None:
+            start = len(moved) - len(self.obstacles)
+            rows = np.flatnonzero(moved[start:])
+            if rows.size:
+                self.obstacles.shove(rows, displacement[start + rows], velocity[start + rows])
+                self._place_obstacles_on_lanes()
 
     # -- scenarios ---------------------------------------------------------------------
 
@@ -592,13 +683,14 @@ class World:
             model, pose, speed = ego
             main = self.egos[0]
             if main.vehicle.model != model:
-                main.vehicle = ego_vehicle(model, pose)
+                main.vehicle = ego_vehicle(model, pose, self._command_timeout_s)
             main.vehicle.teleport(pose, speed)
         self.npcs.spawn(npcs)
         self.pedestrians.spawn(walkers)
         self.obstacles.spawn(things)
         self._place_obstacles_on_lanes()
         self._contacts.clear()
+        self.ego_contacts, self.vehicle_contacts = {}, []
         self._footprints = self._current_footprints()
         self.paused = options.set_pause
         network = scenario.network if options.load_network_connection_data else None

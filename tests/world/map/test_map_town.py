@@ -104,11 +104,20 @@ def test_stop_lines_only_on_approaches(town: LaneMap) -> None:
             assert all(town.lanes[s].is_junction for s in lane.successors)
 
 
-def test_heads_are_three_lamp_four_lamp_or_flashing(town: LaneMap) -> None:
-    # Type 1 (a red / yellow / left-arrow head over left-turn-only lanes) needs such
-    # lanes, which the town has none of; loaded maps use it.
+def test_the_town_shows_every_head_type_of_the_protocol(town: LaneMap) -> None:
     types = Counter(light.light_type for light in town.traffic_lights.values())
-    assert set(types) == {0, 2, 100}
+    assert set(types) == {0, 1, 2, 100}
+
+
+def test_the_left_arrow_only_head_stands_over_an_approach_that_cannot_go_straight(
+    town: LaneMap,
+) -> None:
+    (light,) = [t for t in town.traffic_lights.values() if t.light_type == 1]
+    inner, outer = (town.lanes[lane_id] for lane_id in light.lane_ids)
+    assert [("_left_" in s) for s in inner.successors] == [True]
+    assert [("_right_" in s) for s in outer.successors] == [True]
+    site = town.intersections[light.intersection_id]
+    assert (light.id,) in site.approach_groups
 
 
 def test_left_turn_heads_where_left_turns_exist(town: LaneMap) -> None:

@@ -1,4 +1,4 @@
-"""Command gate: clamping, rejection of non-finite values, timeout."""
+"""Command gate: clamping, rejection of non-finite values, holding, dead-man timeout."""
 
 from __future__ import annotations
 
@@ -41,10 +41,35 @@ def test_non_finite_command_is_rejected_and_the_last_valid_one_kept(niro, field,
     assert all(math.isfinite(component) for component in status.velocity)
 
 
-def test_unknown_mode_is_rejected(niro) -> None:
-    verdict = niro.command(ControlCommand(mode=7))
+@pytest.mark.parametrize("mode", [7, 4, -1])
+def test_unknown_mode_is_rejected(niro, mode) -> None:
+    verdict = niro.command(ControlCommand(mode=mode))
     assert not verdict.accepted
-    assert "7" in verdict.reason
+    assert str(mode) in verdict.reason
+
+
+def test_an_unset_mode_drives_by_the_pedals(drive, niro) -> None:
+    """MORAI's example client fills accel, brake and steering only: longlCmdType 0."""
+    command = ControlCommand(mode=LongitudinalMode.UNSET, accel=0.5, front_steer=0.05)
+    assert niro.command(command).accepted
+    *_, status = drive(niro, command, seconds=2.0)
+    assert (status.accel_pedal, status.brake_pedal) == (0.5, 0.0)
+    assert status.speed > 3.0
+
+
+def test_a_single_command_holds_until_the_next_one() -> None:
+    vehicle = Vehicle.from_catalogue()
+    assert vehicle.command_timeout is None
+    vehicle.command(ControlCommand(mode=LongitudinalMode.VELOCITY, velocity=30 / 3.6))
+    for _ in range(2000):
+        vehicle.step(0.01)
+    status = vehicle.status()
+    assert status.brake_pedal < 0.5
+    assert status.speed == pytest.approx(30 / 3.6, abs=0.3)
+    vehicle.command(ControlCommand(brake=1.0))
+    for _ in range(500):
+        vehicle.step(0.01)
+    assert vehicle.status().speed == 0.0
 
 
 def test_no_command_yet_means_held_brakes(niro) -> None:

@@ -139,8 +139,19 @@ def test_brake_scales_the_drive_down_to_a_stop() -> None:
     assert (status.accel_pedal, status.brake_pedal) == (1.0, 1.0)
 
 
-def test_silence_stops_the_vehicle_with_the_brake_reported() -> None:
+def test_a_command_holds_through_silence() -> None:
     robot = SkidSteerVehicle.from_catalogue(ROBOT)
+    settle(robot, SideEffortCommand(throttle=1.0))
+    speed = robot.status().speed
+    for _ in range(300):
+        robot.step(STEP)
+    status = robot.status()
+    assert status.speed == pytest.approx(speed)
+    assert (status.accel_pedal, status.brake_pedal) == (1.0, 0.0)
+
+
+def test_silence_past_the_dead_man_timeout_stops_the_vehicle_with_the_brake_reported() -> None:
+    robot = SkidSteerVehicle.from_catalogue(ROBOT, command_timeout=0.5)
     settle(robot, SideEffortCommand(throttle=1.0))
     for _ in range(300):
         robot.step(STEP)

@@ -17,6 +17,13 @@ def left_turn(drive, niro) -> VehicleStatus:
     return status
 
 
+def _cg_velocity(status: VehicleStatus, vehicle) -> tuple[float, float]:
+    """The CG's body velocity: the status reports the rear axle's, whose lateral speed
+    lacks the b·r the CG, b ahead of it, has."""
+    vx, vy, _ = status.velocity
+    return vx, vy + vehicle.model.cg_to_rear_axle * status.yaw_rate
+
+
 def test_axle_forces_are_what_the_steady_turn_needs(left_turn, niro) -> None:
     model = niro.model
     wheels = left_turn.wheels
@@ -31,8 +38,8 @@ def test_axle_forces_are_what_the_steady_turn_needs(left_turn, niro) -> None:
 def test_axle_forces_are_the_linear_tyre_forces(left_turn, niro) -> None:
     model = niro.model
     wheels = left_turn.wheels
-    vx, vy = left_turn.velocity[:2]
     r = left_turn.yaw_rate
+    vx, vy = _cg_velocity(left_turn, niro)
     front_slip = left_turn.front_steer - (vy + model.cg_to_front_axle * r) / vx
     rear_slip = -(vy - model.cg_to_rear_axle * r) / vx
     front = wheels.front_left.lateral_force + wheels.front_right.lateral_force
@@ -76,8 +83,8 @@ def test_outer_wheels_carry_the_load_transfer_and_more_force(left_turn, niro) ->
 def test_slip_angles_use_each_wheels_own_velocity(left_turn, niro) -> None:
     model = niro.model
     wheels = left_turn.wheels
-    vx, vy = left_turn.velocity[:2]
     r = left_turn.yaw_rate
+    vx, vy = _cg_velocity(left_turn, niro)
     half_track = model.track_width / 2.0
     a = model.cg_to_front_axle
     # Small angles: slip = steer − lateral / longitudinal velocity of the wheel centre.

@@ -15,6 +15,7 @@ from egosim.world.map.georef import GeoReference
 from egosim.world.map.light_type import LightType
 from egosim.world.map.polyline import segment_headings, stations
 from egosim.world.map.projection import LaneProjection, LaneProjections, SegmentTable
+from egosim.world.map.road_marking import RoadMarking
 
 # Gap between lanes on the flattened station axis, so a station never reaches the next lane.
 _LANE_KEY_GAP_M = 1.0
@@ -152,6 +153,8 @@ class LaneMap:
         self.crosswalks: dict[str, Crosswalk] = {c.id: c for c in crosswalks}
         self.sidewalks: dict[str, Sidewalk] = {s.id: s for s in sidewalks}
         self.georef = georef
+        self.markings: tuple[RoadMarking, ...] = ()
+        """Paint the map's data lists (empty: see egosim.world.map.markings)."""
         self.lane_ids: tuple[str, ...] = tuple(self.lanes)
         self._index = {lane_id: i for i, lane_id in enumerate(self.lane_ids)}
         self._check_references()
@@ -183,6 +186,12 @@ class LaneMap:
         (a loader that squares crosswalks to the lanes needs the lanes built first)."""
         result = copy.copy(self)
         result.crosswalks = {**self.crosswalks, **{c.id: c for c in crosswalks}}
+        return result
+
+    def with_markings(self, markings: Iterable[RoadMarking]) -> LaneMap:
+        """This map with the road markings its data lists; lanes and indexes are shared."""
+        result = copy.copy(self)
+        result.markings = tuple(markings)
         return result
 
     def _check_references(self) -> None:

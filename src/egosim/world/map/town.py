@@ -38,6 +38,10 @@ SIDEWALK_INSET_M = 10.0
 # Downtown junctions give left turns a phase of their own; one ring junction flashes.
 CENTRAL_JUNCTIONS = frozenset({6, 7, 10, 11})
 FLASHING_JUNCTION = 17
+# The stem of this ring T-junction (arriving from the north) has a left-only inner lane
+# and a right-only outer lane, and is served alone: it carries a red / yellow /
+# left-arrow head (type 1), so the town shows every head type of the protocol.
+LEFT_ARROW_ONLY_APPROACH = (18, "N")
 
 
 def grid_junction_id(row: int, column: int) -> int:
@@ -121,6 +125,8 @@ def build_town() -> LaneMap:
 def _light_type(junction_id: int, arm: str, can_turn_left: bool) -> LightType:
     if junction_id == FLASHING_JUNCTION:
         return LightType.FLASHING_YELLOW
+    if (junction_id, arm) == LEFT_ARROW_ONLY_APPROACH:
+        return LightType.RYG_LEFT
     return standard_light_type(junction_id, arm, can_turn_left)
 
 

@@ -10,7 +10,7 @@ import numpy.typing as npt
 
 from egosim.world.map import LaneMap
 from egosim.world.map.light_type import LightType
-from egosim.world.signals.aspects import LEFT_ARROW_TYPES, OFF, can_show
+from egosim.world.signals.aspects import LEFT_ARROW_TYPES, OFF, can_show, has_green
 from egosim.world.signals.controller import IntersectionController, IntersectionStatus
 from egosim.world.signals.errors import (
     UnknownIntersectionError,
@@ -64,6 +64,10 @@ class TrafficSignals:
         """Per light: its head only flashes yellow."""
         self.arrow_heads = np.isin(self.light_types, LEFT_ARROW_TYPES)
         """Per light: its head has a left-arrow lamp."""
+        self.arrow_only_heads = self.arrow_heads & ~np.array(
+            [has_green(int(t)) for t in self.light_types], dtype=bool
+        )
+        """Per light: its head has a left arrow and no round green (type 1)."""
         self.controllers: dict[int, IntersectionController] = {}
         self._overrides: dict[str, int] = {}
         self._aspects = np.full(len(self.light_ids), OFF, dtype=np.int64)

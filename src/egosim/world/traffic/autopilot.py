@@ -182,9 +182,8 @@ class LaneAutopilot:
         route = [lane_map.lane_ids[n] for n in self.path[1:]]
         path = lane_map.lookahead(lane_map.lane_ids[self.path[0]], s, lookahead, route)
         target_x, target_y = path[-1]
-        rear_x = pose.x - model.cg_to_rear_axle * math.cos(pose.yaw)
-        rear_y = pose.y - model.cg_to_rear_axle * math.sin(pose.yaw)
-        dx, dy = target_x - rear_x, target_y - rear_y
+        # The pose is the rear axle's midpoint.
+        dx, dy = target_x - pose.x, target_y - pose.y
         alpha = math.atan2(dy, dx) - pose.yaw
         steer = math.atan2(2.0 * model.wheelbase * math.sin(alpha), math.hypot(dx, dy))
         return min(max(steer, -model.max_steer_front), model.max_steer_front)

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from egosim.world.arrays import BoolArray, FloatArray, Indices
+from egosim.world.arrays import BoolArray, FloatArray, Indices, IntArray
 from egosim.world.traffic.idm import IntelligentDriverModel
 from egosim.world.traffic.junction_rules import (
     DECISION_MARGIN_M,
@@ -31,13 +31,15 @@ from egosim.world.traffic.objects import ObjectTable, ObjectType
 from egosim.world.traffic.signal_rules import LightsView, signal_permissions
 from egosim.world.vehicle import VehicleModel
 
+CRASH_BRAKE_DECEL_MPS2 = 7.0
+"""A crashed NPC's driver brakes this hard (dry asphalt, full brake) until it stands."""
 LOOKAHEAD_LANES = 2
 """Lanes beyond the current one searched for a leader and a stop line."""
 
 # Every per-NPC field, for removing NPCs.
 _PER_NPC_ARRAYS = (
     "unique_ids", "dims", "lane", "next_lanes", "s", "speed", "accel", "lateral",
-    "target_speed", "speed_factor", "delay", "crashed", "yellow", "pose", "yaw_rate",
+    "target_speed", "speed_factor", "delay", "crashed", "yellow", "pose", "yaw_rate", "mass",
     "change_to", "change_timer", "change_duration", "slide_from", "slide_elapsed",
 )  # fmt: skip
 _PER_NPC_LISTS = ("names", "routes", "route_pos")
@@ -96,6 +98,8 @@ class NpcFleet:
         self.unique_ids = np.empty(0, np.int64)
         self.names: list[str] = []
         self.dims = np.empty((0, 3))
+        self.mass = np.empty(0)
+        """kg, of each NPC's catalogue model."""
         """length, width, height, m."""
         self.lane = np.empty(0, np.int64)
         self.next_lanes = np.empty((0, LOOKAHEAD_LANES), np.int64)
@@ -138,6 +142,7 @@ class NpcFleet:
         self.lane = np.append(self.lane, [n.lane for n in spawns]).astype(np.int64)
         self.s = np.append(self.s, [n.s for n in spawns])
         self.speed = np.append(self.speed, [n.speed for n in spawns])
+        self.mass = np.append(self.mass, [n.model.mass for n in spawns])
         self.accel = np.append(self.accel, np.zeros(len(spawns)))
         self.lateral = np.append(self.lateral, [n.lateral for n in spawns])
         self.target_speed = np.append(
@@ -200,10 +205,26 @@ class NpcFleet:
         return LaneOccupants(self.lane, self.s, self.dims[:, 0] / 2.0, self.speed)
 
     def stop(self, indices: Indices) -> None:
-        """Crash stop: these NPCs halt at once and stay halted."""
+        """Crash stop: these NPCs brake to a standstill (CRASH_BRAKE_DECEL_MPS2) and stay."""
         self.crashed[indices] = True
-        self.speed[indices] = 0.0
-        self.accel[indices] = 0.0
+
+    def parked(self) -> BoolArray:
+        """Per NPC: still waiting to set off (a parked car, immovable in a contact)."""
+        return self.delay > 0.0
+
+    def shove(self, indices: IntArray, displacement: FloatArray, velocity: FloatArray) -> None:
+        """A contact's response: move NPCs `indices` by `displacement` (K, 2) m and take
+        the part of `velocity` (K, 2) m/s along their lane (an NPC does not reverse)."""
+        heading = self.pose[indices, 3]
+        along = np.column_stack((np.cos(heading), np.sin(heading)))
+        left = np.column_stack((-np.sin(heading), np.cos(heading)))
+        lengths = self.graph.length[self.lane[indices]]
+        self.s[indices] = np.clip(
+            self.s[indices] + np.einsum("kd,kd->k", displacement, along), 0.0, lengths
+        )
+        self.lateral[indices] += np.einsum("kd,kd->k", displacement, left)
+        self.speed[indices] = np.maximum(np.einsum("kd,kd->k", velocity, along), 0.0)
+        self.pose = self._poses()
 
     def step(self, dt: float, lights: LightsView, others: LaneOccupants) -> None:
         """Advance dt s among `others` (ego, pedestrians, obstacles placed on lanes)."""
@@ -231,10 +252,11 @@ class NpcFleet:
             self._junction_gap(occupants, half),
         )
         accel = np.minimum(accel, self.idm.acceleration(self.speed, v0, stop_gap, self.speed))
-        accel[frozen] = 0.0
+        accel[waiting] = 0.0
+        accel[self.crashed] = -np.minimum(self.speed[self.crashed] / dt, CRASH_BRAKE_DECEL_MPS2)
 
         new_speed = np.maximum(self.speed + accel * dt, 0.0)
-        new_speed[frozen] = 0.0
+        new_speed[waiting] = 0.0
         self.s = self.s + 0.5 * (self.speed + new_speed) * dt
         self.accel = (new_speed - self.speed) / dt
         self.speed = new_speed

@@ -84,6 +84,8 @@ class PedestrianCrowd:
         self.unique_ids: IntArray = np.empty(0, np.int64)
         self.s: FloatArray = np.empty(0)
         self.stopped: BoolArray = np.empty(0, bool)
+        self.shoved: FloatArray = np.empty((0, 2))
+        """Per pedestrian: how far contacts pushed them off their path, m (map frame)."""
         self._layout(())
         self.position: FloatArray = np.empty((0, 2))
         self.heading: FloatArray = np.empty(0)
@@ -100,11 +102,13 @@ class PedestrianCrowd:
         self.unique_ids = np.append(self.unique_ids, [p.unique_id for p in spawns])
         self.s = np.append(self.s, [p.start_s for p in spawns])
         self.stopped = np.append(self.stopped, np.zeros(len(spawns), bool))
+        self.shoved = np.vstack((self.shoved, np.zeros((len(spawns), 2))))
         self.velocity = np.vstack((self.velocity, np.zeros((len(spawns), 2))))
         self.acceleration = np.vstack((self.acceleration, np.zeros((len(spawns), 2))))
         self._layout(self._spawns)
         self.s = np.clip(self.s, 0.0, self.length)
-        self.position, self.heading = self._place(self.s)
+        position, self.heading = self._place(self.s)
+        self.position = position + self.shoved
 
     def _layout(self, spawns: Sequence[PedestrianSpawn]) -> None:
         """Flatten every path onto one station axis (keys), with the gates on it."""
@@ -156,8 +160,13 @@ class PedestrianCrowd:
         return xy, self._point_heading[j]
 
     def stop(self, indices: Indices) -> None:
-        """Struck pedestrians stay where they are."""
+        """Struck pedestrians stay where they are (or where a contact pushes them)."""
         self.stopped[indices] = True
+
+    def shove(self, indices: IntArray, displacement: FloatArray) -> None:
+        """A contact's response: push pedestrians `indices` by `displacement` (K, 2) m."""
+        self.shoved[indices] += displacement
+        self.position[indices] += displacement
 
     def step(self, dt: float, walk_allowed: BoolArray) -> None:
         """Advance dt s; walk_allowed[c] says whether crosswalk c may be entered now."""
@@ -182,6 +191,7 @@ class PedestrianCrowd:
         new_s = np.where(self.closed & (new_s > self.length), new_s - self.length, new_s)
         self.s = np.minimum(new_s, self.length)
         position, heading = self._place(self.s)
+        position += self.shoved
         velocity = (position - self.position) / dt
         self.acceleration = (velocity - self.velocity) / dt
         self.velocity = velocity

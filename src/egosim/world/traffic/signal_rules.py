@@ -13,15 +13,22 @@ from egosim.world.traffic.lane_graph import TURN_LEFT
 
 @dataclass(frozen=True, eq=False)
 class LightsView:
-    """Per light: the aspect now and two facts about its head (flashing, has a left arrow)."""
+    """Per light: the aspect now and facts about its head (flashing, has a left arrow,
+    has a left arrow and no round green)."""
 
     aspects: IntArray
     flashing: BoolArray
     arrow_head: BoolArray
+    arrow_only: BoolArray
 
     @classmethod
     def of(cls, signals: TrafficSignals) -> LightsView:
-        return cls(signals.aspects(), signals.flashing_heads, signals.arrow_heads)
+        return cls(
+            signals.aspects(),
+            signals.flashing_heads,
+            signals.arrow_heads,
+            signals.arrow_only_heads,
+        )
 
 
 def signal_permissions(
@@ -30,12 +37,15 @@ def signal_permissions(
     """(may proceed, shows a yellow to stop for) for vehicles facing lights `light`.
 
     A dark light (OFF) or a flashing-yellow head stops nobody. A left turn at a head with
-    a left arrow goes on the arrow only; every other movement goes on green. A yellow
-    without a go lamp asks the vehicle to stop if it comfortably can.
+    a left arrow goes on the arrow only; every other movement goes on green, except under
+    a head with no round green (type 1, over an approach served alone), whose arrow is
+    the only go lamp for all its movements. A yellow without a go lamp asks the vehicle
+    to stop if it comfortably can.
     """
     aspect = lights.aspects[light]
     dark = (aspect < 0) | lights.flashing[light]
-    go_lamp = np.where((turn == TURN_LEFT) & lights.arrow_head[light], GREEN_LEFT, GREEN)
+    on_arrow = ((turn == TURN_LEFT) & lights.arrow_head[light]) | lights.arrow_only[light]
+    go_lamp = np.where(on_arrow, GREEN_LEFT, GREEN)
     lit = np.where(dark, 0, aspect)
     proceed = dark | ((lit & go_lamp) != 0)
     yellow = ~proceed & ((lit & YELLOW) != 0)

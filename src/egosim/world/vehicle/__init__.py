@@ -9,6 +9,7 @@ Public API:
     SkidSteerVehicle, SideEffortCommand, BodyVelocityCommand   skid-steer ground vehicles
     GroundVehicleModel, GROUND_VEHICLE_CATALOGUE              their catalogue
     EGO_MODELS, ego_model, ego_vehicle, EgoModel, EgoVehicle  an ego of its model's kind
+    sensor_mount_origin                         MORAI's sensor mount origin in base_link
     VehicleError, UnknownVehicleModelError
 """
 
@@ -35,6 +36,7 @@ from egosim.world.vehicle.ego_kinds import (
 from egosim.world.vehicle.errors import UnknownVehicleModelError, VehicleError
 from egosim.world.vehicle.gear import Gear
 from egosim.world.vehicle.ground_catalogue import GROUND_VEHICLE_CATALOGUE, GroundVehicleModel
+from egosim.world.vehicle.mount_origin import sensor_mount_origin
 from egosim.world.vehicle.skid_steer import SkidSteerVehicle
 from egosim.world.vehicle.skid_steer_commands import BodyVelocityCommand, SideEffortCommand
 from egosim.world.vehicle.vehicle import Pose, RoadSurface, Vehicle, VehicleStatus
@@ -68,5 +70,6 @@ __all__ = [
     "Wheels",
     "ego_model",
     "ego_vehicle",
+    "sensor_mount_origin",
     "vehicle_model",
 ]

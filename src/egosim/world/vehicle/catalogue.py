@@ -69,6 +69,12 @@ class VehicleModel(VehicleBody):
         """Centre of the bounding box ahead of the CG along body x, m (negative: behind)."""
         return self.length / 2.0 - self.rear_overhang - self.cg_to_rear_axle
 
+    @property
+    def box_centre_ahead_of_reference(self) -> float:
+        """Centre of the bounding box ahead of the reference point (MORAI's vehicle origin,
+        the midpoint of the rear axle) along body x, m."""
+        return self.length / 2.0 - self.rear_overhang
+
 
 def _estimated_model(
     *,

@@ -1,9 +1,11 @@
 """Control commands as CtrlCmd defines them, and the gate that validates them.
 
 The gate clamps out-of-range values, rejects a command carrying NaN or an
-infinity (keeping the last valid one), and falls back to a safe brake when no
-command has arrived for `timeout` seconds of simulation time. It reads no
-clock: the caller passes the simulation time.
+infinity (keeping the last valid one) and holds the last valid command until the
+next one, as a simulator reading the latest value each frame does. Before the
+first command the brake is held. An optional dead-man `timeout` falls back to a
+safe brake when no command has arrived for that many seconds of simulation time.
+It reads no clock: the caller passes the simulation time.
 """
 
 from __future__ import annotations
@@ -14,13 +16,19 @@ from enum import IntEnum
 
 from egosim.world.vehicle.catalogue import VehicleModel
 
-DEFAULT_COMMAND_TIMEOUT = 0.5
-"""Seconds of silence after which the gate brakes the car."""
+DEFAULT_COMMAND_TIMEOUT: float | None = None
+"""Seconds of silence after which the gate brakes the car; None: the last command holds."""
 
 
 class LongitudinalMode(IntEnum):
-    """CtrlCmd.longlCmdType."""
+    """CtrlCmd.longlCmdType.
 
+    UNSET is the field's default: a client that fills only accel, brake and steering
+    (MORAI's own driving example does) leaves it 0, and MORAI SIM drives such a
+    command by its pedals, so the gate reads it as PEDALS.
+    """
+
+    UNSET = 0
     PEDALS = 1
     VELOCITY = 2
     ACCELERATION = 3
@@ -57,13 +65,23 @@ class CommandVerdict:
     """Fields brought into range."""
 
 
+def command_timed_out(received_at: float | None, timeout: float | None, sim_time: float) -> bool:
+    """Whether a gate that last took a command at `received_at` (None: never) falls back
+    to its safe command at `sim_time`, with dead-man `timeout` s (None: never)."""
+    if received_at is None:
+        return True
+    return timeout is not None and sim_time - received_at > timeout
+
+
 SAFE_BRAKE = ControlCommand(mode=LongitudinalMode.PEDALS, brake=1.0)
 
 
 class CommandGate:
     """Holds the command in force for a vehicle model."""
 
-    def __init__(self, model: VehicleModel, timeout: float = DEFAULT_COMMAND_TIMEOUT) -> None:
+    def __init__(
+        self, model: VehicleModel, timeout: float | None = DEFAULT_COMMAND_TIMEOUT
+    ) -> None:
         self._ranges = {
             "accel": (0.0, 1.0),
             "brake": (0.0, 1.0),
@@ -89,13 +107,21 @@ class CommandGate:
             value = getattr(command, name)
             if not low <= value <= high:
                 changes[name] = min(max(value, low), high)
-        self._command = replace(command, mode=LongitudinalMode(command.mode), **changes)
+        mode = LongitudinalMode(command.mode)
+        if mode is LongitudinalMode.UNSET:
+            mode = LongitudinalMode.PEDALS
+        self._command = replace(command, mode=mode, **changes)
         self._received_at = sim_time
         return CommandVerdict(True, clamped=tuple(changes))
 
+    def release(self) -> None:
+        """Forget the command in force: the brake is held, steering kept, until the next."""
+        self._received_at = None
+
     def timed_out(self, sim_time: float) -> bool:
-        """True before the first command and after `timeout` s without one."""
-        return self._received_at is None or sim_time - self._received_at > self.timeout
+        """True before the first command and, with a dead-man timeout, after `timeout` s
+        without one."""
+        return command_timed_out(self._received_at, self.timeout, sim_time)
 
     def active_command(self, sim_time: float) -> ControlCommand:
         """The command in force: the last valid one, or a full brake with the steering held."""

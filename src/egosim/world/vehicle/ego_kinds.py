@@ -27,8 +27,11 @@ def ego_model(name: str) -> EgoModel:
         raise UnknownVehicleModelError(name, sorted(EGO_MODELS)) from None
 
 
-def ego_vehicle(model: EgoModel, pose: Pose | None = None) -> EgoVehicle:
-    """A vehicle of `model`, of the kind the model is."""
+def ego_vehicle(
+    model: EgoModel, pose: Pose | None = None, command_timeout: float | None = None
+) -> EgoVehicle:
+    """A vehicle of `model`, of the kind the model is, with this dead-man timeout (s;
+    None: the last command holds)."""
     if isinstance(model, GroundVehicleModel):
-        return SkidSteerVehicle(model, pose)
-    return Vehicle(model, pose)
+        return SkidSteerVehicle(model, pose, command_timeout=command_timeout)
+    return Vehicle(model, pose, command_timeout=command_timeout)

@@ -41,6 +41,11 @@ class GroundVehicleModel(VehicleBody):
         """Centre of the bounding box ahead of the body origin along body x, m."""
         return (self.front_overhang - self.rear_overhang) / 2.0
 
+    @property
+    def box_centre_ahead_of_reference(self) -> float:
+        """The same: a skid-steer's reference point is its body origin, m."""
+        return self.bounding_box_center_offset
+
 
 GROUND_VEHICLE_CATALOGUE: dict[str, GroundVehicleModel] = {
     model.name: model

@@ -15,6 +15,7 @@ effective track B/η.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 from egosim.world.vehicle.catalogue import GRAVITY
@@ -56,7 +57,7 @@ class SkidSteerVehicle(GatedVehicle[SkidSteerCommand]):
         pose: Pose | None = None,
         *,
         gear: Gear = Gear.DRIVE,
-        command_timeout: float = DEFAULT_COMMAND_TIMEOUT,
+        command_timeout: float | None = DEFAULT_COMMAND_TIMEOUT,
         max_substep: float = DEFAULT_MAX_SUBSTEP,
     ) -> None:
         super().__init__(SkidSteerGate(command_timeout), gear, max_substep)
@@ -90,6 +91,16 @@ class SkidSteerVehicle(GatedVehicle[SkidSteerCommand]):
         self._pose = pose
         self._left = self._right = speed
         self._speed_rate = 0.0
+
+    def shove(self, displacement: tuple[float, float], change: tuple[float, float]) -> None:
+        """A contact's response: move by `displacement` (m) and change the forward speed
+        by the forward part of `change` (m/s), both in the map frame; tracks do not slide
+        sideways."""
+        pose = self._pose
+        forward = change[0] * math.cos(pose.yaw) + change[1] * math.sin(pose.yaw)
+        self._left += forward
+        self._right += forward
+        self._pose = replace(pose, x=pose.x + displacement[0], y=pose.y + displacement[1])
 
     def step(self, dt: float, surface: RoadSurface | None = None) -> None:
         """Advance dt seconds; surface, when given, is the ground under the vehicle now."""

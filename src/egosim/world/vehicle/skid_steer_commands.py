@@ -2,9 +2,11 @@
 
 Two kinds: direct side efforts (GVDirectCmd: throttle and skid steering) and
 body velocity targets (GVStateCmd, Twist). The gate clamps out-of-range values,
-rejects a command carrying NaN or an infinity (keeping the last valid one), and
-stops the vehicle when no command has arrived for `timeout` seconds of
-simulation time. It reads no clock: the caller passes the simulation time.
+rejects a command carrying NaN or an infinity (keeping the last valid one) and
+holds the last valid command until the next one; before the first command, and
+with the optional dead-man `timeout` after that many seconds of simulation time
+without one, the vehicle stops. It reads no clock: the caller passes the
+simulation time.
 """
 
 from __future__ import annotations
@@ -12,7 +14,11 @@ from __future__ import annotations
 import math
 from dataclasses import astuple, dataclass
 
-from egosim.world.vehicle.control import DEFAULT_COMMAND_TIMEOUT, CommandVerdict
+from egosim.world.vehicle.control import (
+    DEFAULT_COMMAND_TIMEOUT,
+    CommandVerdict,
+    command_timed_out,
+)
 from egosim.world.vehicle.ground_catalogue import GroundVehicleModel
 
 
@@ -72,7 +78,7 @@ _SIDE_EFFORT_RANGES = {"throttle": (-1.0, 1.0), "skid_steering": (-1.0, 1.0), "b
 class SkidSteerGate:
     """Holds the command in force for a skid-steer vehicle."""
 
-    def __init__(self, timeout: float = DEFAULT_COMMAND_TIMEOUT) -> None:
+    def __init__(self, timeout: float | None = DEFAULT_COMMAND_TIMEOUT) -> None:
         self.timeout = timeout
         self._command: SkidSteerCommand = STOP
         self._received_at: float | None = None
@@ -95,10 +101,15 @@ class SkidSteerGate:
         self._received_at = sim_time
         return CommandVerdict(True, clamped=clamped)
 
+    def release(self) -> None:
+        """Forget the command in force: the vehicle stops until the next one."""
+        self._received_at = None
+
     def timed_out(self, sim_time: float) -> bool:
-        """True before the first command and after `timeout` s without one."""
-        return self._received_at is None or sim_time - self._received_at > self.timeout
+        """True before the first command and, with a dead-man timeout, after `timeout` s
+        without one."""
+        return command_timed_out(self._received_at, self.timeout, sim_time)
 
     def active_command(self, sim_time: float) -> SkidSteerCommand:
-        """The command in force: the last valid one, or STOP after a timeout."""
+        """The command in force: the last valid one, or STOP before any or after a timeout."""
         return STOP if self.timed_out(sim_time) else self._command

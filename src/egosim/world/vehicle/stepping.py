@@ -14,9 +14,13 @@ CommandT = TypeVar("CommandT")
 
 
 class Gate(Protocol[CommandT]):
+    timeout: float | None
+
     def submit(self, command: CommandT, sim_time: float) -> CommandVerdict: ...
 
     def active_command(self, sim_time: float) -> CommandT: ...
+
+    def release(self) -> None: ...
 
 
 class GatedVehicle(Generic[CommandT]):
@@ -27,9 +31,23 @@ class GatedVehicle(Generic[CommandT]):
         self.max_substep = max_substep
         self._gate = gate
 
+    @property
+    def command_timeout(self) -> float | None:
+        """Dead-man timeout, s of simulation time without a command before the vehicle
+        brakes; None (the default): the last command holds until the next one."""
+        return self._gate.timeout
+
+    @command_timeout.setter
+    def command_timeout(self, seconds: float | None) -> None:
+        self._gate.timeout = seconds
+
     def command(self, command: CommandT) -> CommandVerdict:
         """Hand the vehicle a command, received now (at sim_time)."""
         return self._gate.submit(command, self.sim_time)
+
+    def release_command(self) -> None:
+        """Drop the command in force (its input stopped driving): brake until the next."""
+        self._gate.release()
 
     def _substeps(self, dt: float) -> Iterator[tuple[CommandT, float]]:
         """The substeps of a step of dt s: the command in force at each and its length;

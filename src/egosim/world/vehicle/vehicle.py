@@ -30,7 +30,8 @@ Vector3 = tuple[float, float, float]
 class Pose:
     """A frame's position (m) and REP 103 roll, pitch, yaw (rad) in its parent frame.
 
-    A vehicle's pose is its centre of gravity, its base_link, in the map (ENU, yaw 0 = east).
+    A vehicle's pose is its reference point, its base_link, in the map (ENU, yaw 0 = east):
+    for a road vehicle MORAI's vehicle origin, the midpoint of the rear axle on the road.
     """
 
     x: float = 0.0
@@ -62,9 +63,9 @@ class VehicleStatus:
 
     pose: Pose
     velocity: Vector3
-    """Body-frame velocity of the CG, m/s."""
+    """Body-frame velocity of the reference point, m/s."""
     acceleration: Vector3
-    """Body-frame kinematic acceleration of the CG (no gravity), m/s²."""
+    """Body-frame kinematic acceleration of the reference point (no gravity), m/s²."""
     yaw_rate: float
     """rad/s, counter-clockwise positive."""
     speed: float
@@ -90,7 +91,7 @@ class Vehicle(GatedVehicle[ControlCommand]):
         pose: Pose | None = None,
         *,
         gear: Gear = Gear.DRIVE,
-        command_timeout: float = DEFAULT_COMMAND_TIMEOUT,
+        command_timeout: float | None = DEFAULT_COMMAND_TIMEOUT,
         max_substep: float = DEFAULT_MAX_SUBSTEP,
     ) -> None:
         super().__init__(CommandGate(model, command_timeout), gear, max_substep)
@@ -118,12 +119,16 @@ class Vehicle(GatedVehicle[ControlCommand]):
     def teleport(
         self, pose: Pose, speed: float = 0.0, front_steer: float = 0.0, rear_steer: float = 0.0
     ) -> None:
-        """Put the vehicle at pose, moving at speed (m/s, body x) with these wheel angles (rad).
+        """Put the vehicle's reference point (the rear axle's midpoint) at pose, moving at
+        speed (m/s, body x) with these wheel angles (rad).
 
         The lateral motion is the kinematic one for that speed and steering.
         """
         state = self._state
-        state.x, state.y, state.z = pose.x, pose.y, pose.z
+        b = self.model.cg_to_rear_axle
+        state.x = pose.x + b * math.cos(pose.yaw)
+        state.y = pose.y + b * math.sin(pose.yaw)
+        state.z = pose.z
         state.roll, state.pitch, state.yaw = pose.roll, pose.pitch, pose.yaw
         state.vx = speed
         state.front_steer, state.rear_steer = front_steer, rear_steer
@@ -132,6 +137,18 @@ class Vehicle(GatedVehicle[ControlCommand]):
         )
         state.vx_rate = state.vy_rate = state.yaw_acceleration = 0.0
         self._acceleration_tracker.reset()
+        self._status = None
+
+    def shove(self, displacement: tuple[float, float], change: tuple[float, float]) -> None:
+        """A contact's response: move by `displacement` (m) and change the velocity by
+        `change` (m/s), both in the map frame; the yaw rate is kept (contacts act
+        through the centre)."""
+        state = self._state
+        state.x += displacement[0]
+        state.y += displacement[1]
+        cos_yaw, sin_yaw = math.cos(state.yaw), math.sin(state.yaw)
+        state.vx += cos_yaw * change[0] + sin_yaw * change[1]
+        state.vy += -sin_yaw * change[0] + cos_yaw * change[1]
         self._status = None
 
     def step(self, dt: float, surface: RoadSurface | None = None) -> None:
@@ -168,11 +185,18 @@ class Vehicle(GatedVehicle[ControlCommand]):
         return self._status
 
     def _current_status(self) -> VehicleStatus:
+        # The state integrates the CG; the rear axle lies b behind it: its velocity lacks
+        # the CG's b·r of lateral speed, its acceleration adds b·r² (centripetal) and
+        # -b·ṙ (lateral) to the CG's.
         state = self._state
+        b = self.model.cg_to_rear_axle
+        r = state.yaw_rate
+        x = state.x - b * math.cos(state.yaw)
+        y = state.y - b * math.sin(state.yaw)
         return VehicleStatus(
-            pose=Pose(state.x, state.y, state.z, state.roll, state.pitch, state.yaw),
-            velocity=(state.vx, state.vy, 0.0),
-            acceleration=(state.ax, state.ay, 0.0),
+            pose=Pose(x, y, state.z, state.roll, state.pitch, state.yaw),
+            velocity=(state.vx, state.vy - b * r, 0.0),
+            acceleration=(state.ax + b * r * r, state.ay - b * state.yaw_acceleration, 0.0),
             yaw_rate=state.yaw_rate,
             speed=math.hypot(state.vx, state.vy),
             accel_pedal=self._pedals.accel,

@@ -13,6 +13,12 @@ from tests.world.map.mgeo.sample_mgeo import (
 )
 
 from egosim.world.map import LaneMap, MapRecordError
+from egosim.world.map.markings import (
+    LineStyle,
+    MarkingColor,
+    MarkingKind,
+    map_markings,
+)
 from egosim.world.map.mgeo import build_mgeo_map
 
 
@@ -280,3 +286,56 @@ def test_lanes_end_on_their_nodes(sample):
             line = lane_map.lane(link["idx"]).centerline
             assert line[0] == pytest.approx(nodes[link["from_node_idx"]], abs=1e-9)
             assert line[-1] == pytest.approx(nodes[link["to_node_idx"]], abs=1e-9)
+
+
+def test_lane_boundaries_become_the_markings_they_describe():
+    files = mgeo_files()
+    files["lane_boundary_set.json"] = [
+        {
+            "idx": "centre",
+            "points": [[0.0, -120, 0], [0.0, 0, 0]],
+            "lane_type": 501,
+            "lane_color": "yellow",
+            "lane_shape": ["Solid", "Solid"],
+            "lane_width": 0.15,
+            "double_line_interval": 0.2,
+        },
+        {
+            "idx": "lanes",
+            "points": [[3.5, -120, 0], [3.5, 0, 0]],
+            "lane_type": 503,
+            "lane_color": "white",
+            "lane_shape": ["Broken"],
+            "lane_width": 0.12,
+            "dash_interval_L1": 5.0,
+            "dash_interval_L2": 8.0,
+        },
+        {
+            "idx": "stop",
+            "points": [[0.0, -10, 0], [3.5, -10, 0]],
+            "lane_type": 530,
+            "lane_color": "white",
+            "lane_shape": "Solid",
+            "lane_width": 0.45,
+        },
+        {"idx": "virtual", "points": [[7.0, -120, 0], [7.0, 0, 0]], "lane_shape": ["Solid"]},
+    ]
+    lane_map, notes = build(files)
+    markings = {m.id: m for m in lane_map.markings}
+    assert set(markings) == {"centre", "lanes", "stop"}
+    centre, lanes, stop = markings["centre"], markings["lanes"], markings["stop"]
+    assert (centre.color, centre.lines, centre.double_gap_m) == (
+        MarkingColor.YELLOW,
+        (LineStyle.SOLID, LineStyle.SOLID),
+        0.2,
+    )
+    assert (lanes.color, lanes.lines, lanes.width_m) == (
+        MarkingColor.WHITE,
+        (LineStyle.DASHED,),
+        0.12,
+    )
+    assert (lanes.dash_length_m, lanes.dash_gap_m) == (5.0, 8.0)
+    assert (stop.kind, stop.width_m) == (MarkingKind.STOP_LINE, 0.45)
+    assert any("virtual" in note and "no painted line" in note for note in notes)
+    # A map that lists its paint is painted with it, not from its lane graph.
+    assert map_markings(lane_map) == lane_map.markings

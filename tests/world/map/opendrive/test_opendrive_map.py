@@ -8,6 +8,7 @@ from tests.world.traffic.scenes import run, world_from
 from egosim.sensors import GpsModel
 from egosim.sensors.frames import Pose
 from egosim.world.map import LaneMap, MapRecordError
+from egosim.world.map.markings import LineStyle, MarkingColor
 from egosim.world.map.opendrive import build_opendrive_map
 
 JUNCTION_XODR = Path(__file__).parents[3] / "data" / "maps" / "junction.xodr"
@@ -352,3 +353,36 @@ def test_validity_and_orientation_select_the_governed_lanes():
     (site,) = lane_map.intersections.values()
     assert site.approach_groups == (("S1",),)
     assert any("S1 is in no controller" in note for note in notes)
+
+
+def test_road_marks_become_the_markings_on_their_borders():
+    width = 'a="3.5" b="0" c="0" d="0"'
+    lanes = f"""
+      <left><lane id="1" type="driving"><width sOffset="0" {width}/>
+        <roadMark sOffset="0" type="solid" color="standard" width="0.12"/></lane></left>
+      <center><lane id="0" type="none">
+        <roadMark sOffset="0" type="solid solid" color="yellow" width="0.15"/>
+        <roadMark sOffset="60" type="broken" color="yellow"/></lane></center>
+      <right>
+        <lane id="-1" type="driving"><width sOffset="0" {width}/>
+          <roadMark sOffset="0" type="broken" color="white"/></lane>
+        <lane id="-2" type="driving"><width sOffset="0" {width}/>
+          <roadMark sOffset="0" type="botts dots" color="white"/></lane>
+      </right>"""
+    lane_map, notes = build(single_road(lanes))
+    by_id = {m.id: m for m in lane_map.markings}
+    assert set(by_id) == {"7_0_1_0", "7_0_0_0", "7_0_0_1", "7_0_-1_0"}
+    centre, after = by_id["7_0_0_0"], by_id["7_0_0_1"]
+    assert (centre.color, centre.lines, centre.width_m) == (
+        MarkingColor.YELLOW,
+        (LineStyle.SOLID, LineStyle.SOLID),
+        0.15,
+    )
+    assert centre.points[:, 1] == pytest.approx(0.0)
+    assert (centre.points[0, 0], centre.points[-1, 0]) == pytest.approx((0.0, 60.0))
+    assert (after.lines, after.points[-1, 0]) == ((LineStyle.DASHED,), pytest.approx(100.0))
+    # Borders: lane 1's outer edge at t = 3.5, lane -1's at t = -3.5, at the road's height.
+    assert by_id["7_0_1_0"].points[:, 1] == pytest.approx(3.5)
+    assert by_id["7_0_-1_0"].points[:, 1] == pytest.approx(-3.5)
+    assert by_id["7_0_-1_0"].points[0, 2] == pytest.approx(2.0)
+    assert any("botts dots" in note for note in notes)

@@ -12,6 +12,7 @@ from egosim.world.map.mgeo.crosswalks import SINGLECROSSWALK_SET, read_crosswalk
 from egosim.world.map.mgeo.intersections import build_intersections
 from egosim.world.map.mgeo.lights import read_light_heads
 from egosim.world.map.mgeo.links import LinkEnds, read_lanes
+from egosim.world.map.mgeo.markings import read_markings
 from egosim.world.map.mgeo.nodes import Node, read_nodes
 from egosim.world.map.mgeo.records import Record, records, unique_by_idx
 
@@ -65,7 +66,10 @@ def build_mgeo_map(name: str, files: Mapping[str, object], notes: list[str]) -> 
     except MapGeometryError as error:
         raise MapRecordError(LINK_SET, "lane graph", str(error)) from None
     crossings = _records(files, SINGLECROSSWALK_SET)
-    return lane_map.with_crosswalks(read_crosswalks(crossings, lane_map, notes))
+    markings = read_markings(_records(files, LANE_BOUNDARY_SET), notes)
+    return lane_map.with_crosswalks(read_crosswalks(crossings, lane_map, notes)).with_markings(
+        markings
+    )
 
 
 def read_georeference(data: object) -> GeoReference:

@@ -34,6 +34,16 @@ class LinkTarget:
 
 
 @dataclass(frozen=True)
+class RoadMarkRecord:
+    """<roadMark>: the paint on a lane's outer border from `s_offset` (m into the section)."""
+
+    s_offset: float
+    type: str
+    color: str
+    width: float | None
+
+
+@dataclass(frozen=True)
 class LaneRecord:
     id: int
     type: str
@@ -43,6 +53,7 @@ class LaneRecord:
     speed: float | None
     """m/s, from the lane's first <speed>."""
     has_border: bool
+    road_marks: tuple[RoadMarkRecord, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -50,6 +61,8 @@ class LaneSection:
     s: float
     lanes: tuple[LaneRecord, ...]
     """Left and right lanes (not the centre lane), in file order."""
+    center_marks: tuple[RoadMarkRecord, ...] = ()
+    """The centre lane's road marks (on the reference line shifted by laneOffset)."""
 
 
 @dataclass(frozen=True)
@@ -368,7 +381,21 @@ def _section(section: _Element) -> LaneSection:
         for lane in section.children(f"{side}/lane", f"{side} lane"):
             lane.label = f"{section.label} lane id={lane.text('id')!r}"
             records.append(_lane(lane))
-    return LaneSection(s, tuple(records))
+    centre = section.child("center/lane", "center lane")
+    return LaneSection(s, tuple(records), _road_marks(centre) if centre is not None else ())
+
+
+def _road_marks(lane: _Element) -> tuple[RoadMarkRecord, ...]:
+    marks = [
+        RoadMarkRecord(
+            s_offset=mark.number("sOffset", 0.0),
+            type=mark.text("type", "none"),
+            color=mark.text("color", "standard"),
+            width=mark.number("width") if mark.element.get("width") is not None else None,
+        )
+        for mark in lane.children("roadMark", "roadMark")
+    ]
+    return tuple(sorted(marks, key=lambda m: m.s_offset))
 
 
 def _lane(lane: _Element) -> LaneRecord:
@@ -390,6 +417,7 @@ def _lane(lane: _Element) -> LaneRecord:
         successor=successor,
         speed=_speed(speeds[0]) if speeds else None,
         has_border=lane.element.find("border") is not None,
+        road_marks=_road_marks(lane),
     )
 
 

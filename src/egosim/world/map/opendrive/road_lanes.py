@@ -15,7 +15,8 @@ import numpy as np
 
 from egosim.world.arrays import FloatArray
 from egosim.world.map.lanes import Sidewalk
-from egosim.world.map.opendrive.document import LaneRecord, Road
+from egosim.world.map.markings import LANE_LINE_WIDTH_M, LineStyle, MarkingColor, RoadMarking
+from egosim.world.map.opendrive.document import LaneRecord, Road, RoadMarkRecord
 from egosim.world.map.opendrive.polynomials import evaluate as evaluate_cubics
 from egosim.world.map.opendrive.reference_line import (
     lateral_points,
@@ -30,6 +31,23 @@ DEFAULT_SPEED_LIMIT_MPS = 50.0 / 3.6
 # Lanes that open from or close to nothing keep this width where their polynomial reaches 0.
 MIN_LANE_WIDTH_M = 0.05
 _SAME_POINT_M = 1e-6
+# <roadMark type>: its lines left to right; "none" paints nothing; other types (botts
+# dots, grass, curb, custom) are reported and not drawn.
+SOLID, DASHED = LineStyle.SOLID, LineStyle.DASHED
+MARK_TYPES = {
+    "solid": (SOLID,),
+    "broken": (DASHED,),
+    "solid solid": (SOLID, SOLID),
+    "solid broken": (SOLID, DASHED),
+    "broken solid": (DASHED, SOLID),
+    "broken broken": (DASHED, DASHED),
+}
+MARK_COLORS = {
+    "standard": MarkingColor.WHITE,
+    "white": MarkingColor.WHITE,
+    "yellow": MarkingColor.YELLOW,
+    "blue": MarkingColor.BLUE,
+}
 
 
 @dataclass(frozen=True, order=True)
@@ -93,6 +111,59 @@ def road_lanes(road: Road, notes: list[str]) -> tuple[list[RoadLane], list[Sidew
             if lane is not None:
                 lanes.append(lane)
     return lanes, sidewalks
+
+
+def road_markings(road: Road, notes: list[str]) -> list[RoadMarking]:
+    """The paint of the road's <roadMark> records: on the centre lane's line and on each
+    lane's outer border, one marking per record (to the next record or the section end)."""
+    stations = sample_stations(road, SAMPLE_STEP_M)
+    markings = []
+    for k, section in enumerate(road.sections):
+        start, end = section_range(road, k)
+        s = stations[(stations >= start - 1e-9) & (stations <= end + 1e-9)]
+        if len(s) < 2 or not (section.center_marks or any(r.road_marks for r in section.lanes)):
+            continue
+        poses = reference_poses(road, s)
+        centres, widths = _lateral_layout(road, section.lanes, s - start, s, [])
+        borders = {0: evaluate_cubics(road.lane_offsets, s)}
+        for lane_id, centre in centres.items():
+            borders[lane_id] = centre + np.sign(lane_id) * widths[lane_id] / 2.0
+        marked = [(0, section.center_marks), *((r.id, r.road_marks) for r in section.lanes)]
+        for lane_id, marks in marked:
+            for m, mark in enumerate(marks):
+                if mark.type == "none":
+                    continue
+                mark_end = marks[m + 1].s_offset if m + 1 < len(marks) else end - start
+                inside = (s - start >= mark.s_offset - 1e-9) & (s - start <= mark_end + 1e-9)
+                if np.count_nonzero(inside) < 2:
+                    continue  # a mark shorter than the sampling step
+                painted = _marking(
+                    f"{road.id}_{k}_{lane_id}_{m}", mark, poses[inside], borders[lane_id][inside]
+                )
+                if painted is None:
+                    notes.append(
+                        f"road {road.id}: roadMark type {mark.type!r} color {mark.color!r} "
+                        "not drawn"
+                    )
+                else:
+                    markings.append(painted)
+    return markings
+
+
+def _marking(
+    marking_id: str, mark: RoadMarkRecord, poses: FloatArray, t: FloatArray
+) -> RoadMarking | None:
+    """The painted line of a roadMark, or None for a type or colour that is not drawn."""
+    lines = MARK_TYPES.get(mark.type)
+    color = MARK_COLORS.get(mark.color)
+    if lines is None or color is None:
+        return None
+    points = np.column_stack((lateral_points(poses, t), poses[:, 2]))
+    keep = np.concatenate(([True], np.hypot(*np.diff(points[:, :2], axis=0).T) > _SAME_POINT_M))
+    if np.count_nonzero(keep) < 2:
+        return None
+    width = mark.width if mark.width is not None and mark.width > 0.0 else LANE_LINE_WIDTH_M
+    return RoadMarking(marking_id, points[keep], color, lines, width_m=width)
 
 
 def _lateral_layout(

@@ -1,0 +1,95 @@
+"""CPU a 30 Hz camera costs in a real-time run of the town, watched and unwatched.
+
+Starts `egosim run` (town, default scenario, real-time clock) three times for the same
+wall time: no subscriber, a subscriber to /image_jpeg/compressed (640 x 480 JPEG, 30 Hz)
+and, as a base, the same with `cameras: []` in the network settings. Reports the
+simulator's CPU time per wall second (user + system, from /proc) and the frames the
+subscriber received.
+
+Usage: .venv/bin/python benchmarks/camera_cpu.py [--seconds 20]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+from loopback import free_port
+
+from egosim.msgs import get_profile
+from egosim.ros1 import Node
+
+CLOCK_TICKS = os.sysconf("SC_CLK_TCK")
+
+
+def cpu_seconds(pid: int) -> float:
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / CLOCK_TICKS
+
+
+def measure(seconds: float, watch: bool, network: Path | None) -> tuple[float, int]:
+    uri = f"http://127.0.0.1:{free_port()}/"
+    env = dict(os.environ, ROS_MASTER_URI=uri, ROS_IP="127.0.0.1")
+    command = [sys.executable, "-m", "egosim", "run", "--log-level", "WARNING"]
+    if network is not None:
+        command += ["--network", str(network)]
+    process = subprocess.Popen(command, env=env, stdout=subprocess.PIPE, text=True)
+    assert process.stdout is not None
+    for line in process.stdout:
+        if line.strip() == "egosim: ready":
+            break
+    frames = 0
+    lock = threading.Lock()
+    node = None
+    if watch:
+        os.environ["ROS_MASTER_URI"] = uri
+        node = Node("camera_cpu_watcher", [])
+
+        def received(data: bytes, header: object) -> None:
+            nonlocal frames
+            with lock:
+                frames += 1
+
+        image_type = get_profile("26.r1").message("sensor_msgs/CompressedImage")
+        node.subscribe("/image_jpeg/compressed", image_type, received)
+    time.sleep(3.0)
+    with lock:
+        frames = 0
+    start_cpu, start = cpu_seconds(process.pid), time.monotonic()
+    time.sleep(seconds)
+    used = (cpu_seconds(process.pid) - start_cpu) / (time.monotonic() - start)
+    with lock:
+        received_frames = frames
+    if node is not None:
+        node.shutdown("done")
+    process.terminate()
+    process.wait(timeout=30)
+    return used, received_frames
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--seconds", type=float, default=20.0)
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as folder:
+        no_cameras = Path(folder) / "no_cameras.yaml"
+        no_cameras.write_text("sensors:\n  cameras: []\n")
+        base, _ = measure(args.seconds, False, no_cameras)
+        unwatched, _ = measure(args.seconds, False, None)
+        watched, frames = measure(args.seconds, True, None)
+    print(f"no camera configured: {100 * base:.0f} % of a core")
+    print(f"camera, no subscriber: {100 * unwatched:.0f} % of a core")
+    print(
+        f"camera, one subscriber: {100 * watched:.0f} % of a core "
+        f"({frames / args.seconds:.1f} frames/s received)"
+    )
+
+
+if __name__ == "__main__":
+    main()

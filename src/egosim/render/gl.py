@@ -1,0 +1,186 @@
+"""The camera renderer on OpenGL 3.3 through moderngl, in a headless EGL context.
+
+No display server is needed: EGL's surfaceless platform with Mesa renders on the CPU
+(llvmpipe). The static scene is uploaded once per map; a frame's moving triangles are
+written to a buffer reused across frames. One shader draws every mode: the vertex
+carries its shaded, semantic and instance colours and the mode picks one; depth mode
+writes the distance along the optical axis to a float32 target.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from egosim.sensors.camera import CameraMode, projection_matrix, view_matrix
+from egosim.sensors.camera_labels import SEMANTIC_COLORS, SemanticClass
+from egosim.sensors.camera_render import SKY_RGB, RenderRequest
+from egosim.sensors.camera_scene import Mesh
+from egosim.sensors.errors import RendererUnavailableError
+
+VERTEX_SHADER = """
+#version 330
+uniform mat4 clip_from_scene;
+uniform mat4 eye_from_scene;
+uniform int mode;
+in vec3 in_position;
+in vec3 in_color;
+in vec3 in_semantic;
+in vec3 in_instance;
+flat out vec3 v_color;
+out float v_depth;
+void main() {
+    vec4 point = vec4(in_position, 1.0);
+    gl_Position = clip_from_scene * point;
+    v_depth = -(eye_from_scene * point).z;
+    v_color = mode == 1 ? in_semantic : (mode == 2 ? in_instance : in_color);
+}
+"""
+
+FRAGMENT_SHADER = """
+#version 330
+uniform int mode;
+flat in vec3 v_color;
+in float v_depth;
+out vec4 f_color;
+void main() {
+    f_color = mode == 3 ? vec4(v_depth, 0.0, 0.0, 1.0) : vec4(v_color, 1.0);
+}
+"""
+
+SYSTEM_PACKAGES = ("libegl1", "libgl1", "libegl-mesa0", "libgl1-mesa-dri")
+"""Debian packages EGL rendering on the CPU needs (the Makefile installs them)."""
+
+MODE_CODES = {
+    CameraMode.RGB: 0,
+    CameraMode.SEMANTIC: 1,
+    CameraMode.INSTANCE: 2,
+    CameraMode.DEPTH: 3,
+}
+BACKGROUND = {
+    CameraMode.RGB: SKY_RGB,
+    CameraMode.SEMANTIC: SEMANTIC_COLORS[SemanticClass.SKY],
+    CameraMode.INSTANCE: (0, 0, 0),
+}
+VERTEX = np.dtype(
+    [("position", "<f4", 3), ("color", "u1", 4), ("semantic", "u1", 4), ("instance", "u1", 4)]
+)
+VERTEX_FORMAT = "3f 3f1 1x 3f1 1x 3f1 1x"
+ATTRIBUTES = ("in_position", "in_color", "in_semantic", "in_instance")
+
+
+def vertex_bytes(mesh: Mesh) -> bytes:
+    vertices = np.zeros(len(mesh), dtype=VERTEX)
+    vertices["position"] = mesh.positions
+    vertices["color"][:, :3] = mesh.colors
+    vertices["semantic"][:, :3] = mesh.semantic
+    vertices["instance"][:, :3] = mesh.instance
+    return vertices.tobytes()
+
+
+class GlRenderer:
+    """CameraRenderer on a moderngl context (see open_renderer)."""
+
+    def __init__(self, context: Any) -> None:
+        self._ctx = context
+        self._program = context.program(
+            vertex_shader=VERTEX_SHADER, fragment_shader=FRAGMENT_SHADER
+        )
+        self._scene: object | None = None
+        self._static: tuple[Any, Any] | None = None
+        self._dynamic_buffer = context.buffer(reserve=VERTEX.itemsize * 3, dynamic=True)
+        self._dynamic_array = self._vertex_array(self._dynamic_buffer)
+        self._targets: dict[tuple[int, int, bool], Any] = {}
+
+    @property
+    def description(self) -> str:
+        info = self._ctx.info
+        return f"OpenGL {info['GL_VERSION']} on {info['GL_RENDERER']}"
+
+    def _vertex_array(self, buffer: Any) -> Any:
+        return self._ctx.vertex_array(self._program, [(buffer, VERTEX_FORMAT, *ATTRIBUTES)])
+
+    def _framebuffer(self, width: int, height: int, depth_mode: bool) -> Any:
+        key = (width, height, depth_mode)
+        if key not in self._targets:
+            ctx = self._ctx
+            colour = (
+                ctx.renderbuffer((width, height), components=1, dtype="f4")
+                if depth_mode
+                else ctx.renderbuffer((width, height), components=4)
+            )
+            depth = ctx.depth_renderbuffer((width, height))
+            self._targets[key] = ctx.framebuffer(color_attachments=[colour], depth_attachment=depth)
+        return self._targets[key]
+
+    def _static_array(self, request: RenderRequest) -> Any:
+        if self._scene is not request.scene:
+            if self._static is not None:
+                for resource in reversed(self._static):
+                    resource.release()
+            buffer = self._ctx.buffer(vertex_bytes(request.scene.mesh))
+            self._static = (buffer, self._vertex_array(buffer))
+            self._scene = request.scene
+        assert self._static is not None
+        return self._static[1]
+
+    def render(self, request: RenderRequest) -> npt.NDArray[np.uint8] | npt.NDArray[np.float32]:
+        ctx, mode = self._ctx, request.mode
+        intrinsics = request.intrinsics
+        width, height = intrinsics.width, intrinsics.height
+        depth_mode = mode is CameraMode.DEPTH
+        framebuffer = self._framebuffer(width, height, depth_mode)
+        framebuffer.use()
+        ctx.viewport = (0, 0, width, height)
+        ctx.enable(ctx.DEPTH_TEST)
+        ctx.disable(ctx.CULL_FACE)
+        if depth_mode:
+            framebuffer.clear(red=math.inf, green=0.0, blue=0.0, alpha=0.0, depth=1.0)
+        else:
+            r, g, b = (c / 255.0 for c in BACKGROUND[mode])
+            framebuffer.clear(red=r, green=g, blue=b, alpha=1.0, depth=1.0)
+
+        scene_to_map = np.eye(4)
+        scene_to_map[:3, 3] = request.scene.origin
+        eye = view_matrix(request.view) @ scene_to_map
+        clip = projection_matrix(intrinsics, request.near_m, request.far_m) @ eye
+        program = self._program
+        program["clip_from_scene"].write(clip.T.astype("f4").tobytes())
+        program["eye_from_scene"].write(eye.T.astype("f4").tobytes())
+        program["mode"].value = MODE_CODES[mode]
+
+        self._static_array(request).render()
+        if len(request.frame):
+            data = vertex_bytes(request.frame)
+            if len(data) > self._dynamic_buffer.size:
+                self._dynamic_buffer.orphan(len(data))
+            self._dynamic_buffer.write(data)
+            self._dynamic_array.render(vertices=len(request.frame))
+
+        if depth_mode:
+            raw = framebuffer.read(components=1, dtype="f4", alignment=1)
+            image = np.frombuffer(raw, dtype="<f4").reshape(height, width)
+            return np.ascontiguousarray(image[::-1])
+        raw = framebuffer.read(components=3, alignment=1)
+        pixels = np.frombuffer(raw, dtype=np.uint8).reshape(height, width, 3)
+        return np.ascontiguousarray(pixels[::-1])
+
+
+def open_renderer() -> GlRenderer:
+    """The OpenGL renderer on a headless EGL context; RendererUnavailableError if none."""
+    try:
+        import moderngl  # noqa: PLC0415 - a missing engine is reported, not fatal
+    except ImportError as error:
+        raise RendererUnavailableError(f"moderngl is not installed ({error})") from None
+    try:
+        # The runtime libraries' sonames (libegl1, libgl1), not the -dev packages' links.
+        egl: dict[str, Any] = {"backend": "egl", "libgl": "libGL.so.1", "libegl": "libEGL.so.1"}
+        context = moderngl.create_context(standalone=True, require=330, **egl)
+    except Exception as error:  # glcontext raises bare Exceptions for a missing libEGL/driver
+        raise RendererUnavailableError(
+            f"no OpenGL 3.3 through EGL ({error}); install {' '.join(SYSTEM_PACKAGES)}"
+        ) from None
+    return GlRenderer(context)
