@@ -11,16 +11,13 @@ Usage: .venv/bin/python benchmarks/record_kill.py [--runs 5] [--seconds 3]
 from __future__ import annotations
 
 import argparse
-import os
 import signal
 import statistics
-import subprocess
-import sys
 import tempfile
 import time
 from pathlib import Path
 
-from loopback import free_port
+from loopback import start_simulator
 from rosbags.rosbag1 import Reader
 
 from egosim.replay import repair_bag
@@ -29,17 +26,7 @@ from egosim.replay import repair_bag
 def loss_of_one_run(seconds: float, folder: Path) -> tuple[float, int]:
     """(seconds of messages lost, messages kept) for one killed recording."""
     bag = folder / f"killed-{time.monotonic_ns()}.bag"
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{free_port()}/", ROS_IP="127.0.0.1")
-    process = subprocess.Popen(
-        [sys.executable, "-m", "egosim", "run", "--record", str(bag), "--log-level", "WARNING"],
-        env=env,
-        stdout=subprocess.PIPE,
-        text=True,
-    )
-    assert process.stdout is not None
-    for line in process.stdout:
-        if line.strip() == "egosim: ready":
-            break
+    process = start_simulator("--record", str(bag))
     time.sleep(seconds)
     killed_at = time.time()
     process.send_signal(signal.SIGKILL)

@@ -9,28 +9,15 @@ Usage: .venv/bin/python benchmarks/shutdown.py [--runs 5]
 from __future__ import annotations
 
 import argparse
-import os
 import signal
 import statistics
-import subprocess
-import sys
 import time
 
-from loopback import free_port
+from loopback import start_simulator
 
 
 def time_stop(stop_signal: signal.Signals) -> float:
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{free_port()}/", ROS_IP="127.0.0.1")
-    process = subprocess.Popen(
-        [sys.executable, "-m", "egosim", "run", "--log-level", "WARNING"],
-        env=env,
-        stdout=subprocess.PIPE,
-        text=True,
-    )
-    assert process.stdout is not None
-    for line in process.stdout:
-        if line.strip() == "egosim: ready":
-            break
+    process = start_simulator()
     time.sleep(1.0)
     started = time.monotonic()
     process.send_signal(stop_signal)

@@ -14,15 +14,13 @@ Usage: .venv/bin/python benchmarks/sync_mode.py [--ticks 2000] [--ticks-per-call
 from __future__ import annotations
 
 import argparse
-import os
 import subprocess
-import sys
 import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-from loopback import free_port
+from loopback import free_port, start_simulator
 
 from egosim.bridge.network import default_network_settings
 from egosim.bridge.table import Direction
@@ -31,21 +29,6 @@ from egosim.ros1 import Node
 
 TICK_MS = 10
 USER = "benchmark"
-
-
-def start_simulator(master_uri: str) -> subprocess.Popen[str]:
-    env = dict(os.environ, ROS_MASTER_URI=master_uri, ROS_IP="127.0.0.1")
-    process = subprocess.Popen(
-        [sys.executable, "-m", "egosim", "run", "--clock", "sync", "--log-level", "WARNING"],
-        env=env,
-        stdout=subprocess.PIPE,
-        text=True,
-    )
-    assert process.stdout is not None
-    for line in process.stdout:
-        if line.strip() == "egosim: ready":
-            return process
-    raise RuntimeError("egosim exited before it was ready")
 
 
 class Counter:
@@ -62,7 +45,7 @@ class Counter:
 def simulator_client(name: str) -> Iterator[tuple[Node, subprocess.Popen[str]]]:
     """`egosim run --clock sync` as a subprocess, and a node `name` on its master."""
     master_uri = f"http://127.0.0.1:{free_port()}/"
-    simulator = start_simulator(master_uri)
+    simulator = start_simulator("--clock", "sync", master_uri=master_uri)
     try:
         with Node(name, master_uri=master_uri, rosout_logger=None) as node:
             yield node, simulator

@@ -4,12 +4,12 @@ PYTHONPATH, read, command and call the simulator, in every release."""
 from __future__ import annotations
 
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from egosim.msgs import PROFILES
+from tests.msgs.test_export import export_python
 
 pytestmark = pytest.mark.ros
 
@@ -23,21 +23,7 @@ def test_ros_tools_work_with_the_exported_modules(
 ) -> None:
     simulator = egosim("--map", "straight")
     exported = tmp_path / "morai_py"
-    subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "egosim",
-            "msgs",
-            "--export-python",
-            str(exported),
-            "--profile",
-            profile,
-        ],
-        check=True,
-        capture_output=True,
-        timeout=300,
-    )
+    export_python(exported, profile)
     env = dict(
         ros_env, PYTHONPATH=str(exported), ROS_MASTER_URI=simulator.master_uri, ROS_IP="127.0.0.1"
     )

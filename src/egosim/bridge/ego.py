@@ -32,7 +32,6 @@ def ego_vehicle_status(
     lane: EgoLaneState | None,
 ) -> Any:
     """morai_msgs/EgoVehicleStatus of one ego; lane fields are 0 off the road network."""
-    pose = status.pose
     wheels: dict[str, float] = {}
     for suffix, attribute in WHEEL_SUFFIXES:
         wheel = getattr(status.wheels, attribute)
@@ -41,14 +40,7 @@ def ego_vehicle_status(
         wheels[f"tire_cornering_stiffness_{suffix}"] = wheel.cornering_stiffness
     lateral = lane.lateral_offset if lane is not None else 0.0
     return profile.message("morai_msgs/EgoVehicleStatus").new(
-        header=header,
-        unique_id=unique_id,
-        acceleration=vector3(profile, status.acceleration),
-        position=vector3(profile, (pose.x, pose.y, pose.z)),
-        velocity=vector3(profile, status.velocity),
-        heading=heading_deg(pose.yaw),
-        accel=status.accel_pedal,
-        brake=status.brake_pedal,
+        **ego_motion_fields(profile, header, unique_id, status),
         front_steer_angle=deg(status.front_steer),
         rear_steer_angle=deg(status.rear_steer),
         lateral_offset=lateral,
@@ -57,6 +49,23 @@ def ego_vehicle_status(
         cross_track_error=lane.cross_track_error if lane is not None else 0.0,
         **wheels,
     )
+
+
+def ego_motion_fields(
+    profile: Profile, header: Any, unique_id: int, status: VehicleStatus
+) -> dict[str, Any]:
+    """The fields EgoVehicleStatus and EgoVehicleStatusExtended share, in protocol units."""
+    pose = status.pose
+    return {
+        "header": header,
+        "unique_id": unique_id,
+        "acceleration": vector3(profile, status.acceleration),
+        "position": vector3(profile, (pose.x, pose.y, pose.z)),
+        "velocity": vector3(profile, status.velocity),
+        "heading": heading_deg(pose.yaw),
+        "accel": status.accel_pedal,
+        "brake": status.brake_pedal,
+    }
 
 
 def control_command(ctrl_cmd: Any) -> ControlCommand:

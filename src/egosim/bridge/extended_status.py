@@ -19,10 +19,11 @@ from ..sensors.rotation import quaternion_from_euler
 from ..world.traffic import ObjectState
 from ..world.vehicle import Vehicle, VehicleStatus
 from .context import BridgeContext
-from .messages import quaternion, vector3
+from .ego import ego_motion_fields
+from .messages import quaternion
 from .objects import object_status_fields
 from .table import Row
-from .units import deg, heading_deg
+from .units import deg
 
 FRONT, REAR = 0, 1
 
@@ -51,7 +52,6 @@ def publish_ego_status_extended(context: BridgeContext, row: Row) -> Any:
     index = context.session.camera_index if context.session.camera_index < len(world.egos) else 0
     ego = world.egos[index]
     status = world.ego_status(index)
-    pose = status.pose
     vehicle = ego.vehicle
     fl, fr, rl, rr = (
         wheel_speeds(vehicle, status) if isinstance(vehicle, Vehicle) else (status.speed,) * 4
@@ -61,14 +61,7 @@ def publish_ego_status_extended(context: BridgeContext, row: Row) -> Any:
     )
     profile = context.profile
     return profile.message("morai_msgs/EgoVehicleStatusExtended").new(
-        header=context.header(),
-        unique_id=ego.unique_id,
-        acceleration=vector3(profile, status.acceleration),
-        position=vector3(profile, (pose.x, pose.y, pose.z)),
-        velocity=vector3(profile, status.velocity),
-        heading=heading_deg(pose.yaw),
-        accel=status.accel_pedal,
-        brake=status.brake_pedal,
+        **ego_motion_fields(profile, context.header(), ego.unique_id, status),
         wheel_angle=deg(status.front_steer),
         wheel_angle_speed=deg(steer_rate),
         FL_wheel_speed=fl,
