@@ -158,7 +158,7 @@ def test_left_key_turns_left_and_the_wheel_returns(straight: BridgeContext) -> N
     assert abs(straight.world.ego_status(0).front_steer) < 0.01
 
 
-def test_a_silent_page_leaves_the_ego_to_its_command_timeout(straight: BridgeContext) -> None:
+def test_a_silent_page_brakes_the_ego_to_a_stop(straight: BridgeContext) -> None:
     controls, stage = controls_of(straight)
     controls.apply({"op": "ctrl_mode", "mode": 1})
     drive(straight, controls, 3.0, throttle=True)

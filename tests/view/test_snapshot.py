@@ -16,9 +16,9 @@ from egosim.view.snapshot import (
     SensorImage,
     capture_frame,
     encode,
-    lane_edges,
     map_snapshot,
 )
+from egosim.world.map.markings import STOP_LINE_WIDTH_M, MarkingKind, map_markings
 from egosim.world.signals import RED
 from egosim.world.traffic import ObjectType
 from egosim.world.vehicle import Pose
@@ -32,42 +32,50 @@ def frame_json(context: BridgeContext, **options) -> dict:
     return json.loads(encode(capture_frame(context, INFO, **options)))
 
 
-def test_lane_edges_lie_half_a_width_either_side_of_the_centreline() -> None:
+def test_lane_outlines_lie_half_a_width_either_side_of_the_centreline() -> None:
+    snapshot = map_snapshot(STRAIGHT)
     lane = STRAIGHT.lane(STRAIGHT.lane_ids[0])
-    left, right = lane_edges(lane)
+    outline = np.array(next(s["outline"] for s in snapshot["lanes"] if s["id"] == lane.id))
+    left, right = outline[: len(outline) // 2], outline[len(outline) // 2 :][::-1]
     centre = lane.centerline[:, :2]
-    assert np.allclose(np.hypot(*(left - centre).T), lane.widths / 2)
-    assert np.allclose(np.hypot(*(right - centre).T), lane.widths / 2)
+    assert np.allclose(np.hypot(*(left - centre).T), lane.widths / 2, atol=0.01)
+    assert np.allclose(np.hypot(*(right - centre).T), lane.widths / 2, atol=0.01)
     heading = math.atan2(*(centre[1] - centre[0])[::-1])
     to_left = left[0] - centre[0]
     # The left edge is on the left of the direction of travel.
     assert math.cos(heading) * to_left[1] - math.sin(heading) * to_left[0] > 0
 
 
-def test_map_paints_dashes_between_same_direction_lanes_and_a_yellow_centre() -> None:
+def test_the_page_paints_what_the_cameras_see() -> None:
     snapshot = json.loads(encode(map_snapshot(STRAIGHT)))
+    paint = [m for m in map_markings(STRAIGHT) if m.kind is MarkingKind.LANE_LINE]
+    assert len(snapshot["markings"]) == len(paint)
+    for drawn, marking in zip(snapshot["markings"], paint, strict=True):
+        assert np.allclose(drawn["points"], marking.points[:, :2], atol=0.01)
+        assert drawn["color"] == marking.color.value
+        assert drawn["double"] == (len(marking.lines) == 2)
     lanes = list(STRAIGHT.lanes.values())
-    assert len(snapshot["lanes"]) == len(lanes)
-    styles = sorted((m["color"], m["style"]) for m in snapshot["markings"])
-    with_right = sum(lane.right_neighbor is not None for lane in lanes)
-    kerbs = sum(lane.right_neighbor is None for lane in lanes)
-    centres = sum(lane.left_neighbor is None for lane in lanes)
-    assert styles.count(("white", "dashed")) == with_right
-    assert styles.count(("white", "solid")) == kerbs
-    assert styles.count(("yellow", "solid")) == centres
+    styles = sorted((m["color"], m["style"], m["double"]) for m in snapshot["markings"])
+    # Dashes between lanes of one direction, one double yellow line between directions.
+    assert styles.count(("white", "dashed", False)) == sum(
+        lane.right_neighbor is not None for lane in lanes
+    )
+    assert styles.count(("yellow", "solid", True)) == 1
     assert snapshot["stop_lines"] == []
 
 
-def test_stop_lines_cross_their_lane_at_the_stop_station() -> None:
+def test_stop_lines_cross_their_lane_just_before_the_stop_station() -> None:
     snapshot = map_snapshot(TOWN)
     stopping = [lane for lane in TOWN.lanes.values() if lane.stop_line_s is not None]
     assert len(snapshot["stop_lines"]) == len(stopping)
     lane = stopping[0]
     (x0, y0), (x1, y1) = snapshot["stop_lines"][0]
-    x, y, _, heading = TOWN.pose_at(lane.id, lane.stop_line_s)
+    # The paint's far edge is on the stop station: its centre half a line width before.
+    s = lane.stop_line_s - STOP_LINE_WIDTH_M / 2
+    x, y, _, heading = TOWN.pose_at(lane.id, s)
     assert math.isclose((x0 + x1) / 2, x, abs_tol=0.01)
     assert math.isclose((y0 + y1) / 2, y, abs_tol=0.01)
-    width = float(np.interp(lane.stop_line_s, lane.stations, lane.widths))
+    width = float(np.interp(s, lane.stations, lane.widths))
     assert math.isclose(math.hypot(x1 - x0, y1 - y0), width, abs_tol=0.02)
     # Across the lane: perpendicular to its heading.
     assert abs(math.cos(heading) * (x1 - x0) + math.sin(heading) * (y1 - y0)) < 0.02

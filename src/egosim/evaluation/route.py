@@ -7,9 +7,8 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray
 from egosim.world.map import LaneMap
-
-FloatArray = npt.NDArray[np.float64]
 
 ROUTE_TOLERANCE_M = 4.0
 """Farther than this from the route, the ego's position does not count as progress."""

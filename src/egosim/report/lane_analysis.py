@@ -11,11 +11,10 @@ import numpy.typing as npt
 
 from egosim.evaluation import Infraction
 from egosim.evaluation.rules import Sample, StopLineWatch
+from egosim.world.arrays import FloatArray
 from egosim.world.map import LaneMap
 
 from .recorded_drive import RecordedDrive
-
-FloatArray = npt.NDArray[np.float64]
 
 LIGHT_STATE_MAX_AGE_S = 1.0
 """A light's last status older than this (the status row runs at 10 Hz) counts as unknown."""

@@ -10,15 +10,13 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import numpy.typing as npt
 from rosbags.interfaces import Connection
 from rosbags.rosbag1 import Reader, ReaderError
 from rosbags.typesys.msg import denormalize_msgtype
 
 from egosim.msgs import PROFILES, MsgsError, Profile, get_profile
 from egosim.replay import DEFAULT_TOPICS, BagError, BagTimeline, MissingTopicsError, ReplayTopics
-
-FloatArray = npt.NDArray[np.float64]
+from egosim.world.arrays import FloatArray
 
 log = logging.getLogger(__name__)
 

@@ -18,14 +18,12 @@ from dataclasses import dataclass
 from enum import Enum
 
 import numpy as np
-import numpy.typing as npt
 
 from egosim.sensors.errors import SensorConfigError
 from egosim.sensors.frames import MountPose, sensor_in_map
 from egosim.sensors.rotation import Matrix3
+from egosim.world.arrays import FloatArray
 from egosim.world.vehicle import Pose
-
-FloatArray = npt.NDArray[np.float64]
 
 DEFAULT_CAMERA_MOUNT = MountPose(x=1.5, y=0.0, z=1.2)
 """Behind the windscreen: 1.5 m ahead of and 1.2 m above the mount origin, m."""

@@ -20,6 +20,7 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.sensors.camera_labels import SEMANTIC_PALETTE, SemanticClass, instance_colors
+from egosim.world.arrays import FloatArray
 from egosim.world.map import Crosswalk, LaneMap, TrafficLightSite
 from egosim.world.map.light_type import LightType
 from egosim.world.map.markings import (
@@ -33,8 +34,6 @@ from egosim.world.map.markings import (
 from egosim.world.map.polyline import offset_left
 from egosim.world.signals.aspects import GREEN, GREEN_LEFT, OFF, RED, YELLOW
 from egosim.world.traffic.objects import ObjectTable, ObjectType
-
-FloatArray = npt.NDArray[np.float64]
 
 SUN_DIRECTION = np.array([0.4, 0.3, 1.0]) / np.linalg.norm([0.4, 0.3, 1.0])
 AMBIENT = 0.55

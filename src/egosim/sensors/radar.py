@@ -27,10 +27,9 @@ import numpy.typing as npt
 
 from egosim.sensors.errors import MissingRandomGeneratorError, SensorConfigError
 from egosim.sensors.frames import MountPose, sensor_in_map
+from egosim.world.arrays import FloatArray
 from egosim.world.traffic.objects import ObjectTable
 from egosim.world.vehicle import Pose
-
-FloatArray = npt.NDArray[np.float64]
 
 DEFAULT_RADAR_MOUNT = MountPose(x=3.7, z=0.2)
 """In the front bumper, m from the mount origin."""

@@ -198,6 +198,25 @@ class ViewControls:
         driver = self._keyboards.setdefault(ego.unique_id, KeyboardDriver())
         driver.drive(ego.vehicle, held)
 
+    def release_silent_keyboards(self) -> None:
+        """Brake every keyboard-driven ego whose page stopped sending keys (loop thread,
+        every tick); an ego no longer in keyboard mode is let go of."""
+        egos = {ego.unique_id: ego for ego in self.context.world.egos}
+        for unique_id, driver in list(self._keyboards.items()):
+            ego = egos.get(unique_id)
+            keyboard = (
+                ego is not None
+                and self.context.settings_of(unique_id).ctrl_mode is ControlMode.KEYBOARD
+                and isinstance(ego.vehicle, Vehicle)
+            )
+            if not keyboard:
+                del self._keyboards[unique_id]
+            elif (
+                ego is not None and isinstance(ego.vehicle, Vehicle) and driver.silent(ego.vehicle)
+            ):
+                driver.release(ego.vehicle)
+                del self._keyboards[unique_id]
+
     # -- replay -----------------------------------------------------------------------
 
     def replay(self, request: dict[str, Any]) -> None:

@@ -2,8 +2,9 @@
 mode (EventInfo ctrl_mode 1) drives an ego from the arrow keys.
 
 The page sends the keys it holds about ten times a second while it drives; each message
-becomes a CtrlCmd-like command. When messages stop (page closed, tab hidden) the
-vehicle's command timeout brakes it, as for any silent command source.
+becomes a CtrlCmd-like command, which holds until the next one. When messages stop for
+KEY_SILENCE_S (page closed, tab hidden) the view brakes the ego fully: a vanished
+browser never leaves a throttle held.
 """
 
 from __future__ import annotations
@@ -24,6 +25,8 @@ STEER_RAMP_S = 0.8
 SHIFT_SPEED_MPS = 0.3
 #: Longest time (s) one message's steering may move the wheel for.
 MAX_KEY_INTERVAL_S = 0.2
+#: Simulation time (s) without a key message after which the page counts as gone.
+KEY_SILENCE_S = 0.5
 
 
 @dataclass(frozen=True)
@@ -67,6 +70,14 @@ class KeyboardDriver:
                 front_steer=self.steer,
             )
         )
+
+    def silent(self, vehicle: Vehicle) -> bool:
+        """No key message for KEY_SILENCE_S of simulation time."""
+        return self._last_time is not None and vehicle.sim_time - self._last_time > KEY_SILENCE_S
+
+    def release(self, vehicle: Vehicle) -> None:
+        """The page has gone: a full brake, the wheel where it is."""
+        vehicle.command(ControlCommand(accel=0.0, brake=1.0, front_steer=self.steer))
 
     def _turn(self, vehicle: Vehicle, keys: HeldKeys, interval: float) -> None:
         reach = vehicle.model.max_steer_front * STEER_REACH

@@ -21,13 +21,18 @@ import orjson
 
 from ..bridge import BridgeContext
 from ..world import World
+from ..world.arrays import FloatArray
 from ..world.map import LaneMap
-from ..world.map.lanes import Lane
+from ..world.map.markings import (
+    LineStyle,
+    MarkingKind,
+    RoadMarking,
+    lane_edges,
+    map_markings,
+)
 from ..world.signals import OFF, RED
 from ..world.signals.aspects import GREEN, GREEN_LEFT, YELLOW
 from ..world.traffic import ObjectState, ObjectTable, ObjectType
-
-FloatArray = npt.NDArray[np.float64]
 
 #: How long a collision keeps flashing on the page, s of simulation time.
 COLLISION_FLASH_S = 2.0
@@ -59,60 +64,34 @@ def _round(values: npt.ArrayLike, digits: int = METRE_DIGITS) -> Any:
     return np.round(np.asarray(values, dtype=np.float64), digits).tolist()
 
 
-def lane_edges(lane: Lane) -> tuple[FloatArray, FloatArray]:
-    """(left, right) boundary polylines (N, 2) of a lane, half its width off the centreline."""
-    points = lane.centerline[:, :2]
-    tangent = np.gradient(points, axis=0)
-    tangent /= np.maximum(np.hypot(tangent[:, 0], tangent[:, 1]), 1e-12)[:, None]
-    normal = np.column_stack((-tangent[:, 1], tangent[:, 0]))  # to the left
-    half = (lane.widths / 2.0)[:, None]
-    return points + normal * half, points - normal * half
-
-
-def _markings(lane: Lane, left: FloatArray, right: FloatArray) -> list[dict[str, Any]]:
-    """Painted lines of one lane (none inside junctions).
-
-    The right edge is dashed white between lanes of one direction and solid white at the
-    kerb; a left edge with no same-direction neighbour is the solid yellow centre line. A
-    shared edge is drawn once, by the lane on its left.
-    """
-    if lane.is_junction:
-        return []
-    style = "dashed" if lane.right_neighbor is not None else "solid"
-    lines = [{"points": _round(right), "style": style, "color": "white"}]
-    if lane.left_neighbor is None:
-        lines.append({"points": _round(left), "style": "solid", "color": "yellow"})
-    return lines
-
-
-def _stop_line(lane_map: LaneMap, lane: Lane) -> list[Any] | None:
-    if lane.stop_line_s is None:
-        return None
-    x, y, _, heading = lane_map.pose_at(lane.id, lane.stop_line_s)
-    half = float(np.interp(lane.stop_line_s, lane.stations, lane.widths)) / 2.0
-    nx, ny = -math.sin(heading) * half, math.cos(heading) * half
-    return _round([[x + nx, y + ny], [x - nx, y - ny]])
+def _paint(marking: RoadMarking) -> dict[str, Any]:
+    """One marking as the page draws it: its points, colour and whether it is dashed."""
+    dashed = LineStyle.DASHED in marking.lines
+    return {
+        "points": _round(marking.points[:, :2]),
+        "style": "dashed" if dashed else "solid",
+        "color": marking.color.value,
+        "double": len(marking.lines) > 1,
+    }
 
 
 def map_snapshot(lane_map: LaneMap) -> dict[str, Any]:
-    """Everything static the page draws: lanes (as road surface outlines), markings,
-    junctions, crosswalks, stop lines, sidewalks and the light heads."""
+    """Everything static the page draws: lanes (as road surface outlines), the map's
+    paint (the same markings the cameras see), junctions, crosswalks, sidewalks and the
+    light heads."""
     lanes = []
-    markings: list[dict[str, Any]] = []
-    stop_lines = []
     for lane in lane_map.lanes.values():
         left, right = lane_edges(lane)
         lanes.append(
             {
                 "id": lane.id,
                 "junction": lane.is_junction,
-                "outline": _round(np.concatenate((left, right[::-1]))),
+                "outline": _round(np.concatenate((left, right[::-1]))[:, :2]),
             }
         )
-        markings.extend(_markings(lane, left, right))
-        line = _stop_line(lane_map, lane)
-        if line is not None:
-            stop_lines.append(line)
+    paint = map_markings(lane_map)
+    markings = [_paint(m) for m in paint if m.kind is MarkingKind.LANE_LINE]
+    stop_lines = [_round(m.points[:, :2]) for m in paint if m.kind is MarkingKind.STOP_LINE]
     return {
         "type": "map",
         "name": lane_map.name,

@@ -58,6 +58,7 @@ class ViewStage:
         if self.controls.pause_after_step:
             self.controls.pause_after_step = False
             self.context.world.paused = True
+        self.controls.release_silent_keyboards()
         if self.hub.due():
             self.capture()
 

@@ -284,7 +284,7 @@ function drawMap(g, map) {
   if (state.layers.markings) {
     for (const m of map.markings) {
       g.strokeStyle = m.color === "yellow" ? COLOURS.yellow : COLOURS.white;
-      g.lineWidth = Math.max(0.15, 1.2 * px);
+      g.lineWidth = m.double ? Math.max(0.35, 2.4 * px) : Math.max(0.15, 1.2 * px);
       g.setLineDash(m.style === "dashed" ? [3, 5] : []);
       polyline(g, m.points); g.stroke();
     }

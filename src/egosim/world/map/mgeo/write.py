@@ -13,14 +13,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import numpy.typing as npt
 
+from egosim.world.arrays import FloatArray
 from egosim.world.map.georef import GeoReference
 from egosim.world.map.lanes import Lane, LaneMap
 from egosim.world.map.light_type import LightType
 from egosim.world.map.polyline import stations
-
-FloatArray = npt.NDArray[np.float64]
 
 SUB_TYPES = {
     LightType.RYG: ["red", "yellow", "straight"],
