@@ -6,6 +6,7 @@ import logging
 from dataclasses import dataclass
 
 from ..app.attachments import Attach, RunningSimulator
+from .camera_images import camera_image_sources
 from .controls import ViewControls
 from .hub import FrameHub
 from .server import ViewBackend, ViewServer, ViewServerError
@@ -55,6 +56,7 @@ def live_view(options: ViewOptions) -> Attach:
             clock_mode.value,
             lidar_on=context.row("lidar").enabled,
             controls_enabled=not options.readonly,
+            images=camera_image_sources(context),
         )
         backend = ViewBackend(
             hub=hub,
