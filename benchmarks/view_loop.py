@@ -26,6 +26,8 @@ import sys
 import threading
 import time
 
+from websocket_browsers import SCRIPT as BROWSERS_SCRIPT
+
 from egosim.app.inbox import Inbox
 from egosim.app.loop import SimulationLoop
 from egosim.bridge import BridgeContext, simulation_context
@@ -42,21 +44,6 @@ DT = 0.01
 CLIENTS = (0, 1, 10)
 #: A configuration with frames taken at the full rate but no browser: the loop's own share.
 CAPTURE_ONLY = -1
-
-BROWSERS = """
-import asyncio, sys, aiohttp
-async def one(url, seconds):
-    async with aiohttp.ClientSession() as s, s.ws_connect(url, max_msg_size=0) as ws:
-        end = asyncio.get_running_loop().time() + seconds
-        while (left := end - asyncio.get_running_loop().time()) > 0:
-            try:
-                await asyncio.wait_for(ws.receive(), left)
-            except asyncio.TimeoutError:
-                break
-async def main(url, n, seconds):
-    await asyncio.gather(*(one(url, seconds) for _ in range(n)))
-asyncio.run(main(sys.argv[1], int(sys.argv[2]), float(sys.argv[3])))
-"""
 
 
 class TimedStep:
@@ -112,8 +99,7 @@ def measure(clients: int, seconds: float, frame_sizes: list[int]) -> dict[str, f
         browsers = subprocess.Popen(
             [
                 sys.executable,
-                "-c",
-                BROWSERS,
+                str(BROWSERS_SCRIPT),
                 f"ws://127.0.0.1:{server.port}/ws",
                 str(clients),
                 str(seconds + 3.0),

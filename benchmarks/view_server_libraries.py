@@ -11,42 +11,19 @@ from __future__ import annotations
 import asyncio
 import json
 import resource
-import socket
 import subprocess
 import sys
 import time
 
 from aiohttp import web
+from loopback import free_port
+from websocket_browsers import SCRIPT as BROWSERS_SCRIPT
 from websockets.asyncio.server import serve
 
 FRAME = json.dumps({"objects": [[round(i * 0.37, 2)] * 6 for i in range(400)]})
 RATE_HZ = 30
 SECONDS = 5.0
 CLIENTS = (1, 10)
-
-CLIENT_CODE = """
-import asyncio, sys, aiohttp
-async def one(url, seconds, counts, i):
-    async with aiohttp.ClientSession() as s, s.ws_connect(url, max_msg_size=0) as ws:
-        end = asyncio.get_running_loop().time() + seconds
-        while (left := end - asyncio.get_running_loop().time()) > 0:
-            try:
-                await asyncio.wait_for(ws.receive(), left)
-            except asyncio.TimeoutError:
-                break
-            counts[i] += 1
-async def main(url, n, seconds):
-    counts = [0] * n
-    await asyncio.gather(*(one(url, seconds, counts, i) for i in range(n)))
-    print(sum(counts))
-asyncio.run(main(sys.argv[1], int(sys.argv[2]), float(sys.argv[3])))
-"""
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
 
 
 def cpu_seconds() -> float:
@@ -103,8 +80,7 @@ async def measure(library: str, n: int) -> dict[str, float]:
     (server, task), clients = await start(port)
     child = await asyncio.create_subprocess_exec(
         sys.executable,
-        "-c",
-        CLIENT_CODE,
+        str(BROWSERS_SCRIPT),
         f"ws://127.0.0.1:{port}/ws",
         str(n),
         str(SECONDS + 1.0),
