@@ -173,13 +173,13 @@ class Bridge:
             if old is None or old.name != row.name:
                 self._bind(row)
                 changes.append(f"{row.name} opened")
-            elif old.rate_hz != row.rate_hz and key in self.handlers.openers:
-                self._unbinders.pop(key)()
-                self._bind(row)
-                changes.append(f"{row.name} at {row.rate_hz:g} Hz")
             elif old.rate_hz != row.rate_hz:
-                outlet = next(o for o in self.outlets if o.row.key == key and o.row == old)
-                outlet.row, outlet.period = row, 1.0 / row.rate_hz if row.rate_hz else None
+                if key in self.handlers.openers:  # several topics: opened again at the rate
+                    self._unbinders.pop(key)()
+                    self._bind(row)
+                else:
+                    outlet = next(o for o in self.outlets if o.row.key == key and o.row == old)
+                    outlet.row, outlet.period = row, 1.0 / row.rate_hz if row.rate_hz else None
                 changes.append(f"{row.name} at {row.rate_hz:g} Hz")
         return changes
 
@@ -187,8 +187,7 @@ class Bridge:
         if row.key in self.handlers.openers:
             self._unbinders[row.key] = self.handlers.openers[row.key](self, row)
         elif row.direction is Direction.PUBLISH:
-            outlet = self._advertise(row, self.handlers.publishers[row.key])
-            self._unbinders[row.key] = lambda: self._withdraw(outlet)
+            self._unbinders[row.key] = self.advertise(row, self.handlers.publishers[row.key])
         elif row.direction is Direction.SUBSCRIBE:
             self._unbinders[row.key] = self._subscribe(
                 row, self.handlers.subscribers[row.key]
@@ -214,12 +213,11 @@ class Bridge:
             return self._subscribe(row, handler).close
         if row.direction is not Direction.PUBLISH:
             raise ValueError(f"{row.name}: only topics are opened at run time")
-        outlet = self._advertise(row, handler)
-        return lambda: self._withdraw(outlet)
+        return self.advertise(row, handler)
 
     def advertise(self, row: Row, build: Builder) -> Callable[[], None]:
-        """Advertise a publishing row made at run time from a table row (an opener's);
-        returns what withdraws it."""
+        """Advertise a publishing row (of the table, namespaced, or an opener's); returns
+        what withdraws it."""
         outlet = self._advertise(row, build)
         return lambda: self._withdraw(outlet)
 
