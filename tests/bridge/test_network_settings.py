@@ -4,11 +4,16 @@ from __future__ import annotations
 
 import pytest
 
+from egosim.bridge import simulation_context
 from egosim.bridge.bindings import HANDLERS
 from egosim.bridge.network import default_network_settings, parse_network_settings
+from egosim.bridge.scenarios import apply_network_settings
 from egosim.bridge.table import EGO_INPUT_ROWS, ROWS, Direction
 from egosim.cli import main
 from egosim.msgs import get_profile
+from egosim.world import World
+from egosim.world.map import build_builtin_map
+from egosim.world.scenario import parse_scenario
 from egosim.yamltext import YamlFileError
 from tests.contract import load_contract
 
@@ -140,3 +145,14 @@ def test_every_row_of_the_table_is_served() -> None:
         Direction.SERVICE: HANDLERS.services,
     }
     assert all(row.key in kinds[row.direction] for row in ROWS)
+
+
+def test_live_settings_keep_the_cameras_on_the_camera_row_s_topic() -> None:
+    context = simulation_context(World(build_builtin_map("straight")))
+    scenario = parse_scenario(
+        "map: straight\nnetwork:\n  rows:\n    camera: {name: /front/compressed}\n"
+        "  sensors:\n    cameras:\n      - {}\n",
+        "live.yaml",
+    )
+    apply_network_settings(context, scenario)
+    assert context.sensors.camera_topics == ("/front/compressed",)

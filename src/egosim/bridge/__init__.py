@@ -32,7 +32,7 @@ from .network import NetworkSettings, default_network_settings, load_network_set
 from .pipeline import Stage, Tick, TickPipeline
 from .releases import CANONICAL_PROFILE
 from .replay_rows import replay_topics
-from .sensor_rig import SensorRig
+from .sensor_rig import sensor_rig_of
 from .stages import standard_pipeline
 from .sync_session import SyncSession
 from .table import Direction, Row
@@ -80,11 +80,10 @@ def simulation_context(
     `open_renderer` (the camera engine), the configured cameras render.
     """
     settings = settings or default_network_settings()
-    camera_row = settings.row("camera")
-    sensors = SensorRig(settings.sensors, world.map.georef, camera_row_topic=camera_row.name)
+    sensors = sensor_rig_of(settings, world.map.georef)
     cameras = (
         open_camera_rig(sensors, open_renderer, world.map)
-        if open_renderer is not None and camera_row.enabled
+        if open_renderer is not None and settings.row("camera").enabled
         else None
     )
     world.command_timeout_s = settings.command_timeout_s

@@ -19,7 +19,7 @@ from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, parse
 from ..yamltext import YamlFileError
 from .context import BridgeContext
 from .network import network_settings_of, section_of
-from .sensor_rig import SensorRig
+from .sensor_rig import sensor_rig_of
 from .table import Row
 
 log = logging.getLogger(__name__)
@@ -115,12 +115,15 @@ def apply_network_settings(context: BridgeContext, scenario: Scenario) -> None:
         log.error("scenario network settings not applied: %s", error)
         return
     changes = context.rows.apply_settings(settings) if context.rows is not None else []
+    sensors_changed = settings.sensors != context.settings.sensors or (
+        settings.row("camera").name != context.settings.row("camera").name
+    )
     context.settings = settings
     if settings.command_timeout_s != context.world.command_timeout_s:
         context.world.command_timeout_s = settings.command_timeout_s
         changes.append(f"command timeout {settings.command_timeout_s} s")
-    if settings.sensors != context.sensors.settings:
-        context.sensors = SensorRig(settings.sensors, context.world.map.georef)
+    if sensors_changed:
+        context.sensors = sensor_rig_of(settings, context.world.map.georef)
         changes.append("sensors reconfigured")
     log.info(
         "scenario network settings applied (ego input %s): %s",

@@ -35,6 +35,7 @@ from ..sensors.rotation import quaternion_from_matrix
 from ..world import World
 from ..world.map import GeoReference
 from ..world.vehicle import VehicleStatus, sensor_mount_origin
+from .network import NetworkSettings
 from .sensor_settings import SENSOR_KINDS, CameraSettings, SensorSettings, camera_topic
 from .table import DEFAULT_CAMERA_TOPIC
 
@@ -63,6 +64,12 @@ def ego_kinematics(status: VehicleStatus) -> EgoKinematics:
         velocity_rate=(ax + r * vy, ay - r * vx, 0.0),
         angular_velocity=(0.0, 0.0, r),
     )
+
+
+def sensor_rig_of(settings: NetworkSettings, georeference: GeoReference) -> SensorRig:
+    """The main ego's sensors as the network settings configure them, the cameras on the
+    camera row's topic."""
+    return SensorRig(settings.sensors, georeference, camera_row_topic=settings.row("camera").name)
 
 
 def obstacle_boxes(world: World) -> ObstacleBoxes:
