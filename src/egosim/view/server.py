@@ -138,7 +138,9 @@ class ViewServer:
             with contextlib.suppress(RuntimeError):
                 loop.call_soon_threadsafe(self._stopped.set)
         if self._thread is not None:
-            self._thread.join(STARTUP_TIMEOUT_S)
+            # Its own cleanup gives up on browsers after CLOSE_TIMEOUT_S; the thread is a
+            # daemon, so a stop never waits on the view longer than this.
+            self._thread.join(2 * CLOSE_TIMEOUT_S)
 
     def _notify(self) -> None:
         """A frame was offered (loop thread): wake the senders; never blocks."""
