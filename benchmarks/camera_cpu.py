@@ -1,12 +1,14 @@
 """CPU a 30 Hz camera costs in a real-time run of the town, watched and unwatched.
 
-Starts `egosim run` (town, default scenario, real-time clock) three times for the same
-wall time: no subscriber, a subscriber to /image_jpeg/compressed (640 x 480 JPEG, 30 Hz)
-and, as a base, the same with `cameras: []` in the network settings. Reports the
-simulator's CPU time per wall second (user + system, from /proc) and the frames the
-subscriber received.
+Starts `egosim run` (town, default scenario, real-time clock) for the same wall time
+with no subscriber, with a subscriber to /image_jpeg/compressed (640 x 480 JPEG, 30 Hz)
+and, as a base, with `cameras: []` in the network settings; `--repeats` rounds of the
+three, interleaved so that a busy spell on the machine does not land on one of them.
+Reports the simulator's CPU time per wall second (user + system, from /proc), median
+over the rounds, the frames the subscriber received, and the camera's share: watched
+minus unwatched.
 
-Usage: .venv/bin/python benchmarks/camera_cpu.py [--seconds 20]
+Usage: .venv/bin/python benchmarks/camera_cpu.py [--seconds 20] [--repeats 3]
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ import tempfile
 import threading
 import time
 from pathlib import Path
+from statistics import median
 
 from loopback import free_port
 
@@ -76,18 +79,29 @@ def measure(seconds: float, watch: bool, network: Path | None) -> tuple[float, i
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seconds", type=float, default=20.0)
+    parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args()
+    base, unwatched, watched, frames = [], [], [], []
     with tempfile.TemporaryDirectory() as folder:
         no_cameras = Path(folder) / "no_cameras.yaml"
         no_cameras.write_text("sensors:\n  cameras: []\n")
-        base, _ = measure(args.seconds, False, no_cameras)
-        unwatched, _ = measure(args.seconds, False, None)
-        watched, frames = measure(args.seconds, True, None)
-    print(f"no camera configured: {100 * base:.0f} % of a core")
-    print(f"camera, no subscriber: {100 * unwatched:.0f} % of a core")
+        for _ in range(args.repeats):
+            base.append(measure(args.seconds, False, no_cameras)[0])
+            unwatched.append(measure(args.seconds, False, None)[0])
+            used, received = measure(args.seconds, True, None)
+            watched.append(used)
+            frames.append(received)
+    rounds = f"median of {args.repeats}"
+    print(f"no camera configured: {100 * median(base):.0f} % of a core ({rounds})")
+    print(f"camera, no subscriber: {100 * median(unwatched):.0f} % of a core ({rounds})")
     print(
-        f"camera, one subscriber: {100 * watched:.0f} % of a core "
-        f"({frames / args.seconds:.1f} frames/s received)"
+        f"camera, one subscriber: {100 * median(watched):.0f} % of a core ({rounds}; "
+        f"{median(frames) / args.seconds:.1f} frames/s received)"
+    )
+    shares = [w - u for w, u in zip(watched, unwatched, strict=True)]
+    print(
+        f"the watched camera's share: {100 * median(shares):.0f} % of a core "
+        f"(rounds: {', '.join(f'{100 * x:.0f}' for x in shares)})"
     )
 
 

@@ -21,8 +21,9 @@ import numpy as np
 from egosim.render import open_renderer
 from egosim.sensors.camera import CameraConfig, CameraMode, CameraView
 from egosim.sensors.camera_capture import capture
+from egosim.sensors.camera_mesh import Mesh
 from egosim.sensors.camera_render import RenderRequest
-from egosim.sensors.camera_scene import Mesh, StaticScene, build_static_scene
+from egosim.sensors.camera_scene import StaticScene, build_static_scene
 from egosim.sensors.image_encoding import ImageFormat, depth_bytes, encode_image
 from egosim.world import World
 from egosim.world.map import build_builtin_map

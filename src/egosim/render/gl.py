@@ -2,9 +2,11 @@
 
 No display server is needed: EGL's surfaceless platform with Mesa renders on the CPU
 (llvmpipe). The static scene is uploaded once per map; a frame's moving triangles are
-written to a buffer reused across frames. One shader draws every mode: the vertex
-carries its shaded, semantic and instance colours and the mode picks one; depth mode
-writes the distance along the optical axis to a float32 target.
+written to a buffer reused across frames. A vertex carries its shaded, semantic and
+instance colours; each colour mode's vertex array reads only its own, and depth mode's
+program writes the distance along the optical axis to a float32 target. Only the
+static scene's tiles inside the view frustum are drawn, far ones at their coarse level
+(egosim.sensors.scene_tiles).
 """
 
 from __future__ import annotations
@@ -15,51 +17,59 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from egosim.sensors.camera import CameraMode, projection_matrix, view_matrix
+from egosim.sensors.camera import CameraMode, scene_matrices
 from egosim.sensors.camera_labels import SEMANTIC_COLORS, SemanticClass
+from egosim.sensors.camera_mesh import Mesh
 from egosim.sensors.camera_render import SKY_RGB, RenderRequest
-from egosim.sensors.camera_scene import Mesh
 from egosim.sensors.errors import RendererUnavailableError
+from egosim.sensors.scene_tiles import visible_ranges
 
-VERTEX_SHADER = """
+COLOR_VERTEX_SHADER = """
+#version 330
+uniform mat4 clip_from_scene;
+in vec3 in_position;
+in vec3 in_color;
+flat out vec3 v_color;
+void main() {
+    gl_Position = clip_from_scene * vec4(in_position, 1.0);
+    v_color = in_color;
+}
+"""
+
+COLOR_FRAGMENT_SHADER = """
+#version 330
+flat in vec3 v_color;
+out vec4 f_color;
+void main() {
+    f_color = vec4(v_color, 1.0);
+}
+"""
+
+DEPTH_VERTEX_SHADER = """
 #version 330
 uniform mat4 clip_from_scene;
 uniform mat4 eye_from_scene;
-uniform int mode;
 in vec3 in_position;
-in vec3 in_color;
-in vec3 in_semantic;
-in vec3 in_instance;
-flat out vec3 v_color;
 out float v_depth;
 void main() {
     vec4 point = vec4(in_position, 1.0);
     gl_Position = clip_from_scene * point;
     v_depth = -(eye_from_scene * point).z;
-    v_color = mode == 1 ? in_semantic : (mode == 2 ? in_instance : in_color);
 }
 """
 
-FRAGMENT_SHADER = """
+DEPTH_FRAGMENT_SHADER = """
 #version 330
-uniform int mode;
-flat in vec3 v_color;
 in float v_depth;
 out vec4 f_color;
 void main() {
-    f_color = mode == 3 ? vec4(v_depth, 0.0, 0.0, 1.0) : vec4(v_color, 1.0);
+    f_color = vec4(v_depth, 0.0, 0.0, 1.0);
 }
 """
 
 SYSTEM_PACKAGES = ("libegl1", "libgl1", "libegl-mesa0", "libgl1-mesa-dri")
 """Debian packages EGL rendering on the CPU needs (the Makefile installs them)."""
 
-MODE_CODES = {
-    CameraMode.RGB: 0,
-    CameraMode.SEMANTIC: 1,
-    CameraMode.INSTANCE: 2,
-    CameraMode.DEPTH: 3,
-}
 BACKGROUND = {
     CameraMode.RGB: SKY_RGB,
     CameraMode.SEMANTIC: SEMANTIC_COLORS[SemanticClass.SKY],
@@ -68,8 +78,14 @@ BACKGROUND = {
 VERTEX = np.dtype(
     [("position", "<f4", 3), ("color", "u1", 4), ("semantic", "u1", 4), ("instance", "u1", 4)]
 )
-VERTEX_FORMAT = "3f 3f1 1x 3f1 1x 3f1 1x"
-ATTRIBUTES = ("in_position", "in_color", "in_semantic", "in_instance")
+# Each mode reads the position and only its own colour of a vertex (depth: no colour),
+# so the rasteriser fetches and carries no attribute the image does not use.
+MODE_LAYOUTS = {
+    CameraMode.RGB: ("3f 3f1 1x 8x", ("in_position", "in_color")),
+    CameraMode.SEMANTIC: ("3f 4x 3f1 1x 4x", ("in_position", "in_color")),
+    CameraMode.INSTANCE: ("3f 8x 3f1 1x", ("in_position", "in_color")),
+    CameraMode.DEPTH: ("3f 12x", ("in_position",)),
+}
 
 
 def vertex_bytes(mesh: Mesh) -> bytes:
@@ -86,13 +102,17 @@ class GlRenderer:
 
     def __init__(self, context: Any) -> None:
         self._ctx = context
-        self._program = context.program(
-            vertex_shader=VERTEX_SHADER, fragment_shader=FRAGMENT_SHADER
+        color = context.program(
+            vertex_shader=COLOR_VERTEX_SHADER, fragment_shader=COLOR_FRAGMENT_SHADER
         )
+        depth = context.program(
+            vertex_shader=DEPTH_VERTEX_SHADER, fragment_shader=DEPTH_FRAGMENT_SHADER
+        )
+        self._programs = {mode: depth if mode is CameraMode.DEPTH else color for mode in CameraMode}
         self._scene: object | None = None
-        self._static: tuple[Any, Any] | None = None
+        self._static: tuple[Any, dict[CameraMode, Any]] | None = None
         self._dynamic_buffer = context.buffer(reserve=VERTEX.itemsize * 3, dynamic=True)
-        self._dynamic_array = self._vertex_array(self._dynamic_buffer)
+        self._dynamic_arrays = self._vertex_arrays(self._dynamic_buffer)
         self._targets: dict[tuple[int, int, bool], Any] = {}
 
     @property
@@ -100,8 +120,11 @@ class GlRenderer:
         info = self._ctx.info
         return f"OpenGL {info['GL_VERSION']} on {info['GL_RENDERER']}"
 
-    def _vertex_array(self, buffer: Any) -> Any:
-        return self._ctx.vertex_array(self._program, [(buffer, VERTEX_FORMAT, *ATTRIBUTES)])
+    def _vertex_arrays(self, buffer: Any) -> dict[CameraMode, Any]:
+        return {
+            mode: self._ctx.vertex_array(self._programs[mode], [(buffer, layout, *attributes)])
+            for mode, (layout, attributes) in MODE_LAYOUTS.items()
+        }
 
     def _framebuffer(self, width: int, height: int, depth_mode: bool) -> Any:
         key = (width, height, depth_mode)
@@ -116,13 +139,15 @@ class GlRenderer:
             self._targets[key] = ctx.framebuffer(color_attachments=[colour], depth_attachment=depth)
         return self._targets[key]
 
-    def _static_array(self, request: RenderRequest) -> Any:
+    def _static_arrays(self, request: RenderRequest) -> dict[CameraMode, Any]:
         if self._scene is not request.scene:
             if self._static is not None:
-                for resource in reversed(self._static):
-                    resource.release()
+                buffer, arrays = self._static
+                for array in arrays.values():
+                    array.release()
+                buffer.release()
             buffer = self._ctx.buffer(vertex_bytes(request.scene.mesh))
-            self._static = (buffer, self._vertex_array(buffer))
+            self._static = (buffer, self._vertex_arrays(buffer))
             self._scene = request.scene
         assert self._static is not None
         return self._static[1]
@@ -143,22 +168,25 @@ class GlRenderer:
             r, g, b = (c / 255.0 for c in BACKGROUND[mode])
             framebuffer.clear(red=r, green=g, blue=b, alpha=1.0, depth=1.0)
 
-        scene_to_map = np.eye(4)
-        scene_to_map[:3, 3] = request.scene.origin
-        eye = view_matrix(request.view) @ scene_to_map
-        clip = projection_matrix(intrinsics, request.near_m, request.far_m) @ eye
-        program = self._program
+        eye, clip = scene_matrices(
+            request.view, intrinsics, request.near_m, request.far_m, request.scene.origin
+        )
+        program = self._programs[mode]
         program["clip_from_scene"].write(clip.T.astype("f4").tobytes())
-        program["eye_from_scene"].write(eye.T.astype("f4").tobytes())
-        program["mode"].value = MODE_CODES[mode]
+        if depth_mode:
+            program["eye_from_scene"].write(eye.T.astype("f4").tobytes())
 
-        self._static_array(request).render()
+        static = self._static_arrays(request)[mode]
+        eye_in_scene = request.view.origin - request.scene.origin
+        focal_px = max(intrinsics.fx, intrinsics.fy)
+        for first, count in visible_ranges(request.scene.tiles, clip, eye_in_scene, focal_px):
+            static.render(vertices=count, first=first)
         if len(request.frame):
             data = vertex_bytes(request.frame)
             if len(data) > self._dynamic_buffer.size:
                 self._dynamic_buffer.orphan(len(data))
             self._dynamic_buffer.write(data)
-            self._dynamic_array.render(vertices=len(request.frame))
+            self._dynamic_arrays[mode].render(vertices=len(request.frame))
 
         if depth_mode:
             raw = framebuffer.read(components=1, dtype="f4", alignment=1)

@@ -164,3 +164,14 @@ def projection_matrix(intrinsics: Intrinsics, near: float, far: float) -> FloatA
     matrix[2, 3] = -2.0 * far * near / (far - near)
     matrix[3, 2] = -1.0
     return matrix
+
+
+def scene_matrices(
+    view: CameraView, intrinsics: Intrinsics, near: float, far: float, scene_origin: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """(eye_from_scene, clip_from_scene), 4 x 4, for points in a scene frame whose origin
+    is `scene_origin` in the map."""
+    scene_to_map = np.eye(4)
+    scene_to_map[:3, 3] = scene_origin
+    eye = view_matrix(view) @ scene_to_map
+    return eye, projection_matrix(intrinsics, near, far) @ eye

@@ -15,7 +15,8 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.sensors.camera import CameraMode, CameraView, Intrinsics
-from egosim.sensors.camera_scene import Mesh, StaticScene
+from egosim.sensors.camera_mesh import Mesh
+from egosim.sensors.camera_scene import StaticScene
 
 SKY_RGB = (135, 190, 235)
 """The clear sky behind everything in an RGB image."""

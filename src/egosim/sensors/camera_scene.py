@@ -6,20 +6,22 @@ the centreline's elevation), raised sidewalks, lane lines and stop lines
 adds the objects (vehicles as a body and a cabin, pedestrians and obstacles as boxes,
 each of its real size) and the lamps of every head, lit in the colour of its aspect.
 
-Colours are shaded once on the CPU by a fixed sun (Lambert plus ambient), so the same
-state always gives the same triangles. Paint is 2 cm above the asphalt and terrain 5 cm
-below it, so depth testing alone orders the layers.
+Paint is 2 cm above the asphalt and terrain 5 cm below it, so depth testing alone
+orders the layers.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
 
-from egosim.sensors.camera_labels import SEMANTIC_PALETTE, SemanticClass, instance_colors
+from egosim.sensors.camera_labels import SemanticClass
+from egosim.sensors.camera_mesh import Detail, Mesh, MeshBuilder, add_boxes, flat_color, ribbon
+from egosim.sensors.scene_tiles import COARSE_TOLERANCE_M, SceneTiles, tile_order
 from egosim.world.arrays import FloatArray
 from egosim.world.map import Crosswalk, LaneMap, TrafficLightSite
 from egosim.world.map.light_type import LightType
@@ -31,12 +33,9 @@ from egosim.world.map.markings import (
     lane_edges,
     map_markings,
 )
-from egosim.world.map.polyline import offset_left
+from egosim.world.map.polyline import kept_vertices, offset_left
 from egosim.world.signals.aspects import GREEN, GREEN_LEFT, OFF, RED, YELLOW
 from egosim.world.traffic.objects import ObjectTable, ObjectType
-
-SUN_DIRECTION = np.array([0.4, 0.3, 1.0]) / np.linalg.norm([0.4, 0.3, 1.0])
-AMBIENT = 0.55
 
 ASPHALT = (64, 64, 64)
 TERRAIN = (96, 118, 72)
@@ -59,6 +58,8 @@ VEHICLE_PAINTS = ((200, 30, 30), (40, 70, 160), (220, 220, 215), (30, 30, 30), (
 # Asphalt reaches this far past each lane's edge, so an edge line lies on the road.
 SHOULDER_M = 0.5
 PAINT_LIFT_M = 0.02
+# A strip's edges may move this far when straight runs are merged (see _add_strip).
+STRIP_TOLERANCE_M = 0.005
 MIN_DASH_M = 0.01
 TERRAIN_DROP_M = 0.05
 TERRAIN_MARGIN_M = 500.0
@@ -83,105 +84,28 @@ BODY_SHARE = 0.55
 CABIN_LENGTH_SHARE = 0.55
 CABIN_WIDTH_SHARE = 0.9
 
-# The unit cube's 12 triangles, outward normals, as corner indices of (±1, ±1, ±1).
-_CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
-_FACES = (
-    ((0, 1, 3, 2), (-1, 0, 0)),
-    ((4, 6, 7, 5), (1, 0, 0)),
-    ((0, 4, 5, 1), (0, -1, 0)),
-    ((2, 3, 7, 6), (0, 1, 0)),
-    ((0, 2, 6, 4), (0, 0, -1)),
-    ((1, 5, 7, 3), (0, 0, 1)),
-)
-_CUBE_TRIANGLES = np.array(
-    [
-        [a, b, c]
-        for quad, _ in _FACES
-        for a, b, c in ((quad[0], quad[1], quad[2]), (quad[0], quad[2], quad[3]))
-    ]
-).reshape(-1)
-_CUBE_NORMALS = np.repeat(np.array([n for _, n in _FACES], float), 6, axis=0)
 
-
-@dataclass(frozen=True, eq=False)
-class Mesh:
-    """A triangle list: 3 consecutive vertices per triangle.
-
-    positions (N, 3) float32 in the scene frame (the map frame moved by the scene's
-    origin); colors (N, 3) uint8 shaded RGB; semantic (N, 3) uint8 class colours;
-    instance (N, 3) uint8 instance colours.
-    """
-
-    positions: npt.NDArray[np.float32]
-    colors: npt.NDArray[np.uint8]
-    semantic: npt.NDArray[np.uint8]
-    instance: npt.NDArray[np.uint8]
-
-    def __len__(self) -> int:
-        return len(self.positions)
-
-    @classmethod
-    def empty(cls) -> Mesh:
-        return cls(
-            np.empty((0, 3), np.float32),
-            np.empty((0, 3), np.uint8),
-            np.empty((0, 3), np.uint8),
-            np.empty((0, 3), np.uint8),
-        )
-
-
-class _MeshBuilder:
-    """Collects triangles with their colour, class and instance, in scene coordinates."""
-
-    def __init__(self, origin: FloatArray) -> None:
-        self._origin = origin
-        self._parts: list[tuple[FloatArray, FloatArray, SemanticClass, npt.NDArray[np.int64]]] = []
-
-    def add(
-        self,
-        triangles: FloatArray,
-        colors: npt.ArrayLike,
-        label: SemanticClass,
-        instances: npt.ArrayLike = 0,
-    ) -> None:
-        """`triangles` (N, 3) map points; `colors` one RGB or (N, 3); instances one or (N,)."""
-        if len(triangles) == 0:
-            return
-        count = len(triangles)
-        shaded = np.broadcast_to(np.asarray(colors, dtype=np.float64), (count, 3))
-        ids = np.broadcast_to(np.asarray(instances, dtype=np.int64), (count,))
-        self._parts.append((triangles - self._origin, shaded, label, ids))
-
-    def mesh(self) -> Mesh:
-        if not self._parts:
-            return Mesh.empty()
-        positions = np.concatenate([p[0] for p in self._parts]).astype(np.float32)
-        colors = np.concatenate([p[1] for p in self._parts])
-        labels = np.concatenate([np.full(len(p[0]), int(p[2])) for p in self._parts])
-        ids = np.concatenate([p[3] for p in self._parts])
-        return Mesh(
-            positions,
-            np.clip(np.rint(colors), 0, 255).astype(np.uint8),
-            SEMANTIC_PALETTE[labels],
-            instance_colors(ids),
-        )
-
-
-def sunlight(normals: FloatArray) -> FloatArray:
-    """(N,) brightness of surfaces with unit `normals` (N, 3): ambient plus Lambert."""
-    light: FloatArray = AMBIENT + (1.0 - AMBIENT) * np.maximum(normals @ SUN_DIRECTION, 0.0)
-    return light
-
-
-def _flat(color: Sequence[int]) -> FloatArray:
-    """A colour on an upward-facing surface."""
-    return np.asarray(color, dtype=np.float64) * float(sunlight(np.array([[0.0, 0.0, 1.0]]))[0])
-
-
-def ribbon(left: FloatArray, right: FloatArray) -> FloatArray:
-    """Triangles (6 (N - 1), 3) of the strip between two (N, 3) polylines."""
-    a, b, c, d = left[:-1], right[:-1], right[1:], left[1:]
-    return np.stack([a, b, c, a, c, d], axis=1).reshape(-1, 3)
+def _add_strip(
+    builder: MeshBuilder,
+    left: FloatArray,
+    right: FloatArray,
+    color: FloatArray,
+    label: SemanticClass,
+    width_m: float = math.inf,
+) -> None:
+    """The strip between two (N, 3) polylines at both levels of detail: within
+    STRIP_TOLERANCE_M of its edges when fine, within COARSE_TOLERANCE_M when coarse,
+    where a strip narrower than that is left out."""
+    fine = kept_vertices((left, right), STRIP_TOLERANCE_M)
+    if width_m < COARSE_TOLERANCE_M:
+        builder.add(ribbon(left[fine], right[fine]), color, label, detail=Detail.FINE)
+        return
+    coarse = kept_vertices((left, right), COARSE_TOLERANCE_M)
+    if np.array_equal(fine, coarse):
+        builder.add(ribbon(left[fine], right[fine]), color, label)
+        return
+    builder.add(ribbon(left[fine], right[fine]), color, label, detail=Detail.FINE)
+    builder.add(ribbon(left[coarse], right[coarse]), color, label, detail=Detail.COARSE)
 
 
 def _offset(points: FloatArray, distance: float) -> FloatArray:
@@ -206,48 +130,15 @@ def _pieces(points: FloatArray, length: float, gap: float) -> list[FloatArray]:
     return dashes
 
 
-def _box_triangles(
-    centres: FloatArray, sizes: FloatArray, yaws: FloatArray
-) -> tuple[FloatArray, FloatArray]:
-    """Triangles (36 N, 3) and their normals of upright boxes (centre, size L W H, yaw)."""
-    cos, sin = np.cos(yaws), np.sin(yaws)
-    corners = _CORNERS[_CUBE_TRIANGLES][None, :, :] * (sizes[:, None, :] / 2.0)
-    x = cos[:, None] * corners[..., 0] - sin[:, None] * corners[..., 1]
-    y = sin[:, None] * corners[..., 0] + cos[:, None] * corners[..., 1]
-    points = np.stack([x, y, corners[..., 2]], axis=-1) + centres[:, None, :]
-    nx = cos[:, None] * _CUBE_NORMALS[None, :, 0] - sin[:, None] * _CUBE_NORMALS[None, :, 1]
-    ny = sin[:, None] * _CUBE_NORMALS[None, :, 0] + cos[:, None] * _CUBE_NORMALS[None, :, 1]
-    nz = np.broadcast_to(_CUBE_NORMALS[None, :, 2], nx.shape)
-    normals = np.stack([nx, ny, nz], axis=-1)
-    return points.reshape(-1, 3), normals.reshape(-1, 3)
-
-
-def _add_boxes(
-    builder: _MeshBuilder,
-    centres: FloatArray,
-    sizes: FloatArray,
-    yaws: FloatArray,
-    colors: npt.ArrayLike,
-    label: SemanticClass,
-    instances: npt.ArrayLike = 0,
-) -> None:
-    """Boxes shaded per face; colors (N, 3) or one; instances (N,) or one."""
-    if len(centres) == 0:
-        return
-    points, normals = _box_triangles(centres, sizes, yaws)
-    base = np.repeat(np.broadcast_to(np.asarray(colors, float), (len(centres), 3)), 36, axis=0)
-    light = sunlight(normals)
-    ids = np.repeat(np.broadcast_to(np.asarray(instances, np.int64), (len(centres),)), 36)
-    builder.add(points, base * light[:, None], label, ids)
-
-
 @dataclass(frozen=True, eq=False)
 class StaticScene:
     """A map's fixed geometry. `origin` (map, m) is subtracted from every vertex so that
-    float32 keeps centimetres on maps kilometres wide."""
+    float32 keeps centimetres on maps kilometres wide; the mesh is stored tile after
+    tile (`tiles`), so a renderer can skip what its camera cannot see."""
 
     origin: FloatArray
     mesh: Mesh
+    tiles: SceneTiles
     lights: tuple[TrafficLightSite, ...]
     lamps: LampGeometry
 
@@ -255,18 +146,20 @@ class StaticScene:
 def build_static_scene(lane_map: LaneMap) -> StaticScene:
     xmin, ymin, xmax, ymax = lane_map.bounds()
     origin = np.array([(xmin + xmax) / 2.0, (ymin + ymax) / 2.0, 0.0])
-    builder = _MeshBuilder(origin)
+    builder = MeshBuilder(origin)
     road_z = np.concatenate([lane.centerline[:, 2] for lane in lane_map.lanes.values()])
     _add_terrain(builder, (xmin, ymin, xmax, ymax), float(road_z.min()) - TERRAIN_DROP_M)
     for lane in lane_map.lanes.values():
         left, right = lane_edges(lane, SHOULDER_M)
-        builder.add(ribbon(left, right), _flat(ASPHALT), SemanticClass.ROAD)
+        _add_strip(builder, left, right, flat_color(ASPHALT), SemanticClass.ROAD)
     for walk in lane_map.sidewalks.values():
         points = np.column_stack((walk.points, np.full(len(walk.points), SIDEWALK_HEIGHT_M)))
         half = SIDEWALK_WIDTH_M / 2.0
-        builder.add(
-            ribbon(_offset(points, half), _offset(points, -half)),
-            _flat(SIDEWALK),
+        _add_strip(
+            builder,
+            _offset(points, half),
+            _offset(points, -half),
+            flat_color(SIDEWALK),
             SemanticClass.SIDEWALK,
         )
     for marking in map_markings(lane_map):
@@ -275,10 +168,12 @@ def build_static_scene(lane_map: LaneMap) -> StaticScene:
         _add_crosswalk(builder, crosswalk, _height_near(lane_map, crosswalk))
     lights = tuple(lane_map.traffic_lights.values())
     _add_light_fixtures(builder, lights)
-    return StaticScene(origin, builder.mesh(), lights, _lamp_geometry(lights))
+    mesh = builder.mesh()
+    vertex_order, tiles = tile_order(mesh.positions, builder.triangle_details())
+    return StaticScene(origin, mesh.reordered(vertex_order), tiles, lights, _lamp_geometry(lights))
 
 
-def _add_terrain(builder: _MeshBuilder, bounds: tuple[float, ...], z: float) -> None:
+def _add_terrain(builder: MeshBuilder, bounds: tuple[float, ...], z: float) -> None:
     xmin, ymin, xmax, ymax = bounds
     m = TERRAIN_MARGIN_M
     corners = np.array(
@@ -290,10 +185,10 @@ def _add_terrain(builder: _MeshBuilder, bounds: tuple[float, ...], z: float) -> 
         ]
     )
     triangles = corners[[0, 1, 2, 0, 2, 3]]
-    builder.add(triangles, _flat(TERRAIN), SemanticClass.TERRAIN)
+    builder.add(triangles, flat_color(TERRAIN), SemanticClass.TERRAIN)
 
 
-def _add_marking(builder: _MeshBuilder, marking: RoadMarking) -> None:
+def _add_marking(builder: MeshBuilder, marking: RoadMarking) -> None:
     points = marking.points + np.array([0.0, 0.0, PAINT_LIFT_M])
     label = (
         SemanticClass.STOP_LINE
@@ -314,10 +209,13 @@ def _add_marking(builder: _MeshBuilder, marking: RoadMarking) -> None:
             if len(piece) < 2:
                 continue
             half = marking.width_m / 2.0
-            builder.add(
-                ribbon(_offset(piece, half), _offset(piece, -half)),
-                _flat(PAINT[marking.color]),
+            _add_strip(
+                builder,
+                _offset(piece, half),
+                _offset(piece, -half),
+                flat_color(PAINT[marking.color]),
                 label,
+                marking.width_m,
             )
 
 
@@ -327,7 +225,7 @@ def _height_near(lane_map: LaneMap, crosswalk: Crosswalk) -> float:
     return lane_map.pose_at(found.lane_id, found.s)[2]
 
 
-def _add_crosswalk(builder: _MeshBuilder, crosswalk: Crosswalk, z: float) -> None:
+def _add_crosswalk(builder: MeshBuilder, crosswalk: Crosswalk, z: float) -> None:
     """Zebra stripes across the walking line, `width` long, every other half metre."""
     start, end = np.asarray(crosswalk.start, float), np.asarray(crosswalk.end, float)
     length = float(np.hypot(*(end - start)))
@@ -343,7 +241,9 @@ def _add_crosswalk(builder: _MeshBuilder, crosswalk: Crosswalk, z: float) -> Non
         quad = np.array([a + across, a - across, b - across, b + across])
         corners = np.column_stack((quad, np.full(4, lift)))
         builder.add(
-            corners[[0, 1, 2, 0, 2, 3]], _flat(PAINT[MarkingColor.WHITE]), SemanticClass.CROSSWALK
+            corners[[0, 1, 2, 0, 2, 3]],
+            flat_color(PAINT[MarkingColor.WHITE]),
+            SemanticClass.CROSSWALK,
         )
 
 
@@ -358,7 +258,7 @@ def _lamp_count(site: TrafficLightSite) -> int:
     return len(LAMP_ORDER.get(site.light_type, LAMP_ORDER[LightType.RYG]))
 
 
-def _add_light_fixtures(builder: _MeshBuilder, lights: Sequence[TrafficLightSite]) -> None:
+def _add_light_fixtures(builder: MeshBuilder, lights: Sequence[TrafficLightSite]) -> None:
     """Each light's dark head, and a pole from the ground up to it, just behind it (so the
     lamps stay in front)."""
     heads, poles = [], []
@@ -374,7 +274,7 @@ def _add_light_fixtures(builder: _MeshBuilder, lights: Sequence[TrafficLightSite
         (poles, POLE, SemanticClass.POLE),
     ):
         table = np.array(boxes, dtype=np.float64).reshape(-1, 7)
-        _add_boxes(builder, table[:, :3], table[:, 3:6], table[:, 6], colour, label)
+        add_boxes(builder, table[:, :3], table[:, 3:6], table[:, 6], colour, label)
 
 
 def lamp_centres(site: TrafficLightSite) -> list[tuple[int, FloatArray]]:
@@ -421,7 +321,7 @@ def _lamp_geometry(lights: Sequence[TrafficLightSite]) -> LampGeometry:
     )
 
 
-def _add_lamps(builder: _MeshBuilder, lamps: LampGeometry, aspects: npt.ArrayLike) -> None:
+def _add_lamps(builder: MeshBuilder, lamps: LampGeometry, aspects: npt.ArrayLike) -> None:
     if len(lamps.triangles) == 0:
         return
     aspect = np.asarray(aspects, dtype=np.int64)[lamps.light_index]
@@ -466,7 +366,7 @@ def build_frame_mesh(
     hidden_ids: Iterable[int] = (),
 ) -> Mesh:
     """The moving part of a frame: every object but `hidden_ids`, and the lamps."""
-    builder = _MeshBuilder(scene.origin)
+    builder = MeshBuilder(scene.origin)
     keep = ~np.isin(objects.unique_ids, np.fromiter(hidden_ids, dtype=np.int64))
     types = objects.object_types[keep]
     ids = objects.unique_ids[keep]
@@ -483,13 +383,13 @@ def build_frame_mesh(
         centres = positions[rows] + np.column_stack(
             (np.zeros((rows.sum(), 2)), sizes[rows, 2] / 2.0)
         )
-        _add_boxes(builder, centres, sizes[rows], yaws[rows], colour, label, ids[rows])
+        add_boxes(builder, centres, sizes[rows], yaws[rows], colour, label, ids[rows])
     _add_lamps(builder, scene.lamps, aspects)
     return builder.mesh()
 
 
 def _add_vehicles(
-    builder: _MeshBuilder,
+    builder: MeshBuilder,
     feet: FloatArray,
     sizes: FloatArray,
     yaws: FloatArray,
@@ -500,10 +400,10 @@ def _add_vehicles(
     paints = np.array(VEHICLE_PAINTS, dtype=np.float64)[ids % len(VEHICLE_PAINTS)]
     body = sizes * np.array([1.0, 1.0, BODY_SHARE])
     body_centres = feet + np.column_stack((np.zeros((len(feet), 2)), body[:, 2] / 2.0))
-    _add_boxes(builder, body_centres, body, yaws, paints, SemanticClass.VEHICLE, ids)
+    add_boxes(builder, body_centres, body, yaws, paints, SemanticClass.VEHICLE, ids)
     cabin = sizes * np.array([CABIN_LENGTH_SHARE, CABIN_WIDTH_SHARE, 1.0 - BODY_SHARE])
     cabin_centres = feet + np.column_stack(
         (np.zeros((len(feet), 2)), body[:, 2] + cabin[:, 2] / 2.0)
     )
     glass = paints * 0.45
-    _add_boxes(builder, cabin_centres, cabin, yaws, glass, SemanticClass.VEHICLE, ids)
+    add_boxes(builder, cabin_centres, cabin, yaws, glass, SemanticClass.VEHICLE, ids)

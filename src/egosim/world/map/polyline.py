@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from egosim.world.arrays import FloatArray
+from egosim.world.arrays import FloatArray, IntArray
 
 
 def stations(points: FloatArray) -> FloatArray:
@@ -38,6 +38,35 @@ def offset_left(points: FloatArray, distance: float) -> FloatArray:
     cos_half = np.sum(bisector * normals[1:], axis=1)
     vertex_normals[1:-1] = bisector / cos_half[:, None]
     return points + distance * vertex_normals
+
+
+def kept_vertices(polylines: tuple[FloatArray, ...], tolerance: float) -> IntArray:
+    """Indices of the vertices that keep every one of these equally long polylines
+    within `tolerance` of itself (Douglas-Peucker on the worst of them), so polylines
+    that share their vertices (a strip's two edges) stay paired. Ends are always kept."""
+    stacked = np.stack(polylines)
+    count = stacked.shape[1]
+    if count <= 2:
+        return np.arange(count)
+    kept = np.zeros(count, dtype=bool)
+    kept[[0, -1]] = True
+    spans = [(0, count - 1)]
+    while spans:
+        first, last = spans.pop()
+        if last - first < 2:
+            continue
+        a, b = stacked[:, first : first + 1], stacked[:, last : last + 1]
+        along, offsets = b - a, stacked[:, first + 1 : last] - a
+        length2 = np.maximum(np.sum(along * along, axis=2, keepdims=True), 1e-18)
+        t = np.clip(np.sum(offsets * along, axis=2, keepdims=True) / length2, 0.0, 1.0)
+        apart = offsets - t * along
+        worst = np.max(np.sum(apart * apart, axis=2), axis=0)
+        farthest = int(np.argmax(worst))
+        if worst[farthest] > tolerance * tolerance:
+            split = first + 1 + farthest
+            kept[split] = True
+            spans += [(first, split), (split, last)]
+    return np.flatnonzero(kept)
 
 
 def between(points: FloatArray, start: float, end: float) -> FloatArray:
