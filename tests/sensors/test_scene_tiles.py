@@ -1,5 +1,6 @@
-"""The static scene's tiles: culling never drops what the camera sees, far tiles are
-drawn coarse, and the image stays as the whole scene draws it."""
+"""What a camera skips: tiles, objects and lights out of view, and far detail. Culling
+never drops what the pinhole model puts in the image, far tiles are drawn coarse, and
+the image stays as drawing everything gives it."""
 
 from __future__ import annotations
 
@@ -10,9 +11,12 @@ import numpy as np
 
 from egosim.sensors.camera import CameraConfig, CameraView, project, scene_matrices
 from egosim.sensors.camera_capture import capture
-from egosim.sensors.camera_scene import StaticScene
+from egosim.sensors.camera_render import RenderRequest
+from egosim.sensors.camera_scene import StaticScene, build_frame_mesh
 from egosim.sensors.scene_tiles import SceneTiles, coarse_beyond_m, visible_ranges
+from egosim.world import World
 from egosim.world.map import build_builtin_map
+from egosim.world.scenario import load_default_scenario
 from egosim.world.signals.aspects import RED
 from egosim.world.traffic.objects import ObjectTable
 from egosim.world.vehicle import Pose
@@ -127,3 +131,26 @@ def test_far_tiles_drawn_coarse_change_almost_no_pixel() -> None:
         # Far edges move less than half a pixel: only pixels whose centres lay that
         # close to one may change (0-3 of 307 200 in these views).
         assert changed.mean() < 1e-4, f"{changed.sum()} pixels changed at {pose}"
+
+
+def test_objects_and_lights_out_of_view_are_left_out_and_the_image_is_unchanged() -> None:
+    world = World(build_builtin_map("town"), load_default_scenario())
+    for _ in range(200):
+        world.step()
+    scene = scene_of("town")
+    pose = world.ego_status(0).pose
+    view = CameraView.of(pose, CONFIG.mount)
+    intrinsics = CONFIG.intrinsics()
+    _, clip = scene_matrices(view, intrinsics, CONFIG.near_m, CONFIG.far_m, scene.origin)
+    objects, aspects = world.objects(), world.signals.aspects()
+    hidden = (world.egos[0].unique_id,)
+    every = build_frame_mesh(scene, objects, aspects, hidden)
+    in_view = build_frame_mesh(scene, objects, aspects, hidden, clip)
+    assert 0 < len(in_view) < len(every) / 2
+    images = [
+        renderer().render(
+            RenderRequest(scene, frame, view, intrinsics, CONFIG.mode, CONFIG.near_m, CONFIG.far_m)
+        )
+        for frame in (every, in_view)
+    ]
+    assert np.array_equal(*images)

@@ -22,7 +22,7 @@ import numpy as np
 from egosim.sensors.errors import SensorConfigError
 from egosim.sensors.frames import MountPose, sensor_in_map
 from egosim.sensors.rotation import Matrix3
-from egosim.world.arrays import FloatArray
+from egosim.world.arrays import BoolArray, FloatArray
 from egosim.world.vehicle import Pose
 
 DEFAULT_CAMERA_MOUNT = MountPose(x=1.5, y=0.0, z=1.2)
@@ -175,3 +175,23 @@ def scene_matrices(
     scene_to_map[:3, 3] = scene_origin
     eye = view_matrix(view) @ scene_to_map
     return eye, projection_matrix(intrinsics, near, far) @ eye
+
+
+# The 8 corners of a box as choices of (lower or upper) per axis.
+_CORNER_PICKS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], bool)
+
+
+def boxes_in_view(lower: FloatArray, upper: FloatArray, clip_from_frame: FloatArray) -> BoolArray:
+    """(N,) whether each axis-aligned box lower[k]..upper[k] (N, 3) may show through the
+    4 x 4 matrix `clip_from_frame` from the boxes' frame to clip space.
+
+    A box is out when all its corners are beyond the same clip plane (x > w, x < -w and
+    so on); the test is linear in the point, so it holds behind the camera too. It may
+    keep a box that shows nothing, never the reverse.
+    """
+    corners = np.where(_CORNER_PICKS[None], upper[:, None, :], lower[:, None, :])
+    clip = corners @ clip_from_frame[:, :3].T + clip_from_frame[:, 3]
+    w = clip[..., 3:4]
+    beyond = np.concatenate((clip[..., :3] > w, clip[..., :3] < -w), axis=-1)
+    shown: BoolArray = ~np.any(np.all(beyond, axis=1), axis=1)
+    return shown

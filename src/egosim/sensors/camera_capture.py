@@ -11,7 +11,7 @@ from collections.abc import Iterable
 import numpy as np
 import numpy.typing as npt
 
-from egosim.sensors.camera import CameraConfig, CameraView
+from egosim.sensors.camera import CameraConfig, CameraView, scene_matrices
 from egosim.sensors.camera_render import CameraRenderer, RenderRequest
 from egosim.sensors.camera_scene import StaticScene, build_frame_mesh
 from egosim.world.traffic.objects import ObjectTable
@@ -31,14 +31,17 @@ def capture(
 ) -> Image:
     """The image of a camera mounted at `config.mount` on base_link at `vehicle_pose`.
 
-    `objects` are drawn but those in `hidden_ids` (the vehicle carrying the camera);
-    `aspects` are the lights' aspects in `scene.lights` order.
+    `objects` are drawn but those in `hidden_ids` (the vehicle carrying the camera) and
+    those out of view; `aspects` are the lights' aspects in `scene.lights` order.
     """
+    view = CameraView.of(vehicle_pose, config.mount)
+    intrinsics = config.intrinsics()
+    _, clip = scene_matrices(view, intrinsics, config.near_m, config.far_m, scene.origin)
     request = RenderRequest(
         scene=scene,
-        frame=build_frame_mesh(scene, objects, aspects, hidden_ids),
-        view=CameraView.of(vehicle_pose, config.mount),
-        intrinsics=config.intrinsics(),
+        frame=build_frame_mesh(scene, objects, aspects, hidden_ids, clip),
+        view=view,
+        intrinsics=intrinsics,
         mode=config.mode,
         near_m=config.near_m,
         far_m=config.far_m,

@@ -19,10 +19,11 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from egosim.sensors.camera import boxes_in_view
 from egosim.sensors.camera_labels import SemanticClass
 from egosim.sensors.camera_mesh import Detail, Mesh, MeshBuilder, add_boxes, flat_color, ribbon
 from egosim.sensors.scene_tiles import COARSE_TOLERANCE_M, SceneTiles, tile_order
-from egosim.world.arrays import FloatArray
+from egosim.world.arrays import BoolArray, FloatArray
 from egosim.world.map import Crosswalk, LaneMap, TrafficLightSite
 from egosim.world.map.light_type import LightType
 from egosim.world.map.markings import (
@@ -289,11 +290,14 @@ def lamp_centres(site: TrafficLightSite) -> list[tuple[int, FloatArray]]:
 @dataclass(frozen=True, eq=False)
 class LampGeometry:
     """Every lamp's triangles (N, 3, map frame), with per vertex the light (index into
-    the scene's lights) and the lamp bit it shows; bit 0 marks an arrow lamp's dark face."""
+    the scene's lights) and the lamp bit it shows; bit 0 marks an arrow lamp's dark face.
+    Light k's lamps lie in the box lower[k]..upper[k] (map frame)."""
 
     triangles: FloatArray
     light_index: npt.NDArray[np.int64]
     lamp_bit: npt.NDArray[np.int64]
+    lower: FloatArray
+    upper: FloatArray
 
 
 def _lamp_geometry(lights: Sequence[TrafficLightSite]) -> LampGeometry:
@@ -315,22 +319,34 @@ def _lamp_geometry(lights: Sequence[TrafficLightSite]) -> LampGeometry:
             else:
                 add(_square(centre, right, up), k, lamp)
     if not triangles:
-        return LampGeometry(np.empty((0, 3)), np.empty(0, np.int64), np.empty(0, np.int64))
+        none = np.empty((0, 3))
+        return LampGeometry(none, np.empty(0, np.int64), np.empty(0, np.int64), none, none)
+    points, owners = np.concatenate(triangles), np.concatenate(light_index)
+    starts = np.flatnonzero(np.diff(owners, prepend=-1))
     return LampGeometry(
-        np.concatenate(triangles), np.concatenate(light_index), np.concatenate(lamp_bit)
+        points,
+        owners,
+        np.concatenate(lamp_bit),
+        np.minimum.reduceat(points, starts),
+        np.maximum.reduceat(points, starts),
     )
 
 
-def _add_lamps(builder: MeshBuilder, lamps: LampGeometry, aspects: npt.ArrayLike) -> None:
-    if len(lamps.triangles) == 0:
+def _add_lamps(
+    builder: MeshBuilder, lamps: LampGeometry, aspects: npt.ArrayLike, shown: BoolArray
+) -> None:
+    """The lamps of the lights `shown` (a mask over the scene's lights)."""
+    rows = shown[lamps.light_index]
+    if not rows.any():
         return
-    aspect = np.asarray(aspects, dtype=np.int64)[lamps.light_index]
-    lit = (aspect != OFF) & ((aspect & lamps.lamp_bit) != 0)
+    bits = lamps.lamp_bit[rows]
+    aspect = np.asarray(aspects, dtype=np.int64)[lamps.light_index[rows]]
+    lit = (aspect != OFF) & ((aspect & bits) != 0)
     colors = np.empty((len(lit), 3))
     colors[:] = LAMP_OFF
     for bit, colour in LAMP_ON.items():
-        colors[lit & (lamps.lamp_bit == bit)] = colour
-    builder.add(lamps.triangles, colors, SemanticClass.TRAFFIC_LIGHT)
+        colors[lit & (bits == bit)] = colour
+    builder.add(lamps.triangles[rows], colors, SemanticClass.TRAFFIC_LIGHT)
 
 
 def _square(centre: FloatArray, right: FloatArray, up: FloatArray) -> FloatArray:
@@ -364,10 +380,24 @@ def build_frame_mesh(
     objects: ObjectTable,
     aspects: npt.ArrayLike,
     hidden_ids: Iterable[int] = (),
+    clip_from_scene: FloatArray | None = None,
 ) -> Mesh:
-    """The moving part of a frame: every object but `hidden_ids`, and the lamps."""
+    """The moving part of a frame: every object but `hidden_ids`, and the lamps; with a
+    view's `clip_from_scene`, only the objects and lights that may show in it."""
     builder = MeshBuilder(scene.origin)
     keep = ~np.isin(objects.unique_ids, np.fromiter(hidden_ids, dtype=np.int64))
+    shown_lights = np.ones(len(scene.lights), dtype=bool)
+    if clip_from_scene is not None:
+        # Upright boxes on their footprint centre, yaw-free: the circle round the footprint.
+        feet = objects.positions - scene.origin
+        reach = np.hypot(objects.sizes[:, 0], objects.sizes[:, 1]) / 2.0
+        lower = feet - np.column_stack((reach, reach, np.zeros_like(reach)))
+        upper = feet + np.column_stack((reach, reach, objects.sizes[:, 2]))
+        keep &= boxes_in_view(lower, upper, clip_from_scene)
+        lamps = scene.lamps
+        shown_lights = boxes_in_view(
+            lamps.lower - scene.origin, lamps.upper - scene.origin, clip_from_scene
+        )
     types = objects.object_types[keep]
     ids = objects.unique_ids[keep]
     positions = objects.positions[keep]
@@ -384,7 +414,7 @@ def build_frame_mesh(
             (np.zeros((rows.sum(), 2)), sizes[rows, 2] / 2.0)
         )
         add_boxes(builder, centres, sizes[rows], yaws[rows], colour, label, ids[rows])
-    _add_lamps(builder, scene.lamps, aspects)
+    _add_lamps(builder, scene.lamps, aspects, shown_lights)
     return builder.mesh()
 
 

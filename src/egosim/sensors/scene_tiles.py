@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from egosim.sensors.camera import boxes_in_view
 from egosim.sensors.camera_mesh import Detail
 from egosim.world.arrays import FloatArray, IntArray
 
@@ -26,8 +27,6 @@ TILE_SIZE_M = 40.0
 COARSE_TOLERANCE_M = 0.25
 MAX_ERROR_PX = 0.5
 
-# The 8 corners of a box as choices of (lower or upper) per axis.
-_CORNER_PICKS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], bool)
 _LEVELS = (Detail.FINE, Detail.COARSE)
 
 
@@ -96,16 +95,11 @@ def visible_ranges(
     4 x 4 scene-to-clip matrix is `clip_from_scene`, from `eye` (scene frame), each at
     the level of detail its distance calls for.
 
-    A box is outside when all its corners are beyond the same clip plane (x > w, x < -w
-    and so on); the test is linear in the point, so it holds behind the camera too.
+    Tiles are tested by their boxes (egosim.sensors.camera.boxes_in_view).
     """
     if len(tiles.first) == 0:
         return []
-    corners = np.where(_CORNER_PICKS[None], tiles.upper[:, None, :], tiles.lower[:, None, :])
-    clip = corners @ clip_from_scene[:, :3].T + clip_from_scene[:, 3]
-    w = clip[..., 3:4]
-    beyond = np.concatenate((clip[..., :3] > w, clip[..., :3] < -w), axis=-1)
-    visible = ~np.any(np.all(beyond, axis=1), axis=1)
+    visible = boxes_in_view(tiles.lower, tiles.upper, clip_from_scene)
     nearest = np.clip(eye, tiles.lower, tiles.upper)
     level = (np.linalg.norm(nearest - eye, axis=1) > coarse_beyond_m(focal_px)).astype(np.int64)
     rows = np.flatnonzero(visible)
