@@ -22,6 +22,10 @@ from egosim.batch.logs import tail_text
 from egosim.batch.processes import GroupProcess
 from egosim.evaluation import METRIC_NAMES, parse_criterion
 
+# The simulator's last acts are closing the bag and writing the score; a loaded node may
+# take seconds over them, and killing it before then loses both.
+SIMULATOR_GRACE_S = 30.0
+
 SIMULATOR_START_S = 60.0
 POLL_S = 0.05
 MASTER_LINE = re.compile(r"^egosim-batch: master (\S+)$")
@@ -177,7 +181,7 @@ class _Supervisor:
                 continue
             if self._stack_ended():
                 # The drive ends with the stack; the simulator writes the score so far.
-                self.simulator.stop(signal.SIGINT)
+                self.simulator.stop(signal.SIGINT, SIMULATOR_GRACE_S)
                 if self.stack_status != 0:
                     return f"stack exited with status {self.stack_status} during the drive"
                 return None
@@ -201,7 +205,7 @@ class _Supervisor:
             if self.stack_status is None:
                 self.stack_status = status
         if self.simulator is not None and self.simulator.poll() is None:
-            self.simulator.stop(signal.SIGINT)
+            self.simulator.stop(signal.SIGINT, SIMULATOR_GRACE_S)
         elif self.simulator is not None:
             self.simulator.log.join(5.0)
 

@@ -101,7 +101,9 @@ def _add_strip(
     if width_m < COARSE_TOLERANCE_M:
         builder.add(ribbon(left[fine], right[fine]), color, label, detail=Detail.FINE)
         return
-    coarse = kept_vertices((left, right), COARSE_TOLERANCE_M)
+    # Simplifying the fine strip is cheaper and, with the fine level's own tolerance
+    # taken off, keeps the coarse one within COARSE_TOLERANCE_M of the original.
+    coarse = fine[kept_vertices((left[fine], right[fine]), COARSE_TOLERANCE_M - STRIP_TOLERANCE_M)]
     if np.array_equal(fine, coarse):
         builder.add(ribbon(left[fine], right[fine]), color, label)
         return

@@ -57,11 +57,12 @@ def kept_vertices(polylines: tuple[FloatArray, ...], tolerance: float) -> IntArr
             continue
         a, b = stacked[:, first : first + 1], stacked[:, last : last + 1]
         along, offsets = b - a, stacked[:, first + 1 : last] - a
-        length2 = np.maximum(np.sum(along * along, axis=2, keepdims=True), 1e-18)
-        t = np.clip(np.sum(offsets * along, axis=2, keepdims=True) / length2, 0.0, 1.0)
+        # ndarray methods, not np.sum: this loop runs thousands of times per scene.
+        length2 = (along * along).sum(axis=2, keepdims=True).clip(1e-18, None)
+        t = ((offsets * along).sum(axis=2, keepdims=True) / length2).clip(0.0, 1.0)
         apart = offsets - t * along
-        worst = np.max(np.sum(apart * apart, axis=2), axis=0)
-        farthest = int(np.argmax(worst))
+        worst = (apart * apart).sum(axis=2).max(axis=0)
+        farthest = int(worst.argmax())
         if worst[farthest] > tolerance * tolerance:
             split = first + 1 + farthest
             kept[split] = True
