@@ -98,16 +98,17 @@ def _add_strip(
     STRIP_TOLERANCE_M of its edges when fine, within COARSE_TOLERANCE_M when coarse,
     where a strip narrower than that is left out."""
     fine = kept_vertices((left, right), STRIP_TOLERANCE_M)
+    fine_strip = ribbon(left[fine], right[fine])
     if width_m < COARSE_TOLERANCE_M:
-        builder.add(ribbon(left[fine], right[fine]), color, label, detail=Detail.FINE)
+        builder.add(fine_strip, color, label, detail=Detail.FINE)
         return
     # Simplifying the fine strip is cheaper and, with the fine level's own tolerance
     # taken off, keeps the coarse one within COARSE_TOLERANCE_M of the original.
     coarse = fine[kept_vertices((left[fine], right[fine]), COARSE_TOLERANCE_M - STRIP_TOLERANCE_M)]
     if np.array_equal(fine, coarse):
-        builder.add(ribbon(left[fine], right[fine]), color, label)
+        builder.add(fine_strip, color, label, detail=Detail.BOTH)
         return
-    builder.add(ribbon(left[fine], right[fine]), color, label, detail=Detail.FINE)
+    builder.add(fine_strip, color, label, detail=Detail.FINE)
     builder.add(ribbon(left[coarse], right[coarse]), color, label, detail=Detail.COARSE)
 
 
