@@ -19,6 +19,7 @@ from ..world import World
 from ..world.scenario import Scenario, ScenarioError, load_default_scenario, parse_scenario
 from ..yamltext import YamlFileError
 from .attachments import Attach, Attachment, RunningSimulator
+from .exit_codes import EXIT_BAD_INPUT, EXIT_OK, EXIT_ROS_FAILED
 from .inbox import Inbox
 from .loop import SimulationLoop
 from .options import RunOptions
@@ -29,9 +30,6 @@ from .summary import ready_summary
 log = logging.getLogger("egosim")
 
 NODE_NAME = "egosim"
-EXIT_OK = 0
-EXIT_BAD_INPUT = 2
-EXIT_ROS_FAILED = 3
 DEFAULT_MAP = "town"
 
 

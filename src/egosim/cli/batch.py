@@ -9,6 +9,7 @@ import sys
 import time
 from pathlib import Path
 
+from ..app.exit_codes import EXIT_BAD_INPUT
 from ..batch.case import CaseSpec
 from ..batch.errors import SuiteError
 from ..batch.html_report import write_html_report
@@ -26,7 +27,6 @@ from ..batch.suite import load_suite
 
 EXIT_ALL_PASSED = 0
 EXIT_SOME_FAILED = 1
-EXIT_BAD_INPUT = 2
 EXIT_INTERRUPTED = 130
 LOCAL_RAY = "local"
 

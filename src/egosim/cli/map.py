@@ -8,10 +8,9 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
+from ..app.exit_codes import EXIT_BAD_INPUT
 from ..maps import MapLoadError, read_map
 from ..world.map import DEFAULT_MAP_NAME, GeoReference, LaneMap
-
-EXIT_BAD_INPUT = 2
 
 
 def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:

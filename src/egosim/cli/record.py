@@ -8,6 +8,7 @@ import sys
 import threading
 from pathlib import Path
 
+from ..app.exit_codes import EXIT_BAD_INPUT, EXIT_ROS_FAILED
 from ..app.recording import TopicRecorder, open_recorder, record_from_network
 from ..app.signals import stop_on_signals
 from ..bridge.camera_rows import camera_topic_names
@@ -17,9 +18,6 @@ from ..replay import RecorderError
 from ..ros1 import Ros1Error
 from ..yamltext import YamlFileError
 from .run import LOG_LEVELS, positive_float
-
-EXIT_BAD_INPUT = 2
-EXIT_ROS_FAILED = 3
 
 
 def add_parser(subparsers: argparse._SubParsersAction) -> None:

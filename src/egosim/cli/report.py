@@ -6,10 +6,9 @@ import argparse
 import sys
 from pathlib import Path
 
+from ..app.exit_codes import EXIT_BAD_INPUT
 from ..maps import MapLoadError, load_map, map_names
 from ..replay import BagError, ReplayTopics
-
-EXIT_BAD_INPUT = 2
 
 
 def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
