@@ -1,0 +1,51 @@
+"""Every kind of agent behind one interface (Population), simulated or recorded.
+
+Public API:
+    Population, Surroundings, LanePoints, Shove   the interface (base.py)
+    Ego, SimulatedEgos, ReplayedEgos               the egos; the main one replayed
+    SimulatedNpcs, PlacedGhosts, SimulatedPedestrians, SimulatedObstacles
+                                                   world/traffic's agents
+    RecordedVehicles, RecordedPedestrians, RecordedObstacles
+                                                   a replay's recorded tables
+"""
+
+from egosim.world.populations.base import (
+    LanePoints,
+    Population,
+    Shove,
+    Surroundings,
+    place_on_lanes,
+)
+from egosim.world.populations.egos import Ego, EgoPopulation, ReplayedEgos, SimulatedEgos
+from egosim.world.populations.recorded import (
+    RecordedObstacles,
+    RecordedPedestrians,
+    RecordedPopulation,
+    RecordedVehicles,
+)
+from egosim.world.populations.simulated import (
+    PlacedGhosts,
+    SimulatedNpcs,
+    SimulatedObstacles,
+    SimulatedPedestrians,
+)
+
+__all__ = [
+    "Ego",
+    "EgoPopulation",
+    "LanePoints",
+    "PlacedGhosts",
+    "Population",
+    "RecordedObstacles",
+    "RecordedPedestrians",
+    "RecordedPopulation",
+    "RecordedVehicles",
+    "ReplayedEgos",
+    "Shove",
+    "SimulatedEgos",
+    "SimulatedNpcs",
+    "SimulatedObstacles",
+    "SimulatedPedestrians",
+    "Surroundings",
+    "place_on_lanes",
+]

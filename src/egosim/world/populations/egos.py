@@ -1,0 +1,218 @@
+"""The ego vehicles as a population: driven by their commands, or the main one replayed."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Protocol
+
+import numpy as np
+
+from egosim.world.arrays import FloatArray, IntArray
+from egosim.world.map import LaneMap, LaneProjections
+from egosim.world.populations.base import LanePoints, Population, Shove, Surroundings
+from egosim.world.recorded_scene import RecordedEgo
+from egosim.world.traffic import LaneOccupants, ObjectTable, ObjectType
+from egosim.world.vehicle import EgoVehicle, Pose, RoadSurface, VehicleStatus
+
+GRADE_BASE_M = 1.0
+"""Length of lane over which the grade under an ego is measured, m."""
+
+
+class Ego:
+    """One ego vehicle: its object id and the vehicle model that moves it."""
+
+    def __init__(self, unique_id: int, vehicle: EgoVehicle) -> None:
+        self.unique_id = unique_id
+        self.vehicle = vehicle
+
+    def box_centre(self, status: VehicleStatus) -> tuple[float, float]:
+        """Footprint centre, m: the reference point moved to the middle of the body."""
+        offset = self.vehicle.model.box_centre_ahead_of_reference
+        yaw = status.pose.yaw
+        return status.pose.x + offset * math.cos(yaw), status.pose.y + offset * math.sin(yaw)
+
+
+class EgoPopulation(Population, Protocol):
+    """The egos, with what the world reports of each (by index, the main ego first)."""
+
+    def status(self, index: int) -> VehicleStatus:
+        """The ego's state as the protocol reports it."""
+        ...
+
+    def lanes(self) -> LaneProjections:
+        """Where each ego's reference point lies on its lane (its yaw as the hint)."""
+        ...
+
+
+class SimulatedEgos:
+    """Every ego driven by its own commands, on the road under it.
+
+    `egos` is the world's list itself: egos added to or removed from it are the
+    population's at once.
+    """
+
+    def __init__(self, lane_map: LaneMap, egos: list[Ego]) -> None:
+        self.map = lane_map
+        self.egos = egos
+        self._lane_cache: tuple[tuple[Pose, ...], LaneProjections] | None = None
+
+    def status(self, index: int) -> VehicleStatus:
+        return self.egos[index].vehicle.status()
+
+    def lanes(self) -> LaneProjections:
+        """Kept while no ego moves: the step, the ego status and the light lookup all
+        ask, and each projection costs as much as stepping a vehicle."""
+        poses = tuple(ego.vehicle.status().pose for ego in self.egos)
+        known = self._lane_cache
+        if known is None or known[0] != poses:
+            projection = self.map.project_many([(p.x, p.y) for p in poses], [p.yaw for p in poses])
+            known = self._lane_cache = (poses, projection)
+        return known[1]
+
+    def table(self) -> ObjectTable:
+        rows = []
+        for ego in self.egos:
+            status = ego.vehicle.status()
+            yaw = status.pose.yaw
+            c, s = math.cos(yaw), math.sin(yaw)
+            vx, vy, _ = status.velocity
+            ax, ay, _ = status.acceleration
+            x, y = ego.box_centre(status)
+            model = ego.vehicle.model
+            rows.append(
+                (
+                    ego.unique_id,
+                    model.name,
+                    (x, y, status.pose.z),
+                    yaw,
+                    (c * vx - s * vy, s * vx + c * vy, 0.0),
+                    (c * ax - s * ay, s * ax + c * ay, 0.0),
+                    (model.length, model.width, model.height),
+                )
+            )
+        n = len(rows)
+        return ObjectTable(
+            unique_ids=np.array([r[0] for r in rows], dtype=np.int64),
+            object_types=np.full(n, int(ObjectType.EGO), np.int64),
+            names=tuple(r[1] for r in rows),
+            positions=np.array([r[2] for r in rows], dtype=np.float64).reshape(-1, 3),
+            headings=np.array([r[3] for r in rows], dtype=np.float64),
+            velocities=np.array([r[4] for r in rows], dtype=np.float64).reshape(-1, 3),
+            accelerations=np.array([r[5] for r in rows], dtype=np.float64).reshape(-1, 3),
+            sizes=np.array([r[6] for r in rows], dtype=np.float64).reshape(-1, 3),
+        )
+
+    def lane_points(self) -> LanePoints:
+        """Each ego's reference point, then each one's footprint centre, its yaw as hint:
+        the first give the lanes (kept, see lanes), the second the lane occupants."""
+        statuses = [ego.vehicle.status() for ego in self.egos]
+        references = [(s.pose.x, s.pose.y) for s in statuses]
+        centres = [ego.box_centre(s) for ego, s in zip(self.egos, statuses, strict=True)]
+        yaws = np.array([s.pose.yaw for s in statuses])
+        return LanePoints(np.array(references + centres).reshape(-1, 2), np.tile(yaws, 2))
+
+    def lane_occupants(self, placed: LaneProjections) -> LaneOccupants:
+        statuses = [ego.vehicle.status() for ego in self.egos]
+        n = len(statuses)
+        self._lane_cache = (tuple(s.pose for s in statuses), placed.part(0, n))
+        centres = placed.part(n, 2 * n)
+        yaws = np.array([s.pose.yaw for s in statuses])
+        widths = np.array([ego.vehicle.model.width for ego in self.egos])
+        on_lane = np.abs(centres.lateral) <= (centres.width + widths) / 2.0
+        lengths = np.array([ego.vehicle.model.length for ego in self.egos])
+        along = np.cos(yaws - centres.heading) * np.array([s.velocity[0] for s in statuses])
+        return LaneOccupants(
+            centres.lane_index[on_lane],
+            centres.s[on_lane],
+            lengths[on_lane] / 2.0,
+            along[on_lane],
+        )
+
+    def inverse_masses(self) -> FloatArray:
+        inverse: FloatArray = 1.0 / np.array([ego.vehicle.model.mass for ego in self.egos])
+        return inverse
+
+    def step(self, dt: float, surroundings: Surroundings) -> None:
+        self.drive(dt)
+
+    def drive(self, dt: float, first: int = 0) -> None:
+        """Step the egos from index `first` on, each on the road under it."""
+        surfaces = self.road_surfaces()
+        for ego, surface in zip(self.egos[first:], surfaces[first:], strict=True):
+            ego.vehicle.step(dt, surface)
+
+    def road_surfaces(self) -> list[RoadSurface]:
+        """The road under each ego: the height of its lane there, and the pitch the
+        lane's grade gives a vehicle facing the ego's way (roll: none)."""
+        projection = self.lanes()
+        n = len(projection)
+        yaws = np.array([ego.vehicle.status().pose.yaw for ego in self.egos])
+        stations = np.concatenate(
+            (projection.s, projection.s - GRADE_BASE_M / 2.0, projection.s + GRADE_BASE_M / 2.0)
+        )
+        poses = self.map.poses_at(np.tile(projection.lane_index, 3), stations)
+        here, below, above = poses[:n], poses[n : 2 * n], poses[2 * n :]
+        run = np.maximum(np.hypot(*(above[:, :2] - below[:, :2]).T), 1e-9)
+        grade = (above[:, 2] - below[:, 2]) / run * np.cos(yaws - projection.heading)
+        return [
+            RoadSurface(z=float(z), pitch=float(-np.arctan(g)))
+            for z, g in zip(here[:, 2], grade, strict=True)
+        ]
+
+    def shove(self, shove: Shove) -> None:
+        for row, displacement, change in zip(
+            shove.rows.tolist(), shove.displacements, shove.velocity_changes, strict=True
+        ):
+            self.egos[row].vehicle.shove(tuple(displacement), tuple(change))
+
+    def halt(self, rows: IntArray) -> None:
+        """An ego's driver decides for itself what to do after a collision."""
+
+
+class ReplayedEgos:
+    """The main ego where a recording puts it (World.show_recorded places it), held there
+    and immovable in a contact, reporting the recorded acceleration and pedals; the other
+    egos simulated as ever."""
+
+    def __init__(self, simulated: SimulatedEgos, recorded: RecordedEgo) -> None:
+        self.simulated = simulated
+        self.recorded = recorded
+
+    def status(self, index: int) -> VehicleStatus:
+        status = self.simulated.status(index)
+        if index > 0:
+            return status
+        recorded = self.recorded
+        return replace(
+            status,
+            acceleration=recorded.acceleration,
+            accel_pedal=recorded.accel_pedal,
+            brake_pedal=recorded.brake_pedal,
+        )
+
+    def lanes(self) -> LaneProjections:
+        return self.simulated.lanes()
+
+    def table(self) -> ObjectTable:
+        return self.simulated.table()
+
+    def lane_points(self) -> LanePoints:
+        return self.simulated.lane_points()
+
+    def lane_occupants(self, placed: LaneProjections) -> LaneOccupants:
+        return self.simulated.lane_occupants(placed)
+
+    def inverse_masses(self) -> FloatArray:
+        inverse = self.simulated.inverse_masses()
+        inverse[0] = 0.0
+        return inverse
+
+    def step(self, dt: float, surroundings: Surroundings) -> None:
+        self.simulated.drive(dt, first=1)
+
+    def shove(self, shove: Shove) -> None:
+        self.simulated.shove(shove)
+
+    def halt(self, rows: IntArray) -> None:
+        self.simulated.halt(rows)
