@@ -10,6 +10,7 @@ takes the share of its rows (Population.shove); pedestrians pass each other.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
@@ -72,7 +73,7 @@ class ContactHandler:
         the object table), swept from where they stood after the last step; time `now`."""
         tables = [population.table() for population in populations]
         table = ObjectTable.concatenate(tables)
-        bounds = np.cumsum([0, *(len(t) for t in tables)])
+        bounds = list(itertools.accumulate(map(len, tables), initial=0))
         footprints = footprints_of(table)
         before = self._footprints if len(self._footprints.headings) == len(table) else footprints
         self._footprints = footprints
@@ -129,7 +130,7 @@ class ContactHandler:
         return contacts, struck
 
 
-def _halt(populations: Sequence[Population], bounds: IntArray, struck: list[int]) -> None:
+def _halt(populations: Sequence[Population], bounds: list[int], struck: list[int]) -> None:
     """Hand each population the rows of its own that were struck."""
     if not struck:
         return
@@ -142,7 +143,7 @@ def _halt(populations: Sequence[Population], bounds: IntArray, struck: list[int]
 
 
 def _shove(
-    populations: Sequence[Population], bounds: IntArray, response: Response, bodies: Bodies
+    populations: Sequence[Population], bounds: list[int], response: Response, bodies: Bodies
 ) -> None:
     """Hand each population the response of its moved rows."""
     change = response.velocities - bodies.velocities

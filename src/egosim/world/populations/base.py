@@ -13,6 +13,7 @@ population's own table.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Protocol
@@ -34,7 +35,21 @@ class LanePoints:
 
     @classmethod
     def none(cls) -> LanePoints:
-        return cls(np.empty((0, 2)), np.empty(0))
+        return _NO_POINTS
+
+
+_NO_POINTS = LanePoints(np.empty((0, 2)), np.empty(0))
+_NOWHERE = LaneProjections(
+    lane_ids=(),
+    lane_index=np.empty(0, np.int64),
+    s=np.empty(0),
+    lateral=np.empty(0),
+    heading=np.empty(0),
+    distance_left=np.empty(0),
+    distance_right=np.empty(0),
+    width=np.empty(0),
+)
+"""The projections of no points, for the many populations that place nobody."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -121,8 +136,8 @@ def place_on_lanes(lane_map: LaneMap, populations: Sequence[Population]) -> list
     placed = lane_map.project_many(
         np.concatenate([p.xy for p in points]), np.concatenate([p.headings for p in points])
     )
-    bounds = np.cumsum([0, *(len(p.headings) for p in points)]).tolist()
+    bounds = list(itertools.accumulate([len(p.headings) for p in points], initial=0))
     return [
-        population.lane_occupants(placed.part(start, stop))
+        population.lane_occupants(placed.part(start, stop) if stop > start else _NOWHERE)
         for population, start, stop in zip(populations, bounds[:-1], bounds[1:], strict=True)
     ]

@@ -82,25 +82,25 @@ class SimulatedEgos:
             model = ego.vehicle.model
             rows.append(
                 (
-                    ego.unique_id,
-                    model.name,
-                    (x, y, status.pose.z),
+                    *(x, y, status.pose.z),
                     yaw,
-                    (c * vx - s * vy, s * vx + c * vy, 0.0),
-                    (c * ax - s * ay, s * ax + c * ay, 0.0),
-                    (model.length, model.width, model.height),
+                    *(c * vx - s * vy, s * vx + c * vy, 0.0),  # velocity, map frame
+                    *(c * ax - s * ay, s * ax + c * ay, 0.0),  # acceleration
+                    *(model.length, model.width, model.height),
                 )
             )
         n = len(rows)
+        # One array for every column: a step asks for this table, each call counts.
+        values = np.array(rows, dtype=np.float64).reshape(n, 13)
         return ObjectTable(
-            unique_ids=np.array([r[0] for r in rows], dtype=np.int64),
+            unique_ids=np.array([ego.unique_id for ego in self.egos], dtype=np.int64),
             object_types=np.full(n, int(ObjectType.EGO), np.int64),
-            names=tuple(r[1] for r in rows),
-            positions=np.array([r[2] for r in rows], dtype=np.float64).reshape(-1, 3),
-            headings=np.array([r[3] for r in rows], dtype=np.float64),
-            velocities=np.array([r[4] for r in rows], dtype=np.float64).reshape(-1, 3),
-            accelerations=np.array([r[5] for r in rows], dtype=np.float64).reshape(-1, 3),
-            sizes=np.array([r[6] for r in rows], dtype=np.float64).reshape(-1, 3),
+            names=tuple(ego.vehicle.model.name for ego in self.egos),
+            positions=values[:, 0:3],
+            headings=values[:, 3],
+            velocities=values[:, 4:7],
+            accelerations=values[:, 7:10],
+            sizes=values[:, 10:13],
         )
 
     def lane_points(self) -> LanePoints:
@@ -110,7 +110,8 @@ class SimulatedEgos:
         references = [(s.pose.x, s.pose.y) for s in statuses]
         centres = [ego.box_centre(s) for ego, s in zip(self.egos, statuses, strict=True)]
         yaws = np.array([s.pose.yaw for s in statuses])
-        return LanePoints(np.array(references + centres).reshape(-1, 2), np.tile(yaws, 2))
+        xy = np.array(references + centres).reshape(-1, 2)
+        return LanePoints(xy, np.concatenate((yaws, yaws)))
 
     def lane_occupants(self, placed: LaneProjections) -> LaneOccupants:
         statuses = [ego.vehicle.status() for ego in self.egos]
@@ -151,7 +152,8 @@ class SimulatedEgos:
         stations = np.concatenate(
             (projection.s, projection.s - GRADE_BASE_M / 2.0, projection.s + GRADE_BASE_M / 2.0)
         )
-        poses = self.map.poses_at(np.tile(projection.lane_index, 3), stations)
+        lanes = projection.lane_index
+        poses = self.map.poses_at(np.concatenate((lanes, lanes, lanes)), stations)
         here, below, above = poses[:n], poses[n : 2 * n], poses[2 * n :]
         run = np.maximum(np.hypot(*(above[:, :2] - below[:, :2]).T), 1e-9)
         grade = (above[:, 2] - below[:, 2]) / run * np.cos(yaws - projection.heading)
