@@ -126,8 +126,12 @@ class BridgeContext:
         """The header stamp of this tick, s."""
         return self.clock()
 
+    def stamp_ns(self) -> int:
+        """The header stamp of this tick, ns."""
+        return self.clock.now_ns()
+
     def header(self, frame_id: str = MAP_FRAME) -> Any:
-        return header(self.profile, self.stamp(), frame_id)
+        return header(self.profile, self.stamp_ns(), frame_id)
 
     def warn_throttled(self, key: str, text: str) -> None:
         """Log `text` when `key` comes up, at most once per window with a count of the
