@@ -111,7 +111,7 @@ def test_keys_need_keyboard_control_mode(straight: BridgeContext) -> None:
     assert not reply["ok"]
     assert "keyboard control mode" in reply["error"]
     assert controls.apply({"op": "ctrl_mode", "mode": 1})["ok"]
-    assert straight.settings_of(straight.world.egos[0].unique_id).ctrl_mode == ControlMode.KEYBOARD
+    assert straight.ego_session(straight.world.egos[0]).ctrl_mode == ControlMode.KEYBOARD
     assert controls.apply({"op": "keys", "throttle": True})["ok"]
     assert controls.apply({"op": "ctrl_mode", "mode": 3})["ok"]
 
@@ -166,6 +166,21 @@ def test_a_silent_page_brakes_the_ego_to_a_stop(straight: BridgeContext) -> None
     status = straight.world.ego_status(0)
     assert status.speed < 0.05
     assert status.brake_pedal == 1.0
+
+
+def test_leaving_keyboard_mode_releases_the_keyboard_command(straight: BridgeContext) -> None:
+    """The page's switch keyboard -> external goes through the ego's session: no throttle is
+    kept, the ego brakes until a /ctrl_cmd comes."""
+    controls, stage = controls_of(straight)
+    controls.apply({"op": "ctrl_mode", "mode": 1})
+    drive(straight, controls, 1.5, throttle=True)
+    moving = straight.world.ego_status(0)
+    assert moving.accel_pedal > 0 and moving.speed > 1.0
+    assert controls.apply({"op": "ctrl_mode", "mode": 3})["ok"]
+    run(straight, stage, 3.0)  # no /ctrl_cmd
+    status = straight.world.ego_status(0)
+    assert (status.accel_pedal, status.brake_pedal) == (0.0, 1.0)
+    assert status.speed < moving.speed
 
 
 def test_prepared_loads_read_their_file_before_the_loop_applies_them(

@@ -77,8 +77,8 @@ class TopicRecorder:
     def tap(self) -> Tap:
         """A bridge tap recording every message egosim sends or receives at its header time."""
 
-        def record(topic: str, message_type: MessageTypeInfo, data: bytes, stamp: float) -> None:
-            self.record(topic, message_type, data, round(stamp * 1e9))
+        def record(topic: str, message_type: MessageTypeInfo, data: bytes, stamp_ns: int) -> None:
+            self.record(topic, message_type, data, stamp_ns)
 
         return record
 

@@ -51,8 +51,8 @@ T = TypeVar("T")
 # (context, row) -> a message, several, or None when there is nothing to say
 Builder = Callable[[BridgeContext, Row], Any | Sequence[Any] | None]
 MessageHandler = Callable[[BridgeContext, Row, Any], None]  # (context, row, message)
-# (topic, message type, serialized bytes, stamp s): sees every message sent or received
-Tap = Callable[[str, MessageType, bytes, float], None]
+# (topic, message type, serialized bytes, stamp ns): sees every message sent or received
+Tap = Callable[[str, MessageType, bytes, int], None]
 RequestHandler = Callable[[BridgeContext, Row, Any], Any]  # (context, row, request) -> response
 # (context, row, request as the client sent it): applies a request field only one
 # release has, before the row's handler answers
@@ -261,7 +261,7 @@ class Bridge:
 
     def _tap(self, topic: str, message_type: MessageType, data: bytes) -> None:
         for tap in self.taps:
-            tap(topic, message_type, data, self.context.stamp())
+            tap(topic, message_type, data, self.context.stamp_ns())
 
     def _advertise(self, row: Row, build: Builder) -> Outlet:
         releases = releases_of(row.type_name, self.default_release)

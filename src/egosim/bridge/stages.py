@@ -16,7 +16,7 @@ from .replay_rows import advance_replay
 REPLAY = Stage[BridgeContext]("replay", lambda context, tick: advance_replay(context, tick.dt))
 AUTOPILOTS = Stage[BridgeContext]("autopilots", lambda context, tick: drive_autopilots(context))
 WORLD = Stage[BridgeContext]("world", lambda context, tick: context.world.step(tick.dt))
-CLOCK = Stage[BridgeContext]("clock", lambda context, tick: context.clock.tick())
+CLOCK = Stage[BridgeContext]("clock", lambda context, tick: context.clock.tick(tick.dt))
 
 
 def publish_stage(bridge: Bridge) -> Stage[BridgeContext]:

@@ -186,11 +186,11 @@ class ViewControls:
         if mode not in PAGE_CTRL_MODES:
             raise ControlError(f"control mode {mode!r} is not one of {PAGE_CTRL_MODES}")
         ego = self.context.world.egos[self._ego_index(request)]
-        self.context.settings_of(ego.unique_id).ctrl_mode = ControlMode(mode)
+        self.context.ego_session(ego).set_ctrl_mode(ControlMode(mode))
 
     def keys(self, request: dict[str, Any]) -> None:
         ego = self.context.world.egos[self._ego_index(request)]
-        if self.context.settings_of(ego.unique_id).ctrl_mode is not ControlMode.KEYBOARD:
+        if self.context.ego_session(ego).ctrl_mode is not ControlMode.KEYBOARD:
             raise ControlError("the ego is not in keyboard control mode")
         if not isinstance(ego.vehicle, Vehicle):
             raise ControlError("keyboard driving needs a road vehicle")
@@ -206,7 +206,7 @@ class ViewControls:
             ego = egos.get(unique_id)
             keyboard = (
                 ego is not None
-                and self.context.settings_of(unique_id).ctrl_mode is ControlMode.KEYBOARD
+                and self.context.ego_session(ego).ctrl_mode is ControlMode.KEYBOARD
                 and isinstance(ego.vehicle, Vehicle)
             )
             if not keyboard:

@@ -158,7 +158,7 @@ def _egos(context: BridgeContext) -> list[dict[str, Any]]:
                 "forward_speed": status.velocity[0],
                 "acceleration": status.acceleration[0],
                 "gear": status.gear.name.lower(),
-                "ctrl_mode": int(context.settings_of(ego.unique_id).ctrl_mode),
+                "ctrl_mode": int(context.ego_session(ego).ctrl_mode),
                 "steer": status.front_steer,
                 "accel_pedal": status.accel_pedal,
                 "brake_pedal": status.brake_pedal,
