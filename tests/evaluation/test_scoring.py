@@ -22,7 +22,7 @@ from egosim.world.map import LaneMap, build_builtin_map
 from egosim.world.scenario import parse_scenario
 from egosim.world.signals import GREEN, RED
 from egosim.world.vehicle import DEFAULT_EGO_MODEL, ego_model
-from tests.evaluation.drives import DT, along_lane, drive, straight
+from tests.evaluation.drives import DT, along_lane, drive, sample_exactly, straight
 
 EGO = ego_model(DEFAULT_EGO_MODEL)
 LANE_Y = -1.75  # the straight map's R1_E_1 centreline, heading east
@@ -199,6 +199,17 @@ def test_a_completed_route_finishes_the_drive_and_scores_full() -> None:
     assert score.metrics["route_completion"] == 1.0
     assert score.metrics["driving_score"] == 1.0
     assert score.infractions == ()
+
+
+@pytest.mark.parametrize("period", [0.01, 0.5, 1.0])
+def test_a_route_is_followed_at_any_sample_rate(period: float) -> None:
+    # At 40 m/s a 1 s sync tick moves the ego 40 m between samples.
+    world = straight_world()
+    evaluator = DriveEvaluator(world, Route([(float(x), LANE_Y) for x in range(201)]))
+    sample_exactly(world, evaluator, straight(0.0, LANE_Y, 40.0), 4.0, period)
+    assert evaluator.score().metrics["route_completion"] == pytest.approx(0.8)
+    sample_exactly(world, evaluator, straight(0.0, LANE_Y, 40.0), 1.0, period)
+    assert evaluator.finish_reason == "route_completed"
 
 
 def test_standing_still_too_long_is_blocked_and_ends_the_drive() -> None:

@@ -2,7 +2,8 @@
 
 Each case is its own processes (simulator and stack, see case_runner), so the local pool
 only supervises: N threads, each waiting on one case. Ctrl-C stops every running case's
-processes (their scores so far are kept) and the cases not started are reported not run.
+processes (their scores so far are kept) and the cases not started are reported not run,
+in the local pool and on Ray alike.
 """
 
 from __future__ import annotations
@@ -75,7 +76,7 @@ def run_ray(
     ray = importlib.import_module("ray")  # an optional extra: pip install egosim[ray]
     ray.init(address=address, include_dashboard=False, log_to_driver=False)
     try:
-        remote = ray.remote(num_cpus=1, max_retries=0)(run_case)
+        remote = ray.remote(num_cpus=1, max_retries=0)(run_cancellable_case)
         refs = {remote.remote(case, out_dir): case for case in cases}
         results = {} if results is None else results
         pending = list(refs)
@@ -84,30 +85,67 @@ def run_ray(
                 done, pending = ray.wait(pending, num_returns=1, timeout=RAY_POLL_S)
                 for ref in done:
                     result = _ray_result(ray, ref, refs[ref])
-                    results[result["name"]] = result
-                    on_result(result, len(pending))
+                    if result is not None:
+                        results[result["name"]] = result
+                        on_result(result, len(pending))
         except KeyboardInterrupt:
             for ref in pending:
                 ray.cancel(ref)
             for ref in pending:
                 result = _ray_result(ray, ref, refs[ref])
-                results[result["name"]] = result
+                if result is not None:
+                    results[result["name"]] = result
             raise
         return results
     finally:
         ray.shutdown()
 
 
-def _ray_result(ray: Any, ref: Any, case: CaseSpec) -> Result:
+def run_cancellable_case(case: CaseSpec, out_dir: str) -> Result:
+    """run_case as a Ray task. Ray cancels a running task by raising KeyboardInterrupt in
+    its thread wherever it is; here that only sets the case's cancel event, which the case
+    watches as in the local pool, so it stops its processes in order and returns what it
+    had driven. Cancelled before the case began, the task ends cancelled (not run)."""
+    cancel, finished = threading.Event(), threading.Event()
+    outcome: list[Result | BaseException] = []
+
+    def work() -> None:
+        try:
+            outcome.append(run_case(case, out_dir, cancel))
+        except BaseException as error:  # handed to the task, which raises it
+            outcome.append(error)
+        finally:
+            finished.set()
+
+    case_thread = threading.Thread(target=work, name="case")
+    while True:
+        try:
+            if case_thread.ident is None:
+                case_thread.start()
+            # Not Thread.join: an exception raised inside it marks the thread ended.
+            while not finished.wait(RAY_POLL_S):
+                pass
+            break
+        except KeyboardInterrupt:
+            cancel.set()
+            if case_thread.ident is None:
+                raise
+    (result,) = outcome
+    if isinstance(result, BaseException):
+        raise result
+    return result
+
+
+def _ray_result(ray: Any, ref: Any, case: CaseSpec) -> Result | None:
+    """A task's result; None for a task cancelled before its case began."""
     try:
-        return ray.get(ref)
-    except (ray.exceptions.TaskCancelledError, ray.exceptions.RayError) as error:
-        reason = (
-            "interrupted"
-            if isinstance(error, ray.exceptions.TaskCancelledError)
-            else (f"Ray task failed: {error}")
-        )
+        result: Result = ray.get(ref)
+    except ray.exceptions.TaskCancelledError:
+        return None
+    except ray.exceptions.RayError as error:
+        reason = f"Ray task failed: {error}"
         return {"name": case.name, "parameters": case.parameters, "status": ERROR, "reason": reason}
+    return result
 
 
 def failed(result: Result) -> bool:

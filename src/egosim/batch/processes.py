@@ -6,6 +6,7 @@ import contextlib
 import os
 import signal
 import subprocess
+import sys
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -14,11 +15,13 @@ from egosim.batch.logs import BoundedLog
 
 GRACE_S = 5.0
 POLL_S = 0.05
+DEFAULT_SIGNALS = Path(__file__).with_name("default_signals.py")
 
 
 class GroupProcess:
-    """A process started in a new session (its group is everything it starts) whose
-    output goes to a bounded log."""
+    """A process started in a new session (its group is everything it starts) with the
+    default signal handling (default_signals: whatever mask and ignored signals its parent
+    has, SIGINT stops it gracefully) and whose output goes to a bounded log."""
 
     def __init__(
         self,
@@ -29,7 +32,7 @@ class GroupProcess:
         on_line: Callable[[str], None] | None = None,
     ) -> None:
         self.popen = subprocess.Popen(
-            list(args),
+            [sys.executable, "-I", "-S", str(DEFAULT_SIGNALS), *args],
             env=env,
             cwd=cwd,
             stdin=subprocess.DEVNULL,
