@@ -10,6 +10,8 @@ force: the ego brakes until its new input commands it.
 
 from __future__ import annotations
 
+import logging
+
 from ..world import Ego
 from ..world.traffic import LightsView
 from ..world.traffic.autopilot import LaneAutopilot
@@ -18,11 +20,21 @@ from ..world.vehicle import Vehicle
 from .codes import ControlMode
 from .context import BridgeContext
 
+log = logging.getLogger(__name__)
 
-def switch_ctrl_mode(context: BridgeContext, ego: Ego, mode: ControlMode) -> None:
-    """Put `ego` in control mode `mode`; a change releases the command in force."""
+
+def switch_ctrl_mode(context: BridgeContext, ego: Ego, mode: ControlMode, by: str) -> None:
+    """Put `ego` in control mode `mode` as `by` (a row's name, "the view") asks; a change
+    releases the command in force, and is logged."""
     settings = context.settings_of(ego.unique_id)
     if settings.ctrl_mode is not mode:
+        log.info(
+            "ego %d: control mode %s -> %s (%s)",
+            ego.unique_id,
+            settings.ctrl_mode.name.lower(),
+            mode.name.lower(),
+            by,
+        )
         settings.ctrl_mode = mode
         ego.vehicle.release_command()
 

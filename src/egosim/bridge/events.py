@@ -58,7 +58,7 @@ def serve_event_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
         except ValueError:
             log.warning("%s: ctrl_mode %s is not 1..4; ignored", row.name, event.ctrl_mode)
         else:
-            switch_ctrl_mode(context, ego, mode)
+            switch_ctrl_mode(context, ego, mode, row.name)
     if option & OPTION_GEAR and event.gear != GEAR_NO_CHANGE:
         try:
             ego.vehicle.set_gear(Gear(int(event.gear)))

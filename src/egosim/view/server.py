@@ -238,8 +238,12 @@ class ViewServer:
             return False
         try:
             await asyncio.wait_for(client.ws.send_str(text), SEND_TIMEOUT_S)
-        except (TimeoutError, asyncio.TimeoutError, ConnectionError) as error:
-            log.info("view: dropping a browser that does not keep up (%s)", type(error).__name__)
+        except (TimeoutError, asyncio.TimeoutError):
+            log.info("view: dropping a browser that does not keep up")
+            await client.ws.close()
+            return False
+        except ConnectionError as error:  # the browser closed its tab: routine
+            log.debug("view: a browser left (%s)", type(error).__name__)
             await client.ws.close()
             return False
         return True
