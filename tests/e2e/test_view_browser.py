@@ -107,7 +107,7 @@ def look_at(browser: Any, x: float, y: float, scale: float) -> None:
 
 
 def test_page_loads_without_console_errors_and_shows_the_town(viewed) -> None:
-    _, browser = viewed()
+    simulator, browser = viewed("--log-level", "DEBUG")
     assert page(browser, "s.map.name") == "town"
     assert page(browser, "s.map.lanes.length") > 100
     assert page(browser, "s.frame.objects.id.length") > 0
@@ -124,6 +124,11 @@ def test_page_loads_without_console_errors_and_shows_the_town(viewed) -> None:
     browser.save_screenshot(str(ARTIFACTS / "view_ego.png"))
     assert severe_console_entries(browser) == []
     assert page(browser, "s.errors") == []
+    # Leaving the page, as closing its tab does, is routine: a DEBUG line, nothing above.
+    browser.get("about:blank")
+    wait_for(lambda: "view: a browser left" in simulator.process.stderr_text(), "the departure")
+    logged = simulator.process.stderr_text().splitlines()
+    assert [line for line in logged if "browser" in line and " DEBUG " not in line] == []
 
 
 def test_the_ego_is_drawn_where_ego_topic_says(viewed, rospy_client) -> None:
@@ -263,7 +268,10 @@ def test_the_page_shows_what_it_waits_for_until_the_first_frame(egosim, browser)
     wait_for(lambda: page(browser, "s.frame !== null"), "the first frame")
     wait_for(lambda: not overlay.is_displayed(), "the overlay to go")
     assert page(browser, "s.loading") is None
-    assert page(browser, "document.getElementById('plot-speed').toDataURL()") != plot_text
+    wait_for(
+        lambda: page(browser, "document.getElementById('plot-speed').toDataURL()") != plot_text,
+        "the speed plot to draw its data",
+    )
     assert severe_console_entries(browser) == []
     assert page(browser, "s.errors") == []
 

@@ -214,6 +214,7 @@ class ViewServer:
         client = _Client(ws)
         self._clients.add(client)
         self._set_watchers()
+        log.debug("view: a browser connected (%d watching)", len(self._clients))
         sender: asyncio.Task[None] | None = None
         try:
             # Hello, graph and history come before any frame; the first frame is one taken
@@ -235,6 +236,8 @@ class ViewServer:
             self._clients.discard(client)
             self._set_watchers()
             await ws.close()
+            # Routine: every closed tab and reload does it.
+            log.debug("view: a browser left (%d still watching)", len(self._clients))
         return ws
 
     def _set_watchers(self) -> None:
@@ -252,8 +255,7 @@ class ViewServer:
             log.info("view: dropping a browser that does not keep up")
             await client.ws.close()
             return False
-        except ConnectionError as error:  # the browser closed its tab: routine
-            log.debug("view: a browser left (%s)", type(error).__name__)
+        except ConnectionError:  # the browser went (a closed tab): its departure is logged
             await client.ws.close()
             return False
         return True
