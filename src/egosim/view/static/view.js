@@ -25,7 +25,7 @@ const state = {
   // Per ego id: the last `span` s sampled every `spacing` s, as columns (t and SAMPLE_FIELDS).
   samples: new Map(), spacing: 0.1, span: 60,
   layers: {}, pointer: null, tooltip: null, keys: new Set(), errors: [],
-  framesReceived: 0, firstFrameTime: null, loading: null, hidden: false,
+  framesReceived: 0, firstFrameTime: null, loading: null, pageLeft: false,
 };
 // Page state, read by tests and handy in the console.
 window.egosimView = state;
@@ -42,7 +42,7 @@ function connect() {
   socket.onopen = () => { state.connected = true; setConnection("live", "live"); sendLayers(); showLoading(); };
   socket.onclose = () => {
     state.connected = false;
-    if (state.hidden) return;
+    if (state.pageLeft) return;
     setConnection("lost", "disconnected — retrying");
     showLoading();
     setTimeout(connect, RETRY_MS);
@@ -651,8 +651,8 @@ for (const box of document.querySelectorAll("#layers input")) {
 // Leaving the page closes its socket: a page kept frozen in the browser's back-forward
 // cache would otherwise stop reading it, and the server would wait on it. Coming back
 // connects again.
-window.addEventListener("pagehide", () => { state.hidden = true; if (socket) socket.close(1000, "page left"); });
-window.addEventListener("pageshow", (e) => { if (e.persisted) { state.hidden = false; connect(); } });
+window.addEventListener("pagehide", () => { state.pageLeft = true; if (socket) socket.close(1000, "page left"); });
+window.addEventListener("pageshow", (e) => { if (e.persisted) { state.pageLeft = false; connect(); } });
 
 window.addEventListener("error", (e) => state.errors.push(String(e.message)));
 showLoading();
