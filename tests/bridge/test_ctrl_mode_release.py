@@ -79,6 +79,6 @@ def test_an_egos_run_time_state_changes_only_through_its_session() -> None:
     assert context.ego_session(context.world.egos[0]) is session
 
     drive(context, context.profile.message("morai_msgs/CtrlCmd").new(longlCmdType=1, accel=0.5))
-    session.set_ctrl_mode(ControlMode.AUTO)
+    session.set_ctrl_mode(ControlMode.AUTO, by="the test")
     steps(context, 0.01)
     assert context.world.ego_status().accel_pedal == 0.0  # the CtrlCmd was let go of

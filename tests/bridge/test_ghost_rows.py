@@ -111,7 +111,7 @@ def test_a_bad_ghost_message_leaves_the_ego_where_it_is(velocity: float) -> None
 
 def test_ghost_message_is_ignored_unless_the_ego_is_external() -> None:
     context = _context()
-    context.ego_session(context.world.egos[0]).set_ctrl_mode(ControlMode.KEYBOARD)
+    context.ego_session(context.world.egos[0]).set_ctrl_mode(ControlMode.KEYBOARD, by="the test")
     before = context.world.ego_status().pose
     message = PROFILE.message("morai_msgs/GhostMessage").new(
         position=_vector(50.0, 0.0, 0.0), rotation=_vector()

@@ -66,6 +66,7 @@ def test_collision_with_a_static_object_at_the_time_it_must_happen() -> None:
     assert collision.kind is InfractionKind.COLLISION_STATIC
     assert collision.time_s == pytest.approx(expected_t, abs=DT + 1e-9)
     assert (collision.x, collision.y) == pytest.approx((obstacle_x, LANE_Y))
+    assert collision.magnitude == pytest.approx(speed, rel=0.01)  # the speed it hit at
     assert score.metrics["collisions"] == 1
     assert score.metrics["driving_score"] == pytest.approx(0.65)
     assert score.metrics["min_ttc_s"] == pytest.approx(0.0, abs=speed * DT)

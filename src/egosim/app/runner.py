@@ -19,6 +19,7 @@ from ..world import World
 from ..world.scenario import Scenario, ScenarioError, load_default_scenario, parse_scenario
 from ..yamltext import YamlFileError
 from .attachments import Attach, Attachment, RunningSimulator
+from .drive_log import drive_log_stage
 from .exit_codes import EXIT_BAD_INPUT, EXIT_OK, EXIT_ROS_FAILED
 from .inbox import Inbox
 from .loop import SimulationLoop
@@ -150,6 +151,8 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
         )
         if recorder is not None:
             bridge.taps.append(recorder.tap())
+        if (drive_log := drive_log_stage()) is not None:
+            context.pipeline = context.pipeline.with_stage(drive_log, after="world")
         try:
             bridge.open(context)
             if options.clock is not ClockMode.REAL:

@@ -14,11 +14,11 @@ import sys
 import threading
 import time
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from egosim.batch.case import CaseSpec
 from egosim.batch.files import BAG_FILE, CASE_FILE, SCORE_FILE, SIMULATOR_LOG, STACK_LOG
-from egosim.batch.logs import tail_text
+from egosim.batch.logs import log_tail
 from egosim.batch.processes import GroupProcess
 from egosim.evaluation import METRIC_NAMES, parse_criterion
 
@@ -35,6 +35,14 @@ ENDED_PREFIX = "egosim-batch: ended"
 PASSED, FAILED, ERROR = "passed", "failed", "error"
 """A case passes its criteria, fails them, or could not be scored as asked (the stack
 crashed, hung or never connected; the simulator failed)."""
+
+
+class Problem(NamedTuple):
+    """Why a case could not be scored as asked, and the log that tells more (None: no log
+    does, e.g. the batch was interrupted)."""
+
+    reason: str
+    log: str | None = None
 
 
 def case_folder_name(name: str) -> str:
@@ -71,7 +79,7 @@ def run_case(case: CaseSpec, out_dir: str, cancel: threading.Event | None = None
     try:
         problem = supervisor.run()
     except KeyboardInterrupt:  # a Ray task cancelled
-        problem = "interrupted"
+        problem = Problem("interrupted")
     finally:
         supervisor.stop_all()
     result = _result(case, folder, problem)
@@ -96,8 +104,8 @@ class _Supervisor:
         self.stack_status: int | None = None
         self.drive_ended = False
 
-    def run(self) -> str | None:
-        """Drive the case to its end; the reason it could not be scored, if any."""
+    def run(self) -> Problem | None:
+        """Drive the case to its end; why it could not be scored, if it could not."""
         case = self.case
         self.simulator = GroupProcess(
             [sys.executable, "-m", "egosim.batch.simulate", str(self.folder)],
@@ -114,10 +122,10 @@ class _Supervisor:
         running = self._wait_for("running", case.stack.connect_timeout_s, watch_stack=True)
         if running is None:
             if self.stack_status is not None:
-                return f"stack exited with status {self.stack_status} before connecting"
+                return _stack_problem(f"exited with status {self.stack_status} before connecting")
             if self.simulator.poll() is not None:
                 return self._simulator_failure("stopped before the drive began")
-            return f"stack never connected within {case.stack.connect_timeout_s:g} s"
+            return _stack_problem(f"never connected within {case.stack.connect_timeout_s:g} s")
         return self._drive(started=time.monotonic())
 
     def _start_stack(self, master_uri: str) -> GroupProcess:
@@ -166,13 +174,15 @@ class _Supervisor:
             self.stack_status = self.stack.poll()
         return self.stack_status is not None
 
-    def _drive(self, started: float) -> str | None:
+    def _drive(self, started: float) -> Problem | None:
         assert self.simulator is not None
         deadline = started + self.case.wall_limit_s
         while self.simulator.poll() is None:
             self._check_cancel()
             if time.monotonic() > deadline:
-                return f"case exceeded its wall-clock limit of {self.case.wall_limit_s:g} s"
+                # A hung stack is the usual cause; its log says what it last did.
+                reason = f"case exceeded its wall-clock limit of {self.case.wall_limit_s:g} s"
+                return Problem(reason, STACK_LOG)
             line = self.lines.take()
             self.drive_ended |= line is not None and line.startswith(ENDED_PREFIX)
             if self.drive_ended:
@@ -183,7 +193,9 @@ class _Supervisor:
                 # The drive ends with the stack; the simulator writes the score so far.
                 self.simulator.stop(signal.SIGINT, SIMULATOR_GRACE_S)
                 if self.stack_status != 0:
-                    return f"stack exited with status {self.stack_status} during the drive"
+                    return _stack_problem(
+                        f"exited with status {self.stack_status} during the drive"
+                    )
                 return None
             time.sleep(POLL_S)
         if self.simulator.poll() != 0:
@@ -194,9 +206,8 @@ class _Supervisor:
         if self.cancel.is_set():
             raise KeyboardInterrupt
 
-    def _simulator_failure(self, what: str) -> str:
-        tail = tail_text(self.folder / SIMULATOR_LOG, 600)
-        return f"simulator {what}" + (f": {tail}" if tail else "")
+    def _simulator_failure(self, what: str) -> Problem:
+        return Problem(f"simulator {what}", SIMULATOR_LOG)
 
     def stop_all(self) -> None:
         """Stop the stack first (the simulator then writes what it saw), then the simulator."""
@@ -210,13 +221,17 @@ class _Supervisor:
             self.simulator.log.join(5.0)
 
 
+def _stack_problem(what: str) -> Problem:
+    return Problem(f"stack {what}", STACK_LOG)
+
+
 def _simulator_env() -> dict[str, str]:
     env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
     env["PYTHONUNBUFFERED"] = "1"
     return env
 
 
-def _result(case: CaseSpec, folder: Path, problem: str | None) -> dict[str, Any]:
+def _result(case: CaseSpec, folder: Path, problem: Problem | None) -> dict[str, Any]:
     score_path = folder / SCORE_FILE
     try:
         drive = json.loads(score_path.read_text(encoding="utf-8"))
@@ -237,9 +252,9 @@ def _result(case: CaseSpec, folder: Path, problem: str | None) -> dict[str, Any]
         "criteria": [],
     }
     if problem is None and drive is not None and drive["end"].startswith("bad route"):
-        problem = drive["end"]
+        problem = Problem(drive["end"])
     if problem is None and score is None:
-        problem = "the drive was not scored (the simulator wrote no score)"
+        problem = Problem("the drive was not scored (the simulator wrote no score)", SIMULATOR_LOG)
     if score is not None:
         checks = [parse_criterion(c, METRIC_NAMES).check(score["metrics"]) for c in case.criteria]
         result["criteria"] = [c.as_dict() for c in checks]
@@ -247,11 +262,12 @@ def _result(case: CaseSpec, folder: Path, problem: str | None) -> dict[str, Any]
     else:
         failed = []
     if problem is not None:
-        result.update(status=ERROR, reason=problem)
+        tail = None if problem.log is None else log_tail(folder, problem.log)
+        result.update(status=ERROR, reason=problem.reason, log_tail=tail)
     elif failed:
-        result.update(status=FAILED, reason="; ".join(failed))
+        result.update(status=FAILED, reason="; ".join(failed), log_tail=None)
     else:
-        result.update(status=PASSED, reason="")
+        result.update(status=PASSED, reason="", log_tail=None)
     return result
 
 

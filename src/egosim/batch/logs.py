@@ -1,4 +1,5 @@
-"""Bounded per-case logs: a process's output, its head and tail kept, the middle dropped."""
+"""Bounded per-case logs: a process's output, its head and tail kept, the middle dropped;
+the last lines of one, shown beside a verdict."""
 
 from __future__ import annotations
 
@@ -6,10 +7,14 @@ import threading
 from collections import deque
 from collections.abc import Callable
 from pathlib import Path
-from typing import IO
+from typing import IO, Any
 
 DEFAULT_HEAD_BYTES = 256 * 1024
 DEFAULT_TAIL_BYTES = 256 * 1024
+TAIL_LINES = 20
+"""Lines of a log shown beside a case's verdict: a Python traceback's end fits."""
+MAX_LINE_CHARS = 300
+"""A longer line is cut (a log line of megabytes must not flood a report)."""
 
 
 class BoundedLog:
@@ -59,10 +64,38 @@ class BoundedLog:
         self._thread.join(timeout_s)
 
 
-def tail_text(path: Path, size: int = 2000) -> str:
-    """The end of a log file, for a failure's reason."""
+def log_tail(folder: Path, name: str, count: int = TAIL_LINES) -> dict[str, Any]:
+    """The last `count` non-blank lines of the log `name` in `folder`, as a result's
+    `log_tail`: {"file": name, "lines": [...]} (no lines: the log is empty or missing)."""
+    data, whole = _end_of(folder / name, count * (MAX_LINE_CHARS + 1))
+    lines = data.decode("utf-8", "replace").splitlines()
+    if not whole:
+        lines = lines[1:]  # the read began inside a line
+    kept = [line.rstrip() for line in lines if line.strip()][-count:]
+    return {"file": name, "lines": [_cut(line) for line in kept]}
+
+
+def _end_of(path: Path, size: int) -> tuple[bytes, bool]:
+    """The last `size` bytes of a file (none if it cannot be read), and whether that is
+    the whole file."""
     try:
-        data = path.read_bytes()
+        with path.open("rb") as file:
+            start = max(file.seek(0, 2) - size, 0)
+            file.seek(start)
+            return file.read(), start == 0
     except OSError:
-        return ""
-    return data[-size:].decode("utf-8", "replace").strip()
+        return b"", True
+
+
+def _cut(line: str) -> str:
+    return line if len(line) <= MAX_LINE_CHARS else f"{line[:MAX_LINE_CHARS]} [...]"
+
+
+def tail_report(tail: dict[str, Any] | None) -> list[str]:
+    """A result's `log_tail` as lines for a person (console, JUnit, HTML): a heading, then
+    the log's lines indented."""
+    if tail is None:
+        return []
+    if not tail["lines"]:
+        return [f"{tail['file']}: empty (the process wrote nothing)"]
+    return [f"{tail['file']}, last lines:", *(f"  {line}" for line in tail["lines"])]

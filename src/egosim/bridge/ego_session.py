@@ -11,6 +11,7 @@ read-only properties. Setting a control mode releases the command in force
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 
@@ -18,6 +19,8 @@ from ..world import Ego
 from ..world.traffic import LaneGraph
 from ..world.traffic.autopilot import LaneAutopilot
 from .codes import ControlMode
+
+log = logging.getLogger(__name__)
 
 # What closes one topic opened for an ego.
 RowCloser = Callable[[], None]
@@ -65,12 +68,20 @@ class EgoSession:
         """Topics are open for this ego (an additional ego's namespaced rows)."""
         return bool(self._rows)
 
-    def set_ctrl_mode(self, mode: ControlMode) -> None:
-        """Put the ego in control mode `mode`. A change releases the command in force (the
-        ego brakes until its new input commands it) and drops the autopilot, so auto
-        mode chosen again plans afresh from wherever the ego is then."""
+    def set_ctrl_mode(self, mode: ControlMode, by: str) -> None:
+        """Put the ego in control mode `mode` as `by` (a row's name, "the view") asks. A
+        change is logged, releases the command in force (the ego brakes until its new
+        input commands it) and drops the autopilot, so auto mode chosen again plans
+        afresh from wherever the ego is then."""
         if mode is self._ctrl_mode:
             return
+        log.info(
+            "ego %d: control mode %s -> %s (%s)",
+            self._ego.unique_id,
+            self._ctrl_mode.name.lower(),
+            mode.name.lower(),
+            by,
+        )
         self._ctrl_mode = mode
         self._autopilot = None
         self._ego.vehicle.release_command()

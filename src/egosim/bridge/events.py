@@ -62,7 +62,7 @@ def serve_event_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
         except ValueError:
             log.warning("%s: ctrl_mode %s is not 1..4; ignored", row.name, event.ctrl_mode)
         else:
-            session.set_ctrl_mode(mode)
+            session.set_ctrl_mode(mode, by=row.name)
     if option & OPTION_GEAR and event.gear != GEAR_NO_CHANGE:
         try:
             ego.vehicle.set_gear(Gear(int(event.gear)))

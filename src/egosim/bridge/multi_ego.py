@@ -73,7 +73,7 @@ def on_multi_ego_setting(context: BridgeContext, row: Row, message: Any) -> None
     for k, entry in sorted(entries.items()):
         if k >= len(world.egos):
             world.add_ego(model_name, _pose(entry, None))
-        _apply(context, k, entry)
+        _apply(context, k, entry, row.name)
     context.session.camera_index = int(message.camera_index)
     _sync_ego_rows(context)
 
@@ -133,7 +133,7 @@ def _pose(entry: dict[str, Any], current: Pose | None) -> Pose:
     )
 
 
-def _apply(context: BridgeContext, k: int, entry: dict[str, Any]) -> None:
+def _apply(context: BridgeContext, k: int, entry: dict[str, Any], by: str) -> None:
     ego = context.world.egos[k]
     vehicle = ego.vehicle
     status = vehicle.status()
@@ -147,7 +147,7 @@ def _apply(context: BridgeContext, k: int, entry: dict[str, Any]) -> None:
         vehicle.set_gear(Gear(int(entry["gear"])))
     session = context.ego_session(ego)
     if "ctrl_mode" in entry:
-        session.set_ctrl_mode(CTRL_MODES[int(entry["ctrl_mode"])])
+        session.set_ctrl_mode(CTRL_MODES[int(entry["ctrl_mode"])], by=by)
     if "turn_signal" in entry:
         session.set_lamps(TURN_SIGNAL_LAMPS[int(entry["turn_signal"])])
 

@@ -15,7 +15,13 @@ from pathlib import Path
 from typing import Any
 
 from ..datapaths import PathOutsideRootsError, read_regular_file, resolve_in_roots
-from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, parse_scenario
+from ..world.scenario import (
+    Scenario,
+    ScenarioError,
+    ScenarioLoadOptions,
+    ScenarioLoadReport,
+    parse_scenario,
+)
 from ..yamltext import YamlFileError
 from .context import BridgeContext
 from .network import network_settings_of, section_of
@@ -91,17 +97,23 @@ def load_requested_scenario(context: BridgeContext, prepared: ScenarioRequest) -
         report = context.world.load_scenario(prepared.scenario, load_options(request))
     except ScenarioError as error:
         raise ScenarioRequestError(f"scenario {request.file_name!r} not loaded: {error}") from error
+    log_scenario_loaded(prepared.scenario, report)
+    if report.network_settings is not None:
+        apply_network_settings(context, prepared.scenario)
+
+
+def log_scenario_loaded(scenario: Scenario, report: ScenarioLoadReport, by: str = "") -> None:
+    """The line every scenario load leaves on the console, whoever asked (`by`)."""
     log.info(
-        "scenario %s loaded: ego %s, %d NPCs, %d pedestrians, %d obstacles%s",
-        prepared.scenario.source.label,
+        "scenario %s loaded%s: ego %s, %d NPCs, %d pedestrians, %d obstacles%s",
+        scenario.source.label,
+        f" by {by}" if by else "",
         "placed" if report.ego_placed else "kept",
         report.npcs_spawned,
         report.pedestrians_spawned,
         report.obstacles_spawned,
         ", paused" if report.paused else "",
     )
-    if report.network_settings is not None:
-        apply_network_settings(context, prepared.scenario)
 
 
 def apply_network_settings(context: BridgeContext, scenario: Scenario) -> None:

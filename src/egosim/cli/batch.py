@@ -14,6 +14,7 @@ from ..batch.case import CaseSpec
 from ..batch.errors import SuiteError
 from ..batch.html_report import write_html_report
 from ..batch.junit import write_junit
+from ..batch.logs import tail_report
 from ..batch.pool import default_workers, failed, run_local, run_ray
 from ..batch.progress import BatchProgress
 from ..batch.results import (
@@ -123,6 +124,8 @@ def run(args: argparse.Namespace) -> int:
             done += 1
             failures += failed(result)
             bar.log(f"{result['status'].upper():7} {result['name']}  {result.get('reason', '')}")
+            for line in tail_report(result.get("log_tail")):
+                bar.log(f"        {line}")
             bar.update(done, failures, running)
 
         try:

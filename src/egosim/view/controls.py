@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from ..bridge import BridgeContext, ControlMode
-from ..bridge.scenarios import scenario_path
+from ..bridge.scenarios import log_scenario_loaded, scenario_path
 from ..datapaths import PathOutsideRootsError, read_regular_file
 from ..replay.codes import SET_START_TIME, CommandResult, PlaybackStatus, ProcessCommand
 from ..world.scenario import Scenario, ScenarioError, parse_scenario
@@ -167,11 +167,11 @@ class ViewControls:
 
     def _load(self, scenario: Scenario) -> None:
         try:
-            self.context.world.load_scenario(scenario)
+            report = self.context.world.load_scenario(scenario)
         except ScenarioError as error:
             raise ControlError(str(error)) from error
         self._keyboards.clear()
-        log.info("view: scenario %s loaded", scenario.source.label)
+        log_scenario_loaded(scenario, report, "the view")
 
     # -- driving ----------------------------------------------------------------------
 
@@ -186,7 +186,7 @@ class ViewControls:
         if mode not in PAGE_CTRL_MODES:
             raise ControlError(f"control mode {mode!r} is not one of {PAGE_CTRL_MODES}")
         ego = self.context.world.egos[self._ego_index(request)]
-        self.context.ego_session(ego).set_ctrl_mode(ControlMode(mode))
+        self.context.ego_session(ego).set_ctrl_mode(ControlMode(mode), by="the view")
 
     def keys(self, request: dict[str, Any]) -> None:
         ego = self.context.world.egos[self._ego_index(request)]
