@@ -85,7 +85,7 @@ def test_lanes_are_listed_with_their_start_poses(capsys: pytest.CaptureFixture[s
         assert float(row["y"]) == pytest.approx(y, abs=0.005)
         assert float(row["heading_deg"]) == pytest.approx(math.degrees(heading), abs=0.05)
         assert float(row["length_m"]) == pytest.approx(lane.length, abs=0.005)
-        assert row["light"] == (lane.traffic_light_id or "-")
+        assert row["light"] == (",".join(lane.traffic_light_ids) or "-")
         assert row["successors"] == ",".join(lane.successors)
 
 

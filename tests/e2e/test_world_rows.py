@@ -95,6 +95,7 @@ def test_driving_into_an_obstacle_reports_one_collision(egosim, rospy_client) ->
 
 def test_red_override_stops_an_npc_before_its_stop_line(egosim, rospy_client) -> None:
     lane = build_builtin_map("town").lane("R2_E_1")
+    (light,) = lane.traffic_light_ids
     stop_line_x = lane.centerline[0][0] + lane.stop_line_s
     probe = egosim("--map", "straight")
     scenario = scenarios.write(probe.data_root, "red.yaml", scenarios.RED_LIGHT_TOWN)
@@ -103,7 +104,7 @@ def test_red_override_stops_an_npc_before_its_stop_line(egosim, rospy_client) ->
     client.publish(
         "/SetTrafficLight",
         "morai_msgs/SetTrafficLight",
-        {"trafficLightIndex": lane.traffic_light_id, "trafficLightStatus": 1},
+        {"trafficLightIndex": light, "trafficLightStatus": 1},
     )
     npc = client.next_message(OBJECTS[0])["npc_list"][0]
     deadline_stamp = None
@@ -122,9 +123,7 @@ def test_red_override_stops_an_npc_before_its_stop_line(egosim, rospy_client) ->
     npc = until(stopped_npc, "the NPC to stop at the red light", timeout_s=60.0)
     front = npc["position"]["x"] + npc["size"]["x"] / 2
     assert front <= stop_line_x + 0.01
-    status = client.call(
-        "/Morai_TLSrv", "morai_msgs/MoraiTLInfoSrv", {"request": {"idx": lane.traffic_light_id}}
-    )
+    status = client.call("/Morai_TLSrv", "morai_msgs/MoraiTLInfoSrv", {"request": {"idx": light}})
     assert status["response"]["status"] == 1
 
 

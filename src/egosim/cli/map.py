@@ -112,7 +112,7 @@ def lane_rows(lane_map: LaneMap) -> list[tuple[str, ...]]:
                 f"{lane.speed_limit:.2f}",
                 "yes" if lane.is_junction else "no",
                 "-" if lane.stop_line_s is None else f"{lane.stop_line_s:.2f}",
-                lane.traffic_light_id or "-",
+                ",".join(lane.traffic_light_ids) or "-",
                 ",".join(lane.successors) or "-",
             )
         )

@@ -119,7 +119,8 @@ class DriveEvaluator:
         if self._start_s is None:
             self._start_s = sample.time_s
         self._collisions(world)
-        aspects = {i: world.signals.light(i).aspect for i in self._lights_near(sample)}
+        lights = self._stop_lines.watched_lights()
+        aspects = {i: world.signals.light(i).aspect for i in lights}
         if (event := self._stop_lines.observe(sample, aspects)) is not None:
             self._events.append(event)
         departure = lane_departure_m(sample, self.settings.lane_departure_margin_m)
@@ -131,10 +132,6 @@ class DriveEvaluator:
         if self._route is not None:
             self._route.update(sample.x, sample.y)
         self._kinematics(world, sample)
-
-    def _lights_near(self, sample: Sample) -> list[str]:
-        light = self._map.lanes[sample.lane_id].traffic_light_id
-        return [] if light is None else [light]
 
     def _sample(self, world: World) -> Sample:
         status = world.ego_status(0)

@@ -4,11 +4,12 @@ road excursions, wrong-way driving, standing blocked."""
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
 from egosim.evaluation.infractions import Infraction, InfractionKind
 from egosim.world.map import Lane, LaneMap, LaneProjection
-from egosim.world.signals import GREEN, GREEN_LEFT, OFF, RED
+from egosim.world.signals import GREEN, GREEN_LEFT, OFF, RED, combined_aspect
 
 STOPPED_SPEED_MPS = 0.1
 """Slower than this the ego counts as standing."""
@@ -44,14 +45,27 @@ class Sample:
 
 
 class StopLineWatch:
-    """Reports crossing a stop line on red, or at a stop sign without having stopped."""
+    """Reports crossing a stop line on red, or at a stop sign without having stopped.
+
+    A stop line governed by several heads is red when the lamps lit on them together are
+    (egosim.world.signals.lane_signals): a lit arrow on one head is a go for the line.
+    """
 
     def __init__(self, lane_map: LaneMap) -> None:
         self._map = lane_map
         self._previous: Sample | None = None
         self._stood_at_line = False
 
-    def observe(self, sample: Sample, aspect_of: dict[str, int]) -> Infraction | None:
+    def watched_lights(self) -> tuple[str, ...]:
+        """The heads of the stop line the next sample may cross: those of the lane of the
+        last sample (the line may end that lane, so the next sample is on another)."""
+        if self._previous is None:
+            return ()
+        return self._map.lanes[self._previous.lane_id].traffic_light_ids
+
+    def observe(self, sample: Sample, aspect_of: Mapping[str, int]) -> Infraction | None:
+        """`aspect_of`: the aspect of the watched lights (heads missing from it are not
+        known and left out)."""
         previous, self._previous = self._previous, sample
         if previous is None:
             return None
@@ -71,10 +85,10 @@ class StopLineWatch:
         if not crossed:
             return None
         x, y, _, _ = self._map.pose_at(lane.id, stop)
-        if lane.traffic_light_id is not None:
-            aspect = aspect_of.get(lane.traffic_light_id, OFF)
-            if is_red(aspect):
-                detail = f"light {lane.traffic_light_id} red at the stop line of lane {lane.id}"
+        heads = lane.traffic_light_ids
+        if heads:
+            if is_red(combined_aspect(aspect_of[i] for i in heads if i in aspect_of)):
+                detail = f"light {'/'.join(heads)} red at the stop line of lane {lane.id}"
                 return Infraction(InfractionKind.RED_LIGHT, sample.time_s, x, y, detail)
             return None
         if not stood:
@@ -87,7 +101,7 @@ def _stop_station(lane: Lane) -> float | None:
     """Where a vehicle on `lane` must stop: its stop line, or its end under a light."""
     if lane.stop_line_s is not None:
         return lane.stop_line_s
-    if lane.traffic_light_id is not None:
+    if lane.traffic_light_ids:
         return lane.length
     return None
 

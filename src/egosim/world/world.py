@@ -138,7 +138,7 @@ class World:
         self.sim_time = 0.0
         self.paused = False
         self.signals = TrafficSignals(lane_map)
-        self._graph = LaneGraph(lane_map, self.signals.light_ids)
+        self._graph = LaneGraph(lane_map, self.signals.lane_signals.of_lane)
         self._crosswalk_lights = CrosswalkLights(crossed_lights(lane_map, self._light_positions()))
         self.npcs = NpcFleet(self._graph, np.random.default_rng(0))
         self.npc_ghosts = NpcGhosts()

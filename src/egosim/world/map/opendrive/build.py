@@ -53,7 +53,7 @@ def build_opendrive_map(name: str, xml_text: str, notes: list[str]) -> LaneMap:
                     left_neighbor=sides[lane.id][0],
                     right_neighbor=sides[lane.id][1],
                     stop_line_s=None if stop is None else stop.station,
-                    traffic_light_id=None if stop is None else stop.light_id,
+                    traffic_light_ids=() if stop is None else tuple(stop.light_ids),
                     is_junction=lane.in_junction,
                 )
             )
