@@ -11,6 +11,7 @@ from egosim.world.map.opendrive.document import SOURCE, Document, read_document
 from egosim.world.map.opendrive.road_lanes import LaneKey, RoadLane, road_lanes, road_markings
 from egosim.world.map.opendrive.signals import build_signals
 from egosim.world.map.opendrive.topology import lane_links, neighbours
+from egosim.world.map.opendrive.virtual_junctions import cut_at_joins
 
 
 def build_opendrive_map(name: str, xml_text: str, notes: list[str]) -> LaneMap:
@@ -21,6 +22,8 @@ def build_opendrive_map(name: str, xml_text: str, notes: list[str]) -> LaneMap:
     it read but left out.
     """
     document = read_document(xml_text)
+    notes.extend(document.notes)
+    cut_at_joins(document)
     georef = read_georeference(document, notes)
     lanes: dict[LaneKey, RoadLane] = {}
     sidewalks: list[Sidewalk] = []

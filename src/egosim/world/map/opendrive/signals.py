@@ -171,7 +171,7 @@ def _intersections(
     for junction in document.junctions.values():
         groups = [g for g in (group(c) for c in junction.controllers) if g]
         if groups:
-            roads = {c.connecting_road for c in junction.connections}
+            roads = junction.connecting_roads
             points = [lane.centerline[:, :2] for lane in lanes.values() if lane.key.road in roads]
             mean = np.concatenate(points).mean(axis=0) if points else None
             center = None if mean is None else (float(mean[0]), float(mean[1]))
