@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from egosim.world.map.builtin_origin import BUILTIN_GEOREF
+from egosim.world.map.builtin_origin import assumed_georeference
 from egosim.world.map.errors import MapGeometryError, MapRecordError
 from egosim.world.map.georef import GeoReference
 from egosim.world.map.lanes import Lane, LaneMap, Sidewalk
@@ -74,8 +74,11 @@ def read_georeference(document: Document, notes: list[str]) -> GeoReference:
     """The header's geoReference with its <offset> as the local origin in that projection."""
     x, y, z, heading = document.offset
     if document.geo_reference is None:
-        notes.append("header has no geoReference: the built-in maps' georeference is used")
-        return BUILTIN_GEOREF
+        notes.append(
+            "header has no geoReference: placed at the built-in maps' origin (UTM zone 52N, "
+            "Seoul); its GPS latitudes and longitudes are invented"
+        )
+        return assumed_georeference()
     if heading != 0.0:
         notes.append(f"header offset hdg={heading} not applied: the map is read unrotated")
     try:
