@@ -65,6 +65,7 @@ class TrafficSignals:
         self.controllers: dict[int, IntersectionController] = {}
         self._overrides: dict[str, int] = {}
         self._aspects = np.full(len(self.light_ids), OFF, dtype=np.int64)
+        self._signal_aspects = self._aspects
         self.configure(programs, default)
 
     def configure(
@@ -113,6 +114,11 @@ class TrafficSignals:
                 self._aspects[self._light_index[light_id]] = aspect
         for light_id, aspect in self._overrides.items():
             self._aspects[self._light_index[light_id]] = aspect
+        self._update_signals()
+
+    def _update_signals(self) -> None:
+        # Kept between changes: agents read the signals every step, aspects change seldom.
+        self._signal_aspects = self.lane_signals.aspects(self._aspects)
 
     def aspects(self) -> npt.NDArray[np.int64]:
         """Aspect of every light, in `light_ids` order (read-only view)."""
@@ -122,8 +128,10 @@ class TrafficSignals:
 
     def signal_aspects(self) -> npt.NDArray[np.int64]:
         """Aspect of every signal of `lane_signals`: the lights' own, then those of the
-        sets of heads governing a lane together."""
-        return self.lane_signals.aspects(self.aspects())
+        sets of heads governing a lane together (read-only view)."""
+        view: npt.NDArray[np.int64] = self._signal_aspects.view()
+        view.flags.writeable = False
+        return view
 
     def light_index(self, light_id: str) -> int:
         try:
@@ -149,6 +157,7 @@ class TrafficSignals:
             )
         self._overrides[light_id] = aspect
         self._aspects[k] = aspect
+        self._update_signals()
 
     def release_light(self, light_id: str) -> None:
         """Hand the light back to its intersection's program."""
