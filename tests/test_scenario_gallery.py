@@ -97,7 +97,7 @@ def test_red_light() -> None:
         assert light is not None
         seen.append((round(world.sim_time, 2), light.aspect))
         assert world.sim_time < 15.0, "the ego never reached the stop line"
-    assert light.light_id == lane.traffic_light_id == "TL1_W"
+    assert (light.light_id,) == lane.traffic_light_ids == ("TL1_W",)
     assert light.aspect == RED
     assert 8.0 < world.sim_time < 10.0
     aspects = dict(seen)

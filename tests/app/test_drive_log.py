@@ -53,14 +53,14 @@ def test_a_red_light_run_is_logged_where_and_when_it_happened(
     caplog: pytest.LogCaptureFixture,
 ) -> None:
     context = town_context()
-    assert LANE.traffic_light_id is not None and LANE.stop_line_s is not None
-    context.world.signals.set_light(LANE.traffic_light_id, RED)
+    assert LANE.traffic_light_ids and LANE.stop_line_s is not None
+    context.world.signals.set_light(LANE.traffic_light_ids[0], RED)
     caplog.set_level(logging.DEBUG, LOGGER)
     run_along(context, LANE.stop_line_s - 20.0, 10.0, 3.0)
     x, y, _, _ = TOWN.pose_at(LANE.id, LANE.stop_line_s)
     (red,) = messages(caplog, logging.INFO)
     assert red.startswith(
-        f"ego 1: red light run: light {LANE.traffic_light_id} red at the stop line of lane "
+        f"ego 1: red light run: light {LANE.traffic_light_ids[0]} red at the stop line of lane "
         f"R1_E_1 at ({x:.1f}, {y:.1f}) m, t 2.0"
     ), red
     assert speed_in(red, "ego at") == pytest.approx(10.0, abs=0.15)  # one step's coasting
@@ -81,8 +81,8 @@ def test_a_lane_departure_is_only_a_debug_line(caplog: pytest.LogCaptureFixture)
 
 def test_a_teleport_over_a_stop_line_is_no_red_light_run(caplog: pytest.LogCaptureFixture) -> None:
     context = town_context()
-    assert LANE.traffic_light_id is not None and LANE.stop_line_s is not None
-    context.world.signals.set_light(LANE.traffic_light_id, RED)
+    assert LANE.traffic_light_ids and LANE.stop_line_s is not None
+    context.world.signals.set_light(LANE.traffic_light_ids[0], RED)
     caplog.set_level(logging.DEBUG, LOGGER)
     run_along(context, LANE.stop_line_s - 2.0, 0.0, 0.5)
     # Placed on the junction lane past the line, as a scenario load or a replay seek does.

@@ -53,7 +53,7 @@ def test_the_console_tells_the_drive_and_not_the_tools_that_leave(
     scenario = scenarios.write(data_root, "red_then_barrier.yaml", RED_THEN_BARRIER)
     simulator = egosim("--scenario", str(scenario), "--no-view", "--log-level", "DEBUG")
     lane = build_builtin_map("town").lanes["R1_E_1"]
-    assert lane.traffic_light_id is not None and lane.stop_line_s is not None
+    assert lane.traffic_light_ids and lane.stop_line_s is not None
 
     # A real rostopic echo takes three statuses and leaves.
     env = dict(
@@ -77,7 +77,7 @@ def test_the_console_tells_the_drive_and_not_the_tools_that_leave(
         request = {"request": {"option": OPTION_CTRL_MODE, "ctrl_mode": mode, "gear": -1}}
         client.call(*EVENT, request)
     client.publish(
-        *SET_LIGHT, {"trafficLightIndex": lane.traffic_light_id, "trafficLightStatus": RED}
+        *SET_LIGHT, {"trafficLightIndex": lane.traffic_light_ids[0], "trafficLightStatus": RED}
     )
     client.stream(*CTRL, {"longlCmdType": 1, "accel": 0.5}, rate=20)
 
@@ -96,7 +96,7 @@ def test_the_console_tells_the_drive_and_not_the_tools_that_leave(
     red, collision = drive
     x, y, _, _ = build_builtin_map("town").pose_at(lane.id, lane.stop_line_s)
     assert red.startswith(
-        f"ego 1: red light run: light {lane.traffic_light_id} red at the stop line of lane "
+        f"ego 1: red light run: light {lane.traffic_light_ids[0]} red at the stop line of lane "
         f"{lane.id} at ({x:.1f}, {y:.1f}) m, t "
     ), red
     assert re.match(

@@ -92,9 +92,10 @@ def test_time_to_collision_and_headway_to_the_object_ahead() -> None:
 def test_running_a_red_light_at_its_stop_line(aspect: int, expected: list) -> None:
     town = build_builtin_map("town")
     lane = town.lanes["R1_E_1"]
-    assert lane.traffic_light_id is not None and lane.stop_line_s is not None
+    (light,) = lane.traffic_light_ids
+    assert lane.stop_line_s is not None
     world = World(town)
-    world.signals.set_light(lane.traffic_light_id, aspect)
+    world.signals.set_light(light, aspect)
     evaluator = DriveEvaluator(world)
     s0, speed = lane.stop_line_s - 20.0, 10.0
     drive(world, evaluator, along_lane(world, lane.id, s0, speed), 3.0)

@@ -37,8 +37,7 @@ class Approach:
 
     @property
     def light(self) -> str:
-        light = self.lane_map().lanes[self.lanes[0]].traffic_light_id
-        assert light is not None
+        (light,) = self.lane_map().lanes[self.lanes[0]].traffic_light_ids
         return light
 
     @property

@@ -48,7 +48,8 @@ def object_status(profile: Profile, state: ObjectState) -> Any:
 
 
 def publish_object_list(context: BridgeContext, row: Row) -> Any:
-    """/Object_topic: counts of everything spawned; the N closest objects, closest first."""
+    """/Object_topic: counts of everything spawned; the N closest objects, closest first
+    (from the position /Ego_topic reports to each reported position)."""
     listing = context.world.object_list(context.session.camera_index)
     profile = context.profile
     return profile.message("morai_msgs/ObjectStatusList").new(

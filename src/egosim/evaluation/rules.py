@@ -10,7 +10,7 @@ from dataclasses import dataclass, replace
 from egosim.evaluation.infractions import Infraction, InfractionKind
 from egosim.evaluation.lane_travel import way_between
 from egosim.world.map import Lane, LaneMap, LaneProjection
-from egosim.world.signals import GREEN, GREEN_LEFT, OFF, RED
+from egosim.world.signals import GREEN, GREEN_LEFT, OFF, RED, combined_aspect
 
 STOPPED_SPEED_MPS = 0.1
 """Slower than this the ego counts as standing."""
@@ -48,6 +48,8 @@ class Sample:
 class StopLineWatch:
     """Reports crossing a stop line on red, or at a stop sign without having stopped.
 
+    A stop line governed by several heads is red when the lamps lit on them together are
+    (egosim.world.signals.lane_signals): a lit arrow on one head is a go for the line.
     A crossing is found on the way along the lanes between two samples (lane_travel), so
     a line passed between samples counts however far apart they are; it is timed where
     the way reaches the line, as if the ego drove the way at an even pace."""
@@ -113,9 +115,10 @@ def _crossing(
     """What crossing `lane`'s stop line at `time_s` was: a red light run, a stop sign run,
     or nothing wrong."""
     x, y, _, _ = lane_map.pose_at(lane.id, line)
-    if lane.traffic_light_id is not None:
-        if is_red(aspect_of(lane.traffic_light_id)):
-            detail = f"light {lane.traffic_light_id} red at the stop line of lane {lane.id}"
+    heads = lane.traffic_light_ids
+    if heads:
+        if is_red(combined_aspect(aspect_of(i) for i in heads)):
+            detail = f"light {'/'.join(heads)} red at the stop line of lane {lane.id}"
             return Infraction(InfractionKind.RED_LIGHT, time_s, x, y, detail)
         return None
     if not stood:
@@ -128,7 +131,7 @@ def _stop_station(lane: Lane) -> float | None:
     """Where a vehicle on `lane` must stop: its stop line, or its end under a light."""
     if lane.stop_line_s is not None:
         return lane.stop_line_s
-    if lane.traffic_light_id is not None:
+    if lane.traffic_light_ids:
         return lane.length
     return None
 

@@ -63,8 +63,8 @@ def drive_events(
     ]
     for run in red_lights:
         # An infraction at a stop line stands on the centre line of the lane it governs.
-        light = lane_map.lanes[lane_map.project(run.x, run.y).lane_id].traffic_light_id
-        label = f"red light {light}" if light else "red light"
+        heads = lane_map.lanes[lane_map.project(run.x, run.y).lane_id].traffic_light_ids
+        label = f"red light {'/'.join(heads)}" if heads else "red light"
         events.append(DriveEvent(run.time_s, run.x, run.y, RED_LIGHT, label, run.detail))
     return sorted(events, key=lambda e: e.time_s)
 

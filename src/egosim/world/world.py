@@ -138,7 +138,7 @@ class World:
         self.sim_time = 0.0
         self.paused = False
         self.signals = TrafficSignals(lane_map)
-        self._graph = LaneGraph(lane_map, self.signals.light_ids)
+        self._graph = LaneGraph(lane_map, self.signals.lane_signals.of_lane)
         self._crosswalk_lights = CrosswalkLights(crossed_lights(lane_map, self._light_positions()))
         self.npcs = NpcFleet(self._graph, np.random.default_rng(0))
         self.npc_ghosts = NpcGhosts()
@@ -310,16 +310,20 @@ class World:
     def object_list(self, ego_index: int = 0, size: int | None = None) -> ObjectList:
         """ObjectStatusList: counts of all spawned objects; the `size` (default
         object_list_size) objects closest to the ego, split by kind, closest first. The
-        other egos count and appear among the vehicles."""
+        other egos count and appear among the vehicles.
+
+        Closest is measured as a client measures it from the two messages: from the ego's
+        reported position (its reference point, /Ego_topic's position) to each object's
+        reported position (its footprint centre, ObjectStatus.position), in the plane.
+        """
         npcs, pedestrians, obstacles = self.shown_tables()
         egos = self._ego_table()
         other_egos = egos.select(egos.unique_ids != self.egos[ego_index].unique_id)
         others = ObjectTable.concatenate([other_egos, npcs, pedestrians, obstacles])
-        status = self.ego_status(ego_index)
-        centre = self.egos[ego_index].box_centre(status)
+        pose = self.ego_status(ego_index).pose
         return closest_objects(
             others,
-            centre,
+            (pose.x, pose.y),
             self.object_list_size if size is None else size,
             counts=(len(other_egos) + len(npcs), len(pedestrians), len(obstacles)),
         )

@@ -59,7 +59,9 @@ class Lane(_ArrayFieldsEquality):
     left_neighbor: str | None = None
     right_neighbor: str | None = None
     stop_line_s: float | None = None
-    traffic_light_id: str | None = None
+    traffic_light_ids: tuple[str, ...] = ()
+    """Every signal head governing the stop line, in the map's order; a driver reads them
+    together (egosim.world.signals.lane_signals), GetTrafficLightStatus names the nearest."""
     is_junction: bool = False
     stations: FloatArray = field(init=False, repr=False)
     length: float = field(init=False)
@@ -200,11 +202,9 @@ class LaneMap:
             missing = [i for i in named if i is not None and i not in self.lanes]
             if missing:
                 raise MapGeometryError(f"lane {lane.id} refers to unknown lanes {missing}")
-            if (
-                lane.traffic_light_id is not None
-                and lane.traffic_light_id not in self.traffic_lights
-            ):
-                raise MapGeometryError(f"lane {lane.id}: unknown light {lane.traffic_light_id}")
+            unknown = [i for i in lane.traffic_light_ids if i not in self.traffic_lights]
+            if unknown:
+                raise MapGeometryError(f"lane {lane.id}: unknown light {', '.join(unknown)}")
 
     def lane_index(self, lane_id: str) -> int:
         try:

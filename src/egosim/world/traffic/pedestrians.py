@@ -239,14 +239,14 @@ class CrosswalkLights:
 CROSSWALK_SAMPLE_STEP_M = 0.5
 
 
-def _holding_lights(lane_map: LaneMap, lane_id: str) -> set[str | None]:
+def _holding_lights(lane_map: LaneMap, lane_id: str) -> set[str]:
     """The lights that hold the traffic on a lane: its own, or for a junction connector
     those of the lanes leading into it (where a map ends its lanes at the stop line, as
     MGeo does, a crossing at the junction's mouth lies over connectors)."""
     lane = lane_map.lanes[lane_id]
-    if lane.traffic_light_id is not None or not lane.is_junction:
-        return {lane.traffic_light_id}
-    return {lane_map.lanes[p].traffic_light_id for p in lane.predecessors}
+    if lane.traffic_light_ids or not lane.is_junction:
+        return set(lane.traffic_light_ids)
+    return {light for p in lane.predecessors for light in lane_map.lanes[p].traffic_light_ids}
 
 
 def crossed_lights(lane_map: LaneMap, light_index: Mapping[str, int]) -> list[tuple[int, ...]]:
@@ -268,8 +268,7 @@ def crossed_lights(lane_map: LaneMap, light_index: Mapping[str, int]) -> list[tu
         own = [
             i
             for i in lights
-            if i is not None
-            and lane_map.traffic_lights[i].intersection_id == crosswalk.intersection_id
+            if lane_map.traffic_lights[i].intersection_id == crosswalk.intersection_id
         ]
         result.append(tuple(sorted(light_index[i] for i in own)))
     return result
