@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import PurePath
-from typing import Any
+from typing import Any, Protocol
 
 from egosim.world.scenario.errors import ScenarioError
 from egosim.world.signals import IntersectionProgram, PhaseTiming
@@ -100,6 +100,30 @@ class SignalsSpec:
     """Where each intersection's entry sits in the file."""
 
 
+class StoryboardRun(Protocol):
+    """An OpenSCENARIO storyboard running on a world (egosim.world.openscenario), stepped
+    once per tick before the world (the tick pipeline's storyboard stage)."""
+
+    @property
+    def finished(self) -> bool:
+        """Its StopTrigger (or an evaluation group) has ended the scenario."""
+        ...
+
+    def step(self, dt: float, ego_driven: bool) -> list[str]:
+        """Advance dt s; ego_driven: the scenario drives the ego this step. Returns the
+        lines to report (each once)."""
+        ...
+
+
+class StoryboardProgram(Protocol):
+    """A storyboard ready to run: `start` places its entities (its Init) on a world."""
+
+    def start(self, world: Any, load_ego: bool, kinds: frozenset[str]) -> StoryboardRun:
+        """Run Init on `world`; load_ego: place the ego as Init says; kinds: the entity
+        kinds to create (vehicle, pedestrian, miscellaneous object)."""
+        ...
+
+
 def map_name_of(reference: str) -> str:
     """The name of the map a scenario's `map` field refers to: a map name as it is, a
     path its last part (`maps/kcity/` -> `kcity`, `maps/track.xodr` -> `track`)."""
@@ -125,6 +149,8 @@ class Scenario:
     source: YamlDocument = field(
         default_factory=lambda: YamlDocument("<scenario>", None, error_type=ScenarioError)
     )
+    storyboard: StoryboardProgram | None = None
+    """An OpenSCENARIO file's storyboard (its entities and what they do)."""
 
     def error(self, path: FieldPath, message: str) -> ScenarioError:
         """An error naming this scenario's file, the line of `path` and the field."""
