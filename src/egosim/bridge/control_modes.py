@@ -3,7 +3,8 @@
 3 external: the ego obeys its command input (the default). 1 keyboard and 2 gamepad:
 a headless simulator has no human input, so the ego gets no command at all and holds
 its brake. 4 auto: MORAI's internal controller drives, here the lane-following
-autopilot of world.traffic.autopilot, commanded before every step. Commands hold
+autopilot of world.traffic.autopilot, commanded before every step (with an OpenSCENARIO
+storyboard running, the storyboard drives the main ego instead: bridge/storyboard.py). Commands hold
 until the next one, so a change of mode drops the command the old input left in
 force: the ego brakes until its new input commands it.
 """
@@ -34,11 +35,14 @@ def drive_autopilots(context: BridgeContext) -> None:
     it plans afresh from wherever the ego is when auto mode is chosen again.
     """
     world = context.world
+    # With a storyboard running, the scenario drives the main ego in auto mode.
+    scripted = world.egos[0].unique_id if world.storyboard is not None else None
     auto = [
         ego
         for ego in world.egos
         if context.settings_of(ego.unique_id).ctrl_mode is ControlMode.AUTO
         and isinstance(ego.vehicle, Vehicle)
+        and ego.unique_id != scripted
     ]
     driven = {ego.unique_id for ego in auto}
     autopilots = context.session.autopilots

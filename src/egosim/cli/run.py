@@ -10,6 +10,7 @@ from pathlib import Path
 
 from ..app.options import ClockMode, RunOptions
 from ..app.runner import run as run_simulator
+from ..bridge.codes import ControlMode
 from ..msgs import DEFAULT_PROFILE, PROFILES
 from ..view import DEFAULT_HOST, DEFAULT_PORT, ViewOptions, live_view
 
@@ -56,7 +57,20 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         "--scenario",
         type=Path,
         metavar="PATH",
-        help="scenario YAML; runs on the map it names (the town has a default scenario)",
+        help="scenario: egosim YAML or OpenSCENARIO .xosc; runs on the map it names (the "
+        "town has a default scenario). An OpenSCENARIO run ends when its storyboard does",
+    )
+    parser.add_argument(
+        "--ctrl-mode",
+        choices=("external", "auto"),
+        default="external",
+        help="the ego's control mode at start: external (its stack drives, the default) or "
+        "auto (egosim drives it: an OpenSCENARIO scenario's own actions, else the autopilot)",
+    )
+    parser.add_argument(
+        "--keep-running",
+        action="store_true",
+        help="keep running after an OpenSCENARIO scenario's storyboard has ended",
     )
     parser.add_argument("--network", type=Path, metavar="PATH", help="network settings YAML")
     parser.add_argument("--clock", choices=[m.value for m in ClockMode], default="real")
@@ -145,6 +159,8 @@ def run(args: argparse.Namespace) -> int:
         physics_rate_hz=args.physics_rate,
         data_roots=tuple(args.data_root),
         ros_argv=tuple(args.ros_args),
+        ctrl_mode=ControlMode.AUTO if args.ctrl_mode == "auto" else ControlMode.EXTERNAL,
+        keep_running=args.keep_running,
     )
     attach = []
     if not args.no_view:

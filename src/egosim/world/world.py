@@ -645,7 +645,9 @@ class World:
         recorded = self.recorded.npcs
         if recorded is not None:
             return len(recorded)
-        return len(self.npcs) + len(self.npc_ghosts) + len(self.scripted.table(ObjectType.NPC_VEHICLE))
+        return (
+            len(self.npcs) + len(self.npc_ghosts) + len(self.scripted.table(ObjectType.NPC_VEHICLE))
+        )
 
     def _first_obstacle_row(self) -> int:
         """Row in objects() of the first obstacle: after the egos, vehicles, pedestrians."""
@@ -750,6 +752,7 @@ class World:
                 self,
                 options.load_ego_vehicle_data,
                 frozenset(kind for kind, wanted in kinds.items() if wanted),
+                options.scenario_drives_ego,
             )
         self._contacts.clear()
         self.ego_contacts, self.vehicle_contacts = {}, []
@@ -760,7 +763,8 @@ class World:
             self.network_settings_request = network
         scripted = self.scripted
         return ScenarioLoadReport(
-            ego_placed=ego is not None or bool(scenario.storyboard and options.load_ego_vehicle_data),
+            ego_placed=ego is not None
+            or bool(scenario.storyboard and options.load_ego_vehicle_data),
             npcs_spawned=len(npcs) + len(scripted.table(ObjectType.NPC_VEHICLE)),
             pedestrians_spawned=len(walkers) + len(scripted.table(ObjectType.PEDESTRIAN)),
             obstacles_spawned=len(things) + len(scripted.table(ObjectType.OBSTACLE)),

@@ -5,7 +5,12 @@ from __future__ import annotations
 import math
 
 from egosim.world.map.lanes import LaneMap
-from egosim.world.map.road_coordinates import LanePlace, RoadCoordinates, RoadPoint, UnknownRoadError
+from egosim.world.map.road_coordinates import (
+    LanePlace,
+    RoadCoordinates,
+    RoadPoint,
+    UnknownRoadError,
+)
 
 
 class LaneRoads:
@@ -52,5 +57,3 @@ def road_coordinates_of(lane_map: LaneMap) -> RoadCoordinates:
     """The map's own roads where it has them (OpenDRIVE), else LaneRoads."""
     roads = lane_map.roads
     return LaneRoads(lane_map) if roads is None else roads
-
-

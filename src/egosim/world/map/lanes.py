@@ -15,8 +15,8 @@ from egosim.world.map.georef import GeoReference
 from egosim.world.map.light_type import LightType
 from egosim.world.map.polyline import segment_headings, stations
 from egosim.world.map.projection import LaneProjection, LaneProjections, SegmentTable
-from egosim.world.map.road_marking import RoadMarking
 from egosim.world.map.road_coordinates import RoadCoordinates
+from egosim.world.map.road_marking import RoadMarking
 
 # Gap between lanes on the flattened station axis, so a station never reaches the next lane.
 _LANE_KEY_GAP_M = 1.0

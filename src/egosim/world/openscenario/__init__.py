@@ -10,7 +10,7 @@ Public API:
 """
 
 from egosim.world.openscenario.catalogs import catalog_directories
-from egosim.world.openscenario.engine import Outcome, ScenarioRun
+from egosim.world.openscenario.engine import ScenarioRun
 from egosim.world.openscenario.program import (
     OpenScenario,
     choose_ego,
@@ -18,6 +18,7 @@ from egosim.world.openscenario.program import (
     read_openscenario,
     root_of,
 )
+from egosim.world.scenario.model import Outcome
 
 __all__ = [
     "OpenScenario",

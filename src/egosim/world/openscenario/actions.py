@@ -318,10 +318,11 @@ class SpeedInInit:
 
     def start(self, rt: Runtime, actors: Sequence[str]) -> MotionRuns | Done:
         stack_driven = [
-            name for name in actors if name in rt.entities and not rt.scenario_drives(rt.entity(name))
+            name
+            for name in actors
+            if name in rt.entities and not rt.scenario_drives(rt.entity(name))
         ]
         for name in stack_driven:
             rt.entity(name).speed = self.speed(rt)
         others = [name for name in actors if name not in stack_driven]
         return self.motion.start(rt, others) if others else Done()
-

@@ -87,7 +87,9 @@ def by_entities(entities: Sequence[str], rule: str, check: EntityCheck) -> Check
     return evaluate
 
 
-def rule_check(rule: str, value: float, measure: Callable[[Runtime, EntityState], float]) -> EntityCheck:
+def rule_check(
+    rule: str, value: float, measure: Callable[[Runtime, EntityState], float]
+) -> EntityCheck:
     def check(rt: Runtime, entity: EntityState) -> bool:
         measured = measure(rt, entity)
         if math.isnan(measured):

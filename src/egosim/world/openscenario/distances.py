@@ -25,7 +25,9 @@ def corners(entity: EntityState) -> np.ndarray:
     half_l, half_w = entity.definition.length / 2.0, entity.definition.width / 2.0
     c, s = math.cos(entity.heading), math.sin(entity.heading)
     local = np.array([(half_l, half_w), (half_l, -half_w), (-half_l, -half_w), (-half_l, half_w)])
-    return np.column_stack((cx + local[:, 0] * c - local[:, 1] * s, cy + local[:, 0] * s + local[:, 1] * c))
+    return np.column_stack(
+        (cx + local[:, 0] * c - local[:, 1] * s, cy + local[:, 0] * s + local[:, 1] * c)
+    )
 
 
 def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> float:
@@ -87,10 +89,7 @@ def relative(
     """Signed distance from `entity` to `other` (an entity or a point): longitudinal is
     positive ahead of the entity, lateral positive to its left, Euclidean never negative."""
     mine = _points(entity, freespace)
-    if isinstance(other, EntityState):
-        theirs = _points(other, freespace)
-    else:
-        theirs = np.array([other])
+    theirs = _points(other, freespace) if isinstance(other, EntityState) else np.array([other])
     if distance_type in EUCLIDEAN:
         if freespace and len(theirs) > 1:
             return box_gap(mine, theirs)
@@ -131,17 +130,17 @@ def _along_lanes(
             reach = (entity.definition.width + other.definition.width) / 2.0
             return math.copysign(max(abs(gap) - reach, 0.0), gap)
         return gap
-    gap = distance_along(rt.lane_map, entity.lane, entity.station, other.lane, other.station)
-    if gap is None:
+    along = distance_along(rt.lane_map, entity.lane, entity.station, other.lane, other.station)
+    if along is None:
         # Lanes side by side: the other's station carried onto this lane.
         beside = rt.lane_map.lanes[rt.lane_map.lane_ids[entity.lane]]
         if rt.lane_map.lane_ids[other.lane] not in (beside.left_neighbor, beside.right_neighbor):
             return None
-        gap = other.station - entity.station
+        along = other.station - entity.station
     if freespace:
         reach = (entity.definition.length + other.definition.length) / 2.0
-        return math.copysign(max(abs(gap) - reach, 0.0), gap)
-    return gap
+        return math.copysign(max(abs(along) - reach, 0.0), along)
+    return along
 
 
 def time_headway(

@@ -20,11 +20,11 @@ from egosim.world.collision import Footprints, touching_pairs
 from egosim.world.openscenario.conditions import Trigger
 from egosim.world.openscenario.entities import EntityDefinition, EntityKind, EntityState
 from egosim.world.openscenario.motion import move
-from egosim.world.openscenario.positions import attach, Placement
 from egosim.world.openscenario.runtime import Runtime
 from egosim.world.openscenario.storyboard import COMPLETE, Storyboard
+from egosim.world.scenario.model import Outcome
 from egosim.world.traffic.scripted import ScriptedObject
-from egosim.world.vehicle import ControlCommand, LongitudinalMode, Pose
+from egosim.world.vehicle import ControlCommand, LongitudinalMode, Pose, Vehicle
 
 if TYPE_CHECKING:
     from egosim.world.world import World
@@ -48,19 +48,6 @@ class Evaluation:
         return None
 
 
-@dataclass(frozen=True)
-class Outcome:
-    """How a scenario stands: its storyboard's state and MORAI's evaluation verdict."""
-
-    state: str
-    """"running", "stopped" (its StopTrigger fired), "success" or "failure" (an
-    evaluation group fired)."""
-    time: float
-    """Scenario time of the end (or now, while running), s."""
-    verdict: str | None
-    """"success", "failure", or None: no evaluation, or none of its groups fired."""
-
-
 class ScenarioRun:
     """An OpenSCENARIO storyboard on a world (world.storyboard)."""
 
@@ -75,6 +62,7 @@ class ScenarioRun:
         variables: dict[str, object],
         load_ego: bool,
         kinds: frozenset[str],
+        drives_ego: bool,
     ) -> None:
         self.world = world
         self.storyboard = storyboard
@@ -83,14 +71,19 @@ class ScenarioRun:
         entities: dict[str, EntityState] = {}
         for definition in definitions:
             if definition.name == ego:
-                entities[definition.name] = EntityState(self._ego_definition(definition), is_ego=True)
+                entities[definition.name] = EntityState(
+                    self._ego_definition(definition), is_ego=True
+                )
             elif definition.kind.value in kinds:
                 entities[definition.name] = EntityState(definition)
         self.rt = Runtime(world, entities, dict(parameters), dict(variables), ego)  # type: ignore[arg-type]
+        self.rt.ego_driven = drives_ego
         self.load_ego = load_ego
         others = [e for e in entities.values() if not e.is_ego]
         self._ids = dict(zip((e.name for e in others), world.reserve_ids(len(others)), strict=True))
         self._footprints: Footprints | None = None
+        self._names: list[str] = []
+        self._ego_last: tuple[float, float] | None = None
         if ego is not None and ego in entities:
             self._read_ego(entities[ego])
             entities[ego].placed = True
@@ -181,11 +174,9 @@ class ScenarioRun:
         ego.speed = status.velocity[0]
         ego.acceleration = status.acceleration[0]
         ego.lateral_speed = status.velocity[1]
-        lane = attach(self.rt, Placement(pose.x, pose.y, pose.z, pose.yaw))
-        if lane is None:
-            ego.lane = -1
-        else:
-            ego.lane, ego.station, ego.offset = lane.lane_index, lane.station, lane.offset
+        lane = self.world.ego_lane_state(0)
+        ego.lane = self.rt.lane_map.lane_index(lane.lane_id)
+        ego.station, ego.offset = lane.s, lane.lateral_offset
 
     def _observe(self, dt: float) -> None:
         """Contacts between the entities (swept over the last step), time off the road,
@@ -210,20 +201,36 @@ class ScenarioRun:
             for i, j in touching_pairs(before, now):
                 present[i].collisions.add(present[j].name)
                 present[j].collisions.add(present[i].name)
-            projection = rt.lane_map.project_many(centres, now.headings)
-            off = np.abs(projection.lateral) > projection.width / 2.0
-            for entity, is_off in zip(present, off, strict=True):
+            for entity, is_off in zip(present, self._offroad(present, centres), strict=True):
                 entity.offroad_s = entity.offroad_s + dt if is_off else 0.0
         ego = self.ego
         if ego is not None and not rt.ego_driven:
-            if getattr(self, "_ego_last", None) is not None:
+            if self._ego_last is not None:
                 x0, y0 = self._ego_last
                 ego.odometer += math.hypot(ego.x - x0, ego.y - y0)
             self._ego_last = (ego.x, ego.y)
             ego.standstill_s = ego.standstill_s + dt if abs(ego.speed) < 1e-3 else 0.0
 
-    _names: list[str] = []
-    _ego_last: tuple[float, float] | None = None
+    def _offroad(self, entities: list[EntityState], centres: np.ndarray) -> list[bool]:
+        """Per entity: its box centre lies off every lane (those on a lane: past its
+        edge; the others: where they project)."""
+        lane_map = self.rt.lane_map
+        result = [False] * len(entities)
+        loose = []
+        for k, entity in enumerate(entities):
+            if entity.lane >= 0:
+                lane = lane_map.lanes[lane_map.lane_ids[entity.lane]]
+                width = float(np.interp(entity.station, lane.stations, lane.widths))
+                result[k] = abs(entity.offset) > width / 2.0
+            else:
+                loose.append(k)
+        if loose:
+            projection = lane_map.project_many(centres[loose])
+            for k, off in zip(
+                loose, np.abs(projection.lateral) > projection.width / 2.0, strict=True
+            ):
+                result[k] = bool(off)
+        return result
 
     def _publish(self, initial: bool = False) -> None:
         """Hand the world the scripted objects and, where it moved by the scenario, the ego."""
@@ -253,6 +260,7 @@ class ScenarioRun:
                     (vx, vy),
                     (entity.acceleration * c, entity.acceleration * s),
                     (definition.length, definition.width, definition.height),
+                    None if entity.lane < 0 else (entity.lane, entity.station),
                 )
             )
         world.scripted.place(objects)
@@ -271,6 +279,6 @@ class ScenarioRun:
             return
         pose = Pose(x=ego.x, y=ego.y, z=ego.z, yaw=ego.heading)
         main.vehicle.teleport(pose, ego.speed)
-        if initial or driven:
+        if (initial or driven) and isinstance(main.vehicle, Vehicle):
             # The ego holds the speed it was given until its stack (or auto mode) commands.
             main.vehicle.command(ControlCommand(mode=LongitudinalMode.VELOCITY, velocity=ego.speed))

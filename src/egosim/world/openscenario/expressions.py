@@ -130,11 +130,11 @@ def _value(node: ast.expr, lookup: Callable[[str], Value]) -> Value:
         values = [_truth(_value(v, lookup)) for v in node.values]
         return all(values) if isinstance(node.op, ast.And) else any(values)
     if isinstance(node, ast.Compare) and len(node.ops) == 1 and type(node.ops[0]) in _COMPARE:
-        left = _value(node.left, lookup)
-        right = _value(node.comparators[0], lookup)
-        if isinstance(left, str) or isinstance(right, str):
-            return _COMPARE[type(node.ops[0])](str(left), str(right))
-        return _COMPARE[type(node.ops[0])](_number(left), _number(right))
+        first = _value(node.left, lookup)
+        second = _value(node.comparators[0], lookup)
+        if isinstance(first, str) or isinstance(second, str):
+            return _COMPARE[type(node.ops[0])](str(first), str(second))
+        return _COMPARE[type(node.ops[0])](_number(first), _number(second))
     if (
         isinstance(node, ast.Call)
         and isinstance(node.func, ast.Name)

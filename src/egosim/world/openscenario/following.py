@@ -24,6 +24,9 @@ class Timing:
 
 
 class TrajectoryRun(MotionRun):
+    """The entity is put on the trajectory (initialDistanceOffset along it) and moves
+    along it until its end, then follows the lane it stands on."""
+
     lateral = True
     follows_path = True
 
@@ -43,12 +46,8 @@ class TrajectoryRun(MotionRun):
         super().begin(rt, entity)
         path = self.path = self.trajectory.path(rt, entity)
         self.started_at = rt.time
-        if self.initial_distance is not None:
-            self.s = self.initial_distance
-        elif entity.placed:
-            self.s = path.project(entity.x, entity.y)
-        else:
-            self.s = 0.0
+        # The entity starts on the trajectory, initialDistanceOffset along it.
+        self.s = self.initial_distance or 0.0
         if self.timing is not None and path.timed:
             self.s = path.station_at_time(self._path_time(rt.time))
         self._put(entity)
@@ -80,7 +79,11 @@ class TrajectoryRun(MotionRun):
             self.release(entity)
             lane = attach(rt, Placement(entity.x, entity.y, entity.z, entity.heading))
             if lane is not None:
-                entity.lane, entity.station, entity.offset = lane.lane_index, lane.station, lane.offset
+                entity.lane, entity.station, entity.offset = (
+                    lane.lane_index,
+                    lane.station,
+                    lane.offset,
+                )
 
     def _put(self, entity: EntityState) -> None:
         assert self.path is not None

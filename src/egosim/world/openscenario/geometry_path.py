@@ -83,7 +83,9 @@ class SampledPath:
         a, b = self.points[:-1, :2], self.points[1:, :2]
         d = b - a
         lengths = np.einsum("ij,ij->i", d, d)
-        f = np.clip(np.einsum("ij,ij->i", np.array([x, y]) - a, d) / np.maximum(lengths, 1e-12), 0, 1)
+        f = np.clip(
+            np.einsum("ij,ij->i", np.array([x, y]) - a, d) / np.maximum(lengths, 1e-12), 0, 1
+        )
         nearest = a + f[:, None] * d
         k = int(np.argmin(np.hypot(*(nearest - [x, y]).T)))
         return float(self.s[k] + f[k] * math.sqrt(lengths[k]))

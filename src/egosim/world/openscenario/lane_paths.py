@@ -79,7 +79,9 @@ def distance_along(
     lengths = lane_map.lane_lengths
     lane, covered = from_lane, float(lengths[from_lane]) - from_station
     for _ in range(SEARCH_LANES):
-        successors = [lane_map.lane_index(s) for s in lane_map.lanes[lane_map.lane_ids[lane]].successors]
+        successors = [
+            lane_map.lane_index(s) for s in lane_map.lanes[lane_map.lane_ids[lane]].successors
+        ]
         if to_lane in successors:
             return covered + to_station
         lane, _ = next_lane(lane_map, lane)
@@ -88,7 +90,9 @@ def distance_along(
         covered += float(lengths[lane])
     lane, covered = from_lane, from_station
     for _ in range(SEARCH_LANES):
-        predecessors = [lane_map.lane_index(p) for p in lane_map.lanes[lane_map.lane_ids[lane]].predecessors]
+        predecessors = [
+            lane_map.lane_index(p) for p in lane_map.lanes[lane_map.lane_ids[lane]].predecessors
+        ]
         if to_lane in predecessors:
             return -(covered + float(lengths[to_lane]) - to_station)
         lane = previous_lane(lane_map, lane)

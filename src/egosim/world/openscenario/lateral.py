@@ -27,7 +27,12 @@ class LaneChangeRun(MotionRun):
     lateral = True
 
     def __init__(
-        self, target_lane: TargetLane, target_offset: float, shape: str, dimension: str, value: float
+        self,
+        target_lane: TargetLane,
+        target_offset: float,
+        shape: str,
+        dimension: str,
+        value: float,
     ) -> None:
         super().__init__()
         self.target_lane = target_lane
@@ -101,7 +106,9 @@ class LaneOffsetRun(MotionRun):
         self.duration = (
             0.0
             if not math.isfinite(self.max_lateral_acceleration)
-            else duration_at_peak_second_derivative(self.shape, change, self.max_lateral_acceleration)
+            else duration_at_peak_second_derivative(
+                self.shape, change, self.max_lateral_acceleration
+            )
         )
 
     def offset(self, rt: Runtime, entity: EntityState, ds: float, dt: float) -> float:
@@ -137,9 +144,9 @@ class LateralDistanceRun(MotionRun):
     def offset(self, rt: Runtime, entity: EntityState, ds: float, dt: float) -> float:
         reference = rt.entity(self.reference)
         heading = entity.heading
-        across = -(reference.x - entity.x) * math.sin(heading) + (reference.y - entity.y) * math.cos(
-            heading
-        )
+        across = -(reference.x - entity.x) * math.sin(heading) + (
+            reference.y - entity.y
+        ) * math.cos(heading)
         side = -1.0 if across >= 0 else 1.0  # the entity stays on its own side
         wanted = entity.offset + across + side * self.distance
         change = wanted - entity.offset

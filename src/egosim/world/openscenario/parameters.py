@@ -41,7 +41,7 @@ def typed(value: Value, kind: str, where: Node, name: str) -> Value:
             if not math.isfinite(number):
                 raise ValueError(f"{value!r}")
             result = float(math.floor(number + 0.5))
-            if kind != "int" and kind != "integer" and result < 0:
+            if kind not in {"int", "integer"} and result < 0:
                 raise ValueError(f"{value!r} is negative")
             return result
         if kind == "boolean":
@@ -112,7 +112,7 @@ def declare(
     """Read <ParameterDeclarations> (or <VariableDeclarations>) into `scope`, in order;
     `overrides` replace declared values (text, as assignments give them)."""
     overrides = overrides or {}
-    declared = []
+    declared: list[Declared] = []
     if declarations is None:
         return declared
     for node in declarations.children(tag):
@@ -145,8 +145,10 @@ def compare(rule: str, left: Value, right: Value) -> bool:
     except ValueError:
         a, b = text_of(left), text_of(right)
     if rule == "equalTo":
-        return a == b if isinstance(a, str) else abs(float(a) - float(b)) <= 1e-9 * max(
-            1.0, abs(float(a))
+        return (
+            a == b
+            if isinstance(a, str)
+            else abs(float(a) - float(b)) <= 1e-9 * max(1.0, abs(float(a)))
         )
     if rule == "notEqualTo":
         return not compare("equalTo", left, right)

@@ -55,7 +55,8 @@ class Orientation:
 class PathSource(Protocol):
     """A trajectory, placed when needed (it may start where an entity stands)."""
 
-    node: Node
+    @property
+    def node(self) -> Node: ...
 
     def path(self, rt: Runtime, entity: EntityState | None) -> SampledPath: ...
 
@@ -80,7 +81,8 @@ class RouteLanes:
 
 
 class RouteSource(Protocol):
-    node: Node
+    @property
+    def node(self) -> Node: ...
 
     def lanes(self, rt: Runtime) -> RouteLanes: ...
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Any
 
 from egosim.world.openscenario.actions import NoteAction
@@ -25,7 +26,7 @@ from egosim.world.openscenario.read_actions import (
     is_external_controller,
     private_action,
 )
-from egosim.world.openscenario.read_conditions import Unsupported, condition, trigger
+from egosim.world.openscenario.read_conditions import UnsupportedElementError, condition, trigger
 from egosim.world.openscenario.reading import Element
 from egosim.world.openscenario.storyboard import (
     ActElement,
@@ -33,8 +34,8 @@ from egosim.world.openscenario.storyboard import (
     EventElement,
     ManeuverElement,
     ManeuverGroupElement,
-    StoryElement,
     Storyboard,
+    StoryElement,
 )
 from egosim.world.openscenario.xmltree import Node, parse_xml
 from egosim.world.scenario.errors import ScenarioError
@@ -68,14 +69,14 @@ def root_of(text: str | bytes, label: str) -> Node:
     return root
 
 
-def map_reference(root: Node) -> str:
-    """The map a scenario runs on: <RoadNetwork><LogicFile filepath>, as written."""
+def map_reference(root: Node, scope: Scope | None = None) -> str:
+    """The map a scenario runs on: <RoadNetwork><LogicFile filepath> (a parameter may
+    give it)."""
     network = root.child("RoadNetwork")
     logic = None if network is None else network.child("LogicFile")
-    path = None if logic is None else logic.get("filepath")
-    if not path:
+    if logic is None or not logic.get("filepath"):
         raise root.error("names no map: <RoadNetwork><LogicFile filepath> is missing")
-    return path
+    return Element(logic, scope or Scope()).text("filepath")
 
 
 class Reader:
@@ -96,7 +97,7 @@ class Reader:
     # -- entities ------------------------------------------------------------------
 
     def entities(self, problems: Problems) -> list[EntityDefinition]:
-        found = []
+        found: list[EntityDefinition] = []
         section = self.root.child("Entities")
         if section is None:
             return found
@@ -119,11 +120,15 @@ class Reader:
             elif child.tag in _KINDS:
                 body = child
         if body is None:
-            self.notes.append(element.node.note(f"{name!r}: no Vehicle, Pedestrian or MiscObject; left out"))
+            self.notes.append(
+                element.node.note(f"{name!r}: no Vehicle, Pedestrian or MiscObject; left out")
+            )
             return None
         kind = _KINDS.get(body.tag)
         if kind is None:
-            raise body.node.error(f"entity {name!r}: a catalogue entry of kind <{body.tag}> is not an object")
+            raise body.node.error(
+                f"entity {name!r}: a catalogue entry of kind <{body.tag}> is not an object"
+            )
         box = body.require("BoundingBox")
         centre = box.require("Center")
         size = box.require("Dimensions")
@@ -207,7 +212,7 @@ class Reader:
         """The action `read` gives; an unsupported one becomes a note when it runs."""
         try:
             return read()
-        except Unsupported as reason:
+        except UnsupportedElementError as reason:
             self.notes.append(node.note(f"{reason}; left out"))
             return NoteAction(node, "")
 
@@ -219,17 +224,15 @@ class Reader:
             return private_action(choice, self)
         if choice.tag == "GlobalAction":
             return global_action(choice, self)
-        raise Unsupported(f"<{choice.tag}> is not carried out by egosim")
+        raise UnsupportedElementError(f"<{choice.tag}> is not carried out by egosim")
 
     def _init_actions(self, element: Element) -> list[tuple[ActionElement, tuple[str, ...]]]:
         if element.tag == "Private":
             entity = element.text("entityRef")
-            found = []
+            found: list[tuple[ActionElement, tuple[str, ...]]] = []
             for k, private in enumerate(element.children("PrivateAction")):
                 action = ActionElement("action", f"Init:{entity}:{k}")
-                action.spec = self._spec(
-                    private.node, lambda p=private: private_action(p, self, in_init=True)
-                )
+                action.spec = self._spec(private.node, partial(private_action, private, self, True))
                 found.append((action, (entity,)))
             return found
         if element.tag == "GlobalAction":
@@ -333,7 +336,9 @@ class OpenScenario:
     _scope: Scope = field(repr=False)
     _catalogs: Catalogs = field(repr=False)
 
-    def start(self, world: Any, load_ego: bool, kinds: frozenset[str]) -> ScenarioRun:
+    def start(
+        self, world: Any, load_ego: bool, kinds: frozenset[str], drives_ego: bool
+    ) -> ScenarioRun:
         notes: list[str] = []
         reader = Reader(self._root, self._scope, self._catalogs, notes)
         problems = Problems()
@@ -349,6 +354,7 @@ class OpenScenario:
             dict(self.variables),
             load_ego,
             kinds,
+            drives_ego,
         )
 
 
@@ -399,7 +405,7 @@ def read_openscenario(
     reader = Reader(root, scope, catalogs, notes)
     reference = ""
     with problems.collecting():
-        reference = map_reference(root)
+        reference = map_reference(root, scope)
     definitions = reader.entities(problems)
     _, _ = reader.storyboard(problems)
     problems.raise_any()

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
+from egosim.world.map.road_coordinates import LanePlace, UnknownRoadError
 from egosim.world.openscenario.actions import (
     AcquirePositionAction,
     AssignRouteAction,
@@ -41,7 +42,7 @@ from egosim.world.openscenario.positions import (
     lane_pose,
     neighbour,
 )
-from egosim.world.openscenario.read_conditions import Unsupported
+from egosim.world.openscenario.read_conditions import UnsupportedElementError
 from egosim.world.openscenario.read_positions import (
     CatalogResolver,
     position,
@@ -53,7 +54,6 @@ from egosim.world.openscenario.reading import Element
 from egosim.world.openscenario.runtime import Runtime
 from egosim.world.openscenario.signal_states import parse_state
 from egosim.world.openscenario.storyboard import Action
-from egosim.world.map.road_coordinates import LanePlace, UnknownRoadError
 
 ENVIRONMENT_NOTE = "not applied: egosim has no weather, lighting or time of day"
 
@@ -73,9 +73,7 @@ def is_external_controller(controller: Element) -> bool:
     return any("external" in text.lower() for text in texts)
 
 
-def private_action(
-    element: Element, catalogs: CatalogResolver, in_init: bool = False
-) -> Action:
+def private_action(element: Element, catalogs: CatalogResolver, in_init: bool = False) -> Action:
     choice = element.only_child()
     if choice is None:
         raise element.node.error("is empty")
@@ -102,8 +100,10 @@ def private_action(
     if tag == "ControllerAction":
         return _controller(choice, catalogs)
     if tag == "AppearanceAction":
-        return NoteAction(choice.node, "not applied: egosim shows no lamps or animations of entities")
-    raise Unsupported(f"<{tag}> is not carried out by egosim")
+        return NoteAction(
+            choice.node, "not applied: egosim shows no lamps or animations of entities"
+        )
+    raise UnsupportedElementError(f"<{tag}> is not carried out by egosim")
 
 
 def _speed_target(element: Element) -> SpeedTarget:
@@ -163,9 +163,11 @@ def _longitudinal(element: Element, catalogs: CatalogResolver, in_init: bool) ->
         reference = choice.text("entityRef", "")
         return MotionAction(
             choice.node,
-            lambda rt, e: SpeedProfileRun(entries, reference, accel if math.isfinite(accel) else 1e9),
+            lambda rt, e: SpeedProfileRun(
+                entries, reference, accel if math.isfinite(accel) else 1e9
+            ),
         )
-    raise Unsupported(f"<{choice.tag}> is not carried out by egosim")
+    raise UnsupportedElementError(f"<{choice.tag}> is not carried out by egosim")
 
 
 def _distance_keeping(element: Element) -> Action:
@@ -208,11 +210,15 @@ def _distance_keeping(element: Element) -> Action:
         along = ahead_sign(rt, entity) * (wanted(rt) + reach)
         # Boxes' centres, not reference points, are `reach` apart: shift by the offsets.
         along += ref.definition.centre[0] - entity.definition.centre[0]
-        lane, station, _, _ = advance(rt.lane_map, ref.lane, ref.station, along, ref.route, ref.route_position)
+        lane, station, _, _ = advance(
+            rt.lane_map, ref.lane, ref.station, along, ref.route, ref.route_position
+        )
         target_lane = entity.lane if entity.lane >= 0 else lane
         if target_lane != lane:
             lengths = rt.lane_map.lane_lengths
-            station = float(min(station * lengths[target_lane] / max(lengths[lane], 1e-9), lengths[target_lane]))
+            station = float(
+                min(station * lengths[target_lane] / max(lengths[lane], 1e-9), lengths[target_lane])
+            )
         entity.lane, entity.station = target_lane, station
         x, y, z, heading = lane_pose(rt, LanePlace(target_lane, station, entity.offset))
         entity.x, entity.y, entity.z, entity.heading = x, y, z, heading
@@ -294,7 +300,7 @@ def _lateral(element: Element) -> Action:
         return MotionAction(
             choice.node, lambda rt, e: LateralDistanceRun(ref, distance, continuous, max_speed)
         )
-    raise Unsupported(f"<{choice.tag}> is not carried out by egosim")
+    raise UnsupportedElementError(f"<{choice.tag}> is not carried out by egosim")
 
 
 def _routing(element: Element, catalogs: CatalogResolver) -> Action:
@@ -307,7 +313,9 @@ def _routing(element: Element, catalogs: CatalogResolver) -> Action:
         return AcquirePositionAction(choice.node, position(choice.require("Position"), catalogs))
     if choice.tag == "FollowTrajectoryAction":
         inline = choice.child("Trajectory")
-        path = trajectory(inline, catalogs) if inline is not None else trajectory_ref(choice, catalogs)
+        path = (
+            trajectory(inline, catalogs) if inline is not None else trajectory_ref(choice, catalogs)
+        )
         timing = None
         reference = choice.child("TimeReference")
         timed = None if reference is None else reference.child("Timing")
@@ -320,7 +328,7 @@ def _routing(element: Element, catalogs: CatalogResolver) -> Action:
         return follow_trajectory(
             choice.node, path, timing, choice.optional_number("initialDistanceOffset")
         )
-    raise Unsupported(f"<{choice.tag}> is not carried out by egosim")
+    raise UnsupportedElementError(f"<{choice.tag}> is not carried out by egosim")
 
 
 def _controller(element: Element, catalogs: CatalogResolver) -> Action:
@@ -351,7 +359,9 @@ def _path_distance(target: Position) -> Callable[[Runtime, EntityState], float |
             placement = target.resolve(rt)
         except PositionError:
             return None
-        following = entity.lateral if entity.lateral is not None and entity.lateral.follows_path else None
+        following = (
+            entity.lateral if entity.lateral is not None and entity.lateral.follows_path else None
+        )
         if isinstance(target, TrajectoryPosition):
             path = cached.get("path")
             if path is None:
@@ -363,7 +373,9 @@ def _path_distance(target: Position) -> Callable[[Runtime, EntityState], float |
         if entity.lane >= 0 and following is None:
             goal = placement.lane or attach(rt, placement)
             if goal is not None:
-                along = distance_along(rt.lane_map, entity.lane, entity.station, goal.lane_index, goal.station)
+                along = distance_along(
+                    rt.lane_map, entity.lane, entity.station, goal.lane_index, goal.station
+                )
                 if along is not None:
                     return along
         dx, dy = placement.x - entity.x, placement.y - entity.y
@@ -399,9 +411,11 @@ def _synchronize(element: Element, catalogs: CatalogResolver) -> Action:
         elif choice.tag == "RelativeSpeedToMaster":
             kind = choice.choice("speedTargetValueType", ("delta", "factor"))
             final_speed = (  # noqa: E731
-                lambda rt: rt.entity(master).speed * value
-                if kind == "factor"
-                else rt.entity(master).speed + value
+                lambda rt: (
+                    rt.entity(master).speed * value
+                    if kind == "factor"
+                    else rt.entity(master).speed + value
+                )
             )
         else:
             raise choice.node.error("is not a final speed")
@@ -456,7 +470,9 @@ def global_action(element: Element, catalogs: CatalogResolver) -> Action:
             state = signal.text("state")
             aspect = parse_state(state)
             if aspect is None:
-                raise Unsupported(f"traffic signal state {state!r}")
+                raise UnsupportedElementError(f"traffic signal state {state!r}")
             return TrafficSignalStateAction(signal.node, signal.text("name"), aspect)
-        raise Unsupported("<TrafficSignalControllerAction> is not carried out by egosim")
-    raise Unsupported(f"<{tag}> is not carried out by egosim")
+        raise UnsupportedElementError(
+            "<TrafficSignalControllerAction> is not carried out by egosim"
+        )
+    raise UnsupportedElementError(f"<{tag}> is not carried out by egosim")

@@ -49,7 +49,7 @@ _COLLISION_TYPES = {
 }
 
 
-class Unsupported(Exception):
+class UnsupportedElementError(Exception):
     """An element egosim reads but does not evaluate; the message says what."""
 
 
@@ -62,7 +62,7 @@ def trigger(element: Element | None, reader: CatalogResolver, notes: list[str]) 
         for node in group.children("Condition"):
             try:
                 conditions.append(condition(node, reader))
-            except Unsupported as reason:
+            except UnsupportedElementError as reason:
                 notes.append(node.node.note(f"{reason}; the condition never holds"))
                 conditions.append(Condition(node.text("name", ""), lambda rt: False))
         groups.append(conditions)
@@ -101,7 +101,9 @@ def _coordinates(element: Element) -> tuple[str, str, bool]:
     """(relative distance type, coordinate system, freespace) with the 1.0 spellings."""
     distance_type = element.text("relativeDistanceType", "euclidianDistance")
     if distance_type not in DISTANCE_TYPES:
-        raise element.node.error(f"relativeDistanceType {distance_type!r} is not one of {DISTANCE_TYPES}")
+        raise element.node.error(
+            f"relativeDistanceType {distance_type!r} is not one of {DISTANCE_TYPES}"
+        )
     system = element.text("coordinateSystem", "entity")
     if element.boolean("alongRoute", False):
         system = "road"
@@ -159,7 +161,9 @@ def _entity_check(choice: Element, catalogs: CatalogResolver) -> EntityCheck:
             return lambda rt, e: other in e.collisions
         kind = _COLLISION_TYPES.get(choice.require("ByType").text("type"))
         if kind is None:
-            raise Unsupported(f"<ByType type={choice.require('ByType').text('type')!r}>")
+            raise UnsupportedElementError(
+                f"<ByType type={choice.require('ByType').text('type')!r}>"
+            )
         return lambda rt, e: any(
             n in rt.entities and rt.entity(n).definition.kind is kind for n in e.collisions
         )
@@ -176,22 +180,24 @@ def _entity_check(choice: Element, catalogs: CatalogResolver) -> EntityCheck:
         target = position(choice.require("Position"), catalogs)
         distance_type, system, freespace = _coordinates(choice)
 
-        def distance(rt: Runtime, e: EntityState) -> float:
+        def to_position(rt: Runtime, e: EntityState) -> float:
             point = _point(rt, target)
             if point is None:
                 return math.nan
             return abs(relative(rt, e, point, distance_type, freespace, system))
 
-        return rule_check(_rule(choice), choice.number("value"), distance)
+        return rule_check(_rule(choice), choice.number("value"), to_position)
     if tag == "RelativeDistanceCondition":
         other = choice.text("entityRef")
         distance_type, system, freespace = _coordinates(choice)
         return rule_check(
             _rule(choice),
             choice.number("value"),
-            lambda rt, e: abs(relative(rt, e, rt.entity(other), distance_type, freespace, system))
-            if _there(rt, other)
-            else math.nan,
+            lambda rt, e: (
+                abs(relative(rt, e, rt.entity(other), distance_type, freespace, system))
+                if _there(rt, other)
+                else math.nan
+            ),
         )
     if tag == "TimeHeadwayCondition":
         other = choice.text("entityRef")
@@ -199,9 +205,11 @@ def _entity_check(choice: Element, catalogs: CatalogResolver) -> EntityCheck:
         return rule_check(
             _rule(choice),
             choice.number("value"),
-            lambda rt, e: time_headway(rt, e, rt.entity(other), freespace, system)
-            if _there(rt, other)
-            else math.nan,
+            lambda rt, e: (
+                time_headway(rt, e, rt.entity(other), freespace, system)
+                if _there(rt, other)
+                else math.nan
+            ),
         )
     if tag == "TimeToCollisionCondition":
         target_element = choice.require("TimeToCollisionConditionTarget")
@@ -214,11 +222,11 @@ def _entity_check(choice: Element, catalogs: CatalogResolver) -> EntityCheck:
             return rule_check(
                 _rule(choice),
                 choice.number("value"),
-                lambda rt, e: time_to_collision(
-                    rt, e, rt.entity(other), freespace, distance_type, system
-                )
-                if _there(rt, other)
-                else math.nan,
+                lambda rt, e: (
+                    time_to_collision(rt, e, rt.entity(other), freespace, distance_type, system)
+                    if _there(rt, other)
+                    else math.nan
+                ),
             )
         target = position(target_element.require("Position"), catalogs)
 
@@ -232,11 +240,15 @@ def _entity_check(choice: Element, catalogs: CatalogResolver) -> EntityCheck:
     if tag == "AngleCondition":
         angle_type = choice.choice("angleType", ("heading", "pitch", "roll"))
         if angle_type != "heading":
-            raise Unsupported(f"<AngleCondition angleType={angle_type!r}> (vehicles stay level)")
+            raise UnsupportedElementError(
+                f"<AngleCondition angleType={angle_type!r}> (vehicles stay level)"
+            )
         angle, tolerance = choice.number("angle"), choice.number("angleTolerance")
         system = choice.text("coordinateSystem", "world")
-        return lambda rt, e: abs(math.remainder(_heading(rt, e, system) - angle, math.tau)) <= tolerance
-    raise Unsupported(f"<{tag}> is not evaluated by egosim")
+        return lambda rt, e: (
+            abs(math.remainder(_heading(rt, e, system) - angle, math.tau)) <= tolerance
+        )
+    raise UnsupportedElementError(f"<{tag}> is not evaluated by egosim")
 
 
 def _heading(rt: Runtime, e: EntityState, system: str) -> float:
@@ -273,9 +285,9 @@ def _by_value(element: Element) -> Check:
     if tag == "TrafficSignalCondition":
         light, wanted = choice.text("name"), parse_state(choice.text("state"))
         if wanted is None:
-            raise Unsupported(f"traffic signal state {choice.text('state')!r}")
+            raise UnsupportedElementError(f"traffic signal state {choice.text('state')!r}")
         return _light_check(light, wanted)
-    raise Unsupported(f"<{tag}> is not evaluated by egosim")
+    raise UnsupportedElementError(f"<{tag}> is not evaluated by egosim")
 
 
 def _light_check(light: str, wanted: int) -> Callable[[Runtime], bool]:

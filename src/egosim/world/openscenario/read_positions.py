@@ -57,7 +57,11 @@ def position(element: Element, catalogs: CatalogResolver) -> Position:
     tag, node = choice.tag, choice.node
     if tag == "WorldPosition":
         return WorldPosition(
-            node, choice.number("x"), choice.number("y"), choice.number("z", 0.0), choice.number("h", 0.0)
+            node,
+            choice.number("x"),
+            choice.number("y"),
+            choice.number("z", 0.0),
+            choice.number("h", 0.0),
         )
     if tag == "RelativeWorldPosition":
         return RelativeWorldPosition(
@@ -79,11 +83,19 @@ def position(element: Element, catalogs: CatalogResolver) -> Position:
         )
     if tag == "RoadPosition":
         return RoadPosition(
-            node, choice.text("roadId"), choice.number("s"), choice.number("t", 0.0), orientation(choice)
+            node,
+            choice.text("roadId"),
+            choice.number("s"),
+            choice.number("t", 0.0),
+            orientation(choice),
         )
     if tag == "RelativeRoadPosition":
         return RelativeRoadPosition(
-            node, choice.text("entityRef"), choice.number("ds"), choice.number("dt", 0.0), orientation(choice)
+            node,
+            choice.text("entityRef"),
+            choice.number("ds"),
+            choice.number("dt", 0.0),
+            orientation(choice),
         )
     if tag == "LanePosition":
         return LanePosition(
@@ -129,7 +141,11 @@ def position(element: Element, catalogs: CatalogResolver) -> Position:
             return RoutePosition(node, route, "entity", entity=where.text("entityRef"))
         if where.tag == "FromRoadCoordinates":
             return RoutePosition(
-                node, route, "road", path_s=where.number("pathS"), t=where.number("t", 0.0),
+                node,
+                route,
+                "road",
+                path_s=where.number("pathS"),
+                t=where.number("t", 0.0),
                 orientation=orientation(choice),
             )
         if where.tag == "FromLaneCoordinates":
@@ -178,7 +194,9 @@ def _shape(shape: Element, catalogs: CatalogResolver) -> Shape:
         vertices = []
         for vertex in shape.children("Vertex"):
             vertices.append(
-                Vertex(position(vertex.require("Position"), catalogs), vertex.optional_number("time"))
+                Vertex(
+                    position(vertex.require("Position"), catalogs), vertex.optional_number("time")
+                )
             )
         if not vertices:
             raise shape.node.error("has no <Vertex>")
@@ -245,8 +263,11 @@ def route_ref(element: Element, catalogs: CatalogResolver) -> Route:
 
 def route(element: Element, catalogs: CatalogResolver) -> Route:
     waypoints = tuple(
-        position(waypoint.require("Position"), catalogs) for waypoint in element.children("Waypoint")
+        position(waypoint.require("Position"), catalogs)
+        for waypoint in element.children("Waypoint")
     )
     if len(waypoints) < 2:
         raise element.node.error("needs at least two <Waypoint>s")
-    return Route(element.node, element.text("name", ""), element.boolean("closed", False), waypoints)
+    return Route(
+        element.node, element.text("name", ""), element.boolean("closed", False), waypoints
+    )

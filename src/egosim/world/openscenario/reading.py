@@ -35,7 +35,7 @@ class Element:
     def has(self, name: str) -> bool:
         return self.node.get(name) is not None
 
-    def text(self, name: str, default: str | None | object = _MISSING) -> str:
+    def text(self, name: str, default: str | object | None = _MISSING) -> str:
         value = self._raw(name)
         if value is None:
             if default is _MISSING:
@@ -70,7 +70,7 @@ class Element:
         number = self.number(name)
         if not math.isfinite(number):
             raise self.node.error(f"{name} is not a whole number")
-        return int(math.floor(number + 0.5))
+        return math.floor(number + 0.5)
 
     def boolean(self, name: str, default: bool | object = _MISSING) -> bool:
         value = self._raw(name)

@@ -8,6 +8,7 @@ second's; `routeStrategy` is read but every strategy takes that chain.
 from __future__ import annotations
 
 import heapq
+import itertools
 from dataclasses import dataclass, field
 
 from egosim.world.openscenario.positions import (
@@ -42,7 +43,7 @@ class Route:
                 raise PositionError(f"route {self.name!r}: a waypoint lies on no lane")
             places.append(lane)
         chain = [places[0].lane_index]
-        for a, b in zip(places, places[1:], strict=False):
+        for a, b in itertools.pairwise(places):
             chain += shortest_lanes(rt, a.lane_index, b.lane_index)[1:]
         lanes = RouteLanes(tuple(chain), places[0].station)
         self._cache["lanes"] = lanes

@@ -42,7 +42,8 @@ class ActionRun(Protocol):
 
 
 class Action(Protocol):
-    node: Node
+    @property
+    def node(self) -> Node: ...
 
     def start(self, rt: Runtime, actors: Sequence[str]) -> ActionRun: ...
 

@@ -70,7 +70,7 @@ def _integrate(
     x: float, y: float, z: float, heading: float, segment: ClothoidSegment
 ) -> tuple[np.ndarray, np.ndarray]:
     """Points (N, 3) and headings (N,) along one clothoid piece, its start included."""
-    steps = max(int(math.ceil(segment.length / CLOTHOID_STEP_M)), 1)
+    steps = max(math.ceil(segment.length / CLOTHOID_STEP_M), 1)
     u = np.linspace(0.0, segment.length, steps + 1)
     rate = (segment.curvature_end - segment.curvature_start) / max(segment.length, 1e-12)
     headings = heading + segment.curvature_start * u + 0.5 * rate * u**2
@@ -202,7 +202,8 @@ def _basis(knots: np.ndarray, degree: int, count: int, u: np.ndarray) -> np.ndar
             if right_span > 0:
                 nxt[:, i] += (knots[i + p + 1] - u) / right_span * n[:, i + 1]
         n = nxt
-    return n[:, :count]
+    basis: np.ndarray = n[:, :count]
+    return basis
 
 
 Shape = Polyline | Clothoid | ClothoidSpline | Nurbs

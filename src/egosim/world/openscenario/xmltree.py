@@ -37,8 +37,8 @@ class Node:
 
     @property
     def line(self) -> int | None:
-        line = self._element.sourceline
-        return None if line is None else int(line)
+        line: object = self._element.sourceline
+        return line if isinstance(line, int) else None
 
     @property
     def where(self) -> str:

@@ -100,6 +100,19 @@ class SignalsSpec:
     """Where each intersection's entry sits in the file."""
 
 
+@dataclass(frozen=True)
+class Outcome:
+    """How a scenario stands: its storyboard's state and MORAI's evaluation verdict."""
+
+    state: str
+    """"running", "stopped" (its StopTrigger fired), "success" or "failure" (an
+    evaluation group fired)."""
+    time: float
+    """Scenario time of the end (or now, while running), s."""
+    verdict: str | None
+    """"success", "failure", or None: no evaluation, or none of its groups fired."""
+
+
 class StoryboardRun(Protocol):
     """An OpenSCENARIO storyboard running on a world (egosim.world.openscenario), stepped
     once per tick before the world (the tick pipeline's storyboard stage)."""
@@ -107,6 +120,10 @@ class StoryboardRun(Protocol):
     @property
     def finished(self) -> bool:
         """Its StopTrigger (or an evaluation group) has ended the scenario."""
+        ...
+
+    def outcome(self) -> Outcome:
+        """Its state now (or at its end) and its evaluation's verdict."""
         ...
 
     def step(self, dt: float, ego_driven: bool) -> list[str]:
@@ -118,9 +135,12 @@ class StoryboardRun(Protocol):
 class StoryboardProgram(Protocol):
     """A storyboard ready to run: `start` places its entities (its Init) on a world."""
 
-    def start(self, world: Any, load_ego: bool, kinds: frozenset[str]) -> StoryboardRun:
+    def start(
+        self, world: Any, load_ego: bool, kinds: frozenset[str], drives_ego: bool
+    ) -> StoryboardRun:
         """Run Init on `world`; load_ego: place the ego as Init says; kinds: the entity
-        kinds to create (vehicle, pedestrian, miscellaneous object)."""
+        kinds to create (vehicle, pedestrian, miscellaneous object); drives_ego: the
+        scenario drives the ego (its control mode is auto)."""
         ...
 
 

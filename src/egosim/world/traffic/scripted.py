@@ -32,6 +32,8 @@ class ScriptedObject:
     velocity: tuple[float, float]
     acceleration: tuple[float, float]
     size: tuple[float, float, float]
+    lane: tuple[int, float] | None = None
+    """(lane index, station) of the lane it drives along, if the storyboard knows it."""
 
 
 _EMPTY = ObjectTable.empty()
@@ -42,12 +44,16 @@ class ScriptedObjects:
 
     def __init__(self) -> None:
         self._tables: dict[ObjectType, ObjectTable] = {}
+        self._on_lanes = LaneOccupants.empty()
+        self._unplaced = _EMPTY
 
     def __len__(self) -> int:
         return sum(len(t) for t in self._tables.values())
 
     def clear(self) -> None:
         self._tables = {}
+        self._on_lanes = LaneOccupants.empty()
+        self._unplaced = _EMPTY
 
     def place(self, objects: Sequence[ScriptedObject]) -> None:
         """Show exactly these objects from now on."""
@@ -57,6 +63,16 @@ class ScriptedObjects:
             if rows:
                 tables[kind] = _table(rows)
         self._tables = tables
+        movers = [o for o in objects if o.object_type != ObjectType.OBSTACLE]
+        known = [o for o in movers if o.lane is not None]
+        self._on_lanes = LaneOccupants(
+            np.array([o.lane[0] for o in known if o.lane], dtype=np.int64),
+            np.array([o.lane[1] for o in known if o.lane], dtype=np.float64),
+            np.array([o.size[0] / 2.0 for o in known], dtype=np.float64),
+            np.array([float(np.hypot(*o.velocity)) for o in known], dtype=np.float64),
+        )
+        unknown = [o for o in movers if o.lane is None]
+        self._unplaced = _table(unknown) if unknown else _EMPTY
 
     def table(self, kind: ObjectType) -> ObjectTable:
         return self._tables.get(kind, _EMPTY)
@@ -65,11 +81,13 @@ class ScriptedObjects:
         return {int(i) for t in self._tables.values() for i in t.unique_ids}
 
     def occupants(self, lane_map: LaneMap) -> LaneOccupants:
-        """The scripted vehicles and pedestrians standing on a lane."""
-        movers = ObjectTable.concatenate(
-            [self.table(ObjectType.NPC_VEHICLE), self.table(ObjectType.PEDESTRIAN)]
+        """The scripted vehicles and pedestrians standing on a lane: those the storyboard
+        moves along a lane where it says, the others where they project."""
+        if len(self._unplaced) == 0:
+            return self._on_lanes
+        return LaneOccupants.concatenate(
+            [self._on_lanes, lane_occupants_of(self._unplaced, lane_map)]
         )
-        return lane_occupants_of(movers, lane_map)
 
 
 def _table(rows: Sequence[ScriptedObject]) -> ObjectTable:
@@ -81,7 +99,9 @@ def _table(rows: Sequence[ScriptedObject]) -> ObjectTable:
         names=tuple(o.name for o in rows),
         positions=np.array([o.position for o in rows], dtype=np.float64).reshape(-1, 3),
         headings=np.array([o.heading for o in rows], dtype=np.float64),
-        velocities=np.hstack((np.array([o.velocity for o in rows], dtype=np.float64).reshape(-1, 2), zeros)),
+        velocities=np.hstack(
+            (np.array([o.velocity for o in rows], dtype=np.float64).reshape(-1, 2), zeros)
+        ),
         accelerations=np.hstack(
             (np.array([o.acceleration for o in rows], dtype=np.float64).reshape(-1, 2), zeros)
         ),

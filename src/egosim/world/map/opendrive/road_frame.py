@@ -69,7 +69,9 @@ class OpenDriveRoads:
         k = self._section(record, s)
         start, _ = section_range(record, k)
         stations = np.array([min(max(s, 0.0), record.length)])
-        centres, _ = lateral_layout(record, record.sections[k].lanes, stations - start, stations, [])
+        centres, _ = lateral_layout(
+            record, record.sections[k].lanes, stations - start, stations, []
+        )
         if lane not in centres:
             raise UnknownRoadError(f"road {road!r} has no lane {lane} at s={s:g}")
         return float(centres[lane][0])
