@@ -3,8 +3,9 @@
 A condition's measurement is a Check (a function of the running scenario). The edge is
 applied to the measured truth first (rising: false before, true now; falling; either;
 none: the truth itself; MORAI's `once`: true from the first time it was true), then the
-delay: the condition reads the edge's result of `delay` s ago. Before the first
-evaluation the truth counts as false. A ConditionGroup holds when all its conditions
+delay: the condition reads the edge's result of `delay` s ago. The first evaluation
+sees no edge (a condition true from the start has not risen), and the delayed result
+counts as false until `delay` s of results exist. A ConditionGroup holds when all its conditions
 do, a Trigger when any of its groups does; every condition is evaluated at every step
 its element waits on it, so edges and delays see every step.
 """
@@ -32,13 +33,14 @@ class Condition:
     check: Check
     edge: str = "none"
     delay: float = 0.0
-    _previous: bool = False
+    _previous: bool | None = None
     _latched: bool = False
     _history: deque[tuple[float, bool]] = field(default_factory=deque)
 
     def evaluate(self, rt: Runtime) -> bool:
         now = bool(self.check(rt))
-        previous, self._previous = self._previous, now
+        previous = now if self._previous is None else self._previous
+        self._previous = now
         if self.edge == "rising":
             result = now and not previous
         elif self.edge == "falling":

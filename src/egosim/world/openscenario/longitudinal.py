@@ -62,6 +62,9 @@ class SpeedRun(MotionRun):
             self.duration = self.value / mean if mean > 0 else 0.0
         else:
             self.duration = duration_at_rate(self.shape, change, self.value)
+        if self.duration <= 0.0:
+            # A step takes effect at once (later Init actions see the new speed).
+            entity.speed = self.target.speed(rt)
 
     def speed(self, rt: Runtime, entity: EntityState, dt: float) -> float:
         self.elapsed += dt
