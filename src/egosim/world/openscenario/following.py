@@ -40,6 +40,7 @@ class TrajectoryRun(MotionRun):
         self.initial_distance = initial_distance
         self.path: SampledPath | None = None
         self.s = 0.0
+        self.due: float | None = None
         self.started_at = 0.0
 
     def begin(self, rt: Runtime, entity: EntityState) -> None:
@@ -63,15 +64,16 @@ class TrajectoryRun(MotionRun):
         path = self.path
         if self.timing is None or path is None or not path.timed:
             return entity.speed
-        due = path.station_at_time(self._path_time(rt.time + dt))
-        # The end speed whose trapezoid with the start speed covers the step's distance.
-        return 2.0 * (due - self.s) / dt - entity.speed
+        self.due = path.station_at_time(self._path_time(rt.time + dt))
+        return (self.due - self.s) / dt  # the step's mean speed
 
     def follow(self, rt: Runtime, entity: EntityState, ds: float, dt: float) -> None:
         path = self.path
         if path is None:
             return
-        self.s += ds
+        # A timed path is where its times say; an untimed one where the speed took it.
+        self.s = self.due if self.due is not None else self.s + ds
+        self.due = None
         self._put(entity)
         entity.lateral_speed = 0.0
         if self.s >= path.length - 1e-9 or self.s < 0.0:
