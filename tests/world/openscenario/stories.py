@@ -8,11 +8,11 @@ from functools import cache
 from pathlib import Path
 
 from egosim.maps import load_map
+from egosim.scenario_files import openscenario_scenario
 from egosim.world import World
 from egosim.world.map import LaneMap
 from egosim.world.openscenario import ScenarioRun, read_openscenario
 from egosim.world.scenario import ScenarioLoadOptions
-from egosim.scenario_files import openscenario_scenario
 
 HIGHWAY = Path(__file__).parents[3] / "examples" / "openscenario" / "highway.xodr"
 DT = 0.01
@@ -44,7 +44,9 @@ def teleport(entity: str, position: str) -> str:
       </Position></TeleportAction></PrivateAction></Private>"""
 
 
-def speed_action(target: float, shape: str = "step", dimension: str = "time", value: float = 0) -> str:
+def speed_action(
+    target: float, shape: str = "step", dimension: str = "time", value: float = 0
+) -> str:
     return f"""<PrivateAction><LongitudinalAction><SpeedAction>
       <SpeedActionDynamics dynamicsShape="{shape}" value="{value}" dynamicsDimension="{dimension}"/>
       <SpeedActionTarget><AbsoluteTargetSpeed value="{target}"/></SpeedActionTarget>
@@ -68,7 +70,9 @@ def start(*conditions: str) -> str:
     return f"<StartTrigger><ConditionGroup>{''.join(conditions)}</ConditionGroup></StartTrigger>"
 
 
-def event(name: str, action: str, trigger: str = "", priority: str = "override", count: int = 1) -> str:
+def event(
+    name: str, action: str, trigger: str = "", priority: str = "override", count: int = 1
+) -> str:
     return f"""<Event name="{name}" priority="{priority}" maximumExecutionCount="{count}">
       <Action name="{name}Action">{action}</Action>{trigger}</Event>"""
 
@@ -95,7 +99,9 @@ def scenario(
     catalogs: str = "",
     extra: str = "",
 ) -> str:
-    stop_trigger = f"<StopTrigger><ConditionGroup>{stop}</ConditionGroup></StopTrigger>" if stop else ""
+    stop_trigger = (
+        f"<StopTrigger><ConditionGroup>{stop}</ConditionGroup></StopTrigger>" if stop else ""
+    )
     return f"""<?xml version="1.0"?>
 <OpenSCENARIO>
   <FileHeader revMajor="1" revMinor="{minor}" date="2026-01-01T00:00:00" author="test" description="test"/>

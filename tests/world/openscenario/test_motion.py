@@ -7,7 +7,6 @@ from __future__ import annotations
 import math
 
 import pytest
-
 from tests.world.openscenario.stories import (
     DT,
     event,
@@ -28,7 +27,9 @@ from tests.world.openscenario.stories import (
 def one_car(action: str, speed: float = 10.0, lane_id: int = -1, trigger: str = "") -> str:
     return scenario(
         vehicle("Ego") + vehicle("Car"),
-        teleport("Ego", lane(10, 1)) + teleport("Car", lane(100, lane_id)) + init_speed("Car", speed),
+        teleport("Ego", lane(10, 1))
+        + teleport("Car", lane(100, lane_id))
+        + init_speed("Car", speed),
         story("Car", event("E", action, trigger or start(time_is(1.0, "greaterOrEqual")))),
     )
 
@@ -128,7 +129,9 @@ def test_a_longitudinal_distance_action_puts_the_target_at_the_freespace_gap() -
       coordinateSystem="entity"/></LongitudinalAction></PrivateAction>"""
     text = scenario(
         vehicle("Ego", length=4.5, centre_x=1.4) + vehicle("Car", length=4.0, centre_x=1.5),
-        teleport("Ego", lane(50)) + init_speed("Ego", 15.0) + teleport("Car", lane(200))
+        teleport("Ego", lane(50))
+        + init_speed("Ego", 15.0)
+        + teleport("Car", lane(200))
         + f'<Private entityRef="Car">{keep}</Private>',
     )
     world, run = start_world(text)
@@ -149,7 +152,9 @@ def test_a_timed_trajectory_puts_the_entity_at_each_vertex_at_its_time() -> None
       <TimeReference><Timing domainAbsoluteRelative="relative" scale="1" offset="0"/></TimeReference>
       <TrajectoryFollowingMode followingMode="position"/>
     </FollowTrajectoryAction></RoutingAction></PrivateAction>"""
-    world, run = start_world(one_car(follow, speed=0.0, trigger=start(time_is(0.5, "greaterOrEqual"))))
+    world, run = start_world(
+        one_car(follow, speed=0.0, trigger=start(time_is(0.5, "greaterOrEqual")))
+    )
     car = run.rt.entity("Car")
     step(world, run, 0.5 + 4.0)
     assert (car.x, car.y) == pytest.approx((140.0, -1.75), abs=1e-6)

@@ -212,8 +212,8 @@ class Reader:
         """The action `read` gives; an unsupported one becomes a note when it runs."""
         try:
             return read()
-        except UnsupportedElementError as reason:
-            self.notes.append(node.note(f"{reason}; left out"))
+        except UnsupportedElementError as unsupported:
+            self.notes.append(f"{unsupported}; left out")
             return NoteAction(node, "")
 
     def _action_spec(self, element: Element) -> Any:
@@ -224,7 +224,7 @@ class Reader:
             return private_action(choice, self)
         if choice.tag == "GlobalAction":
             return global_action(choice, self)
-        raise UnsupportedElementError(f"<{choice.tag}> is not carried out by egosim")
+        raise UnsupportedElementError(choice.node, "is not carried out by egosim")
 
     def _init_actions(self, element: Element) -> list[tuple[ActionElement, tuple[str, ...]]]:
         if element.tag == "Private":

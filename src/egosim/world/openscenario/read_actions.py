@@ -103,7 +103,7 @@ def private_action(element: Element, catalogs: CatalogResolver, in_init: bool = 
         return NoteAction(
             choice.node, "not applied: egosim shows no lamps or animations of entities"
         )
-    raise UnsupportedElementError(f"<{tag}> is not carried out by egosim")
+    raise UnsupportedElementError(choice.node, "is not carried out by egosim")
 
 
 def _speed_target(element: Element) -> SpeedTarget:
@@ -167,7 +167,7 @@ def _longitudinal(element: Element, catalogs: CatalogResolver, in_init: bool) ->
                 entries, reference, accel if math.isfinite(accel) else 1e9
             ),
         )
-    raise UnsupportedElementError(f"<{choice.tag}> is not carried out by egosim")
+    raise UnsupportedElementError(choice.node, "is not carried out by egosim")
 
 
 def _distance_keeping(element: Element) -> Action:
@@ -300,7 +300,7 @@ def _lateral(element: Element) -> Action:
         return MotionAction(
             choice.node, lambda rt, e: LateralDistanceRun(ref, distance, continuous, max_speed)
         )
-    raise UnsupportedElementError(f"<{choice.tag}> is not carried out by egosim")
+    raise UnsupportedElementError(choice.node, "is not carried out by egosim")
 
 
 def _routing(element: Element, catalogs: CatalogResolver) -> Action:
@@ -328,7 +328,7 @@ def _routing(element: Element, catalogs: CatalogResolver) -> Action:
         return follow_trajectory(
             choice.node, path, timing, choice.optional_number("initialDistanceOffset")
         )
-    raise UnsupportedElementError(f"<{choice.tag}> is not carried out by egosim")
+    raise UnsupportedElementError(choice.node, "is not carried out by egosim")
 
 
 def _controller(element: Element, catalogs: CatalogResolver) -> Action:
@@ -470,9 +470,9 @@ def global_action(element: Element, catalogs: CatalogResolver) -> Action:
             state = signal.text("state")
             aspect = parse_state(state)
             if aspect is None:
-                raise UnsupportedElementError(f"traffic signal state {state!r}")
+                raise UnsupportedElementError(signal.node, f"state {state!r} is unknown")
             return TrafficSignalStateAction(signal.node, signal.text("name"), aspect)
         raise UnsupportedElementError(
-            "<TrafficSignalControllerAction> is not carried out by egosim"
+            signal.node if signal is not None else choice.node, "is not carried out by egosim"
         )
-    raise UnsupportedElementError(f"<{tag}> is not carried out by egosim")
+    raise UnsupportedElementError(choice.node, "is not carried out by egosim")

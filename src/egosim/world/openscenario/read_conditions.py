@@ -31,6 +31,7 @@ from egosim.world.openscenario.read_positions import CatalogResolver, position
 from egosim.world.openscenario.reading import Element
 from egosim.world.openscenario.runtime import Runtime
 from egosim.world.openscenario.signal_states import aspect_matches, parse_state
+from egosim.world.openscenario.xmltree import Node
 
 ELEMENT_TYPES = ("story", "act", "maneuverGroup", "maneuver", "event", "action")
 ELEMENT_STATES = (
@@ -50,7 +51,11 @@ _COLLISION_TYPES = {
 
 
 class UnsupportedElementError(Exception):
-    """An element egosim reads but does not evaluate; the message says what."""
+    """An element egosim reads but does not carry out or evaluate; the message is a note
+    naming it, its file:line and why."""
+
+    def __init__(self, node: Node, reason: str) -> None:
+        super().__init__(node.note(reason))
 
 
 def trigger(element: Element | None, reader: CatalogResolver, notes: list[str]) -> Trigger | None:
@@ -62,8 +67,8 @@ def trigger(element: Element | None, reader: CatalogResolver, notes: list[str]) 
         for node in group.children("Condition"):
             try:
                 conditions.append(condition(node, reader))
-            except UnsupportedElementError as reason:
-                notes.append(node.node.note(f"{reason}; the condition never holds"))
+            except UnsupportedElementError as unsupported:
+                notes.append(f"{unsupported}; the condition never holds")
                 conditions.append(Condition(node.text("name", ""), lambda rt: False))
         groups.append(conditions)
     return Trigger(groups)
@@ -161,9 +166,8 @@ def _entity_check(choice: Element, catalogs: CatalogResolver) -> EntityCheck:
             return lambda rt, e: other in e.collisions
         kind = _COLLISION_TYPES.get(choice.require("ByType").text("type"))
         if kind is None:
-            raise UnsupportedElementError(
-                f"<ByType type={choice.require('ByType').text('type')!r}>"
-            )
+            by_type = choice.require("ByType")
+            raise UnsupportedElementError(by_type.node, f"type {by_type.text('type')!r} is unknown")
         return lambda rt, e: any(
             n in rt.entities and rt.entity(n).definition.kind is kind for n in e.collisions
         )
@@ -241,14 +245,14 @@ def _entity_check(choice: Element, catalogs: CatalogResolver) -> EntityCheck:
         angle_type = choice.choice("angleType", ("heading", "pitch", "roll"))
         if angle_type != "heading":
             raise UnsupportedElementError(
-                f"<AngleCondition angleType={angle_type!r}> (vehicles stay level)"
+                choice.node, f"angleType {angle_type!r} is not evaluated (vehicles stay level)"
             )
         angle, tolerance = choice.number("angle"), choice.number("angleTolerance")
         system = choice.text("coordinateSystem", "world")
         return lambda rt, e: (
             abs(math.remainder(_heading(rt, e, system) - angle, math.tau)) <= tolerance
         )
-    raise UnsupportedElementError(f"<{tag}> is not evaluated by egosim")
+    raise UnsupportedElementError(choice.node, "is not evaluated by egosim")
 
 
 def _heading(rt: Runtime, e: EntityState, system: str) -> float:
@@ -285,9 +289,9 @@ def _by_value(element: Element) -> Check:
     if tag == "TrafficSignalCondition":
         light, wanted = choice.text("name"), parse_state(choice.text("state"))
         if wanted is None:
-            raise UnsupportedElementError(f"traffic signal state {choice.text('state')!r}")
+            raise UnsupportedElementError(choice.node, f"state {choice.text('state')!r} is unknown")
         return _light_check(light, wanted)
-    raise UnsupportedElementError(f"<{tag}> is not evaluated by egosim")
+    raise UnsupportedElementError(choice.node, "is not evaluated by egosim")
 
 
 def _light_check(light: str, wanted: int) -> Callable[[Runtime], bool]:
