@@ -57,8 +57,10 @@ def read_openscenario_file(
     data: bytes | None = None,
     parameters: Mapping[str, str] | None = None,
     roots: Sequence[Path] | None = None,
+    log_notes: bool = True,
 ) -> OpenScenario:
-    """An OpenSCENARIO file read with its catalogues; its notes are logged."""
+    """An OpenSCENARIO file read with its catalogues; its notes are logged (unless
+    log_notes is false: a suite checks its cases' files)."""
     data = read_regular_file(path) if data is None else data
     label = str(path)
     root = root_of(data, label)
@@ -66,7 +68,7 @@ def read_openscenario_file(
     for kind, directory in catalog_directories(root):
         catalogs += _catalog_files(path.parent, kind, directory, label, roots)
     scenario = read_openscenario(data, label, catalogs, parameters)
-    for note in scenario.notes:
+    for note in scenario.notes if log_notes else ():
         log.warning("%s", note)
     return scenario
 

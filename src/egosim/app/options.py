@@ -26,6 +26,8 @@ class RunOptions:
     ros_argv: tuple[str, ...] = ()  # __name:=, __ns:=, from:=to ...
     ctrl_mode: ControlMode = ControlMode.EXTERNAL
     """The main ego's control mode at start: external (its stack drives) or auto."""
+    scenario_parameters: tuple[tuple[str, str], ...] = ()
+    """--param NAME=VALUE: values of an OpenSCENARIO file's declared parameters."""
     keep_running: bool = False
     """Keep running after the OpenSCENARIO scenario's storyboard has ended."""
 

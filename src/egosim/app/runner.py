@@ -47,7 +47,7 @@ def startup_scenario(options: RunOptions, map_name: str) -> Callable[[], Scenari
     """What reads the scenario a run starts with: --scenario, else the town's default."""
     path = options.scenario
     if path is not None:
-        return lambda: read_scenario_file(path)
+        return lambda: read_scenario_file(path, dict(options.scenario_parameters) or None)
     if map_name == DEFAULT_MAP:
         return load_default_scenario
     return None
@@ -56,7 +56,7 @@ def startup_scenario(options: RunOptions, map_name: str) -> Callable[[], Scenari
 def build_world(options: RunOptions) -> World:
     """The world of `options`: the scenario's own map unless --map names one (which must
     then be the map the scenario is for); no scenario: --map (default town)."""
-    scenario = _read_scenario(options.scenario) if options.scenario is not None else None
+    scenario = _read_scenario(options) if options.scenario is not None else None
     if options.map is not None:
         source = options.map
     elif scenario is not None and options.scenario is not None:
@@ -89,9 +89,11 @@ def build_world(options: RunOptions) -> World:
         raise StartupError(str(error)) from error
 
 
-def _read_scenario(path: Path) -> Scenario:
+def _read_scenario(options: RunOptions) -> Scenario:
+    path = options.scenario
+    assert path is not None
     try:
-        return read_scenario_file(path)
+        return read_scenario_file(path, dict(options.scenario_parameters) or None)
     except (OSError, UnicodeDecodeError) as error:
         raise StartupError(f"cannot read scenario {path}: {error}") from error
     except ScenarioError as error:

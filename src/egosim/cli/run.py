@@ -38,6 +38,13 @@ def port_number(text: str) -> int:
     return value
 
 
+def parameter_assignment(text: str) -> tuple[str, str]:
+    name, equals, value = text.partition("=")
+    if not equals or not name.strip():
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
+    return name.strip(), value
+
+
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "run",
@@ -66,6 +73,14 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         default="external",
         help="the ego's control mode at start: external (its stack drives, the default) or "
         "auto (egosim drives it: an OpenSCENARIO scenario's own actions, else the autopilot)",
+    )
+    parser.add_argument(
+        "--param",
+        action="append",
+        default=[],
+        type=parameter_assignment,
+        metavar="NAME=VALUE",
+        help="set a parameter an OpenSCENARIO scenario declares (repeatable)",
     )
     parser.add_argument(
         "--keep-running",
@@ -161,6 +176,7 @@ def run(args: argparse.Namespace) -> int:
         ros_argv=tuple(args.ros_args),
         ctrl_mode=ControlMode.AUTO if args.ctrl_mode == "auto" else ControlMode.EXTERNAL,
         keep_running=args.keep_running,
+        scenario_parameters=tuple(args.param),
     )
     attach = []
     if not args.no_view:
