@@ -130,7 +130,7 @@ def _draw(element: Element, rng: np.random.Generator) -> float | str:
         weights = np.array([e.number("weight") for e in elements])
         k = int(rng.choice(len(elements), p=weights / weights.sum()))
         return elements[k].text("value")
-    if tag == "HistogramDistribution" or tag == "Histogram":
+    if tag == "HistogramDistribution":
         bins = choice.children("Bin")
         weights = np.array([b.number("weight") for b in bins])
         k = int(rng.choice(len(bins), p=weights / weights.sum()))
