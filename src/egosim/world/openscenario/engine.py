@@ -19,7 +19,7 @@ import numpy as np
 from egosim.world.collision import Footprints, touching_pairs
 from egosim.world.openscenario.conditions import Trigger
 from egosim.world.openscenario.entities import EntityDefinition, EntityKind, EntityState
-from egosim.world.openscenario.motion import move
+from egosim.world.openscenario.motion import move_all
 from egosim.world.openscenario.runtime import Runtime
 from egosim.world.openscenario.storyboard import COMPLETE, Storyboard
 from egosim.world.scenario.model import Outcome
@@ -153,9 +153,8 @@ class ScenarioRun:
         self.storyboard.decide(rt)
         if self.verdict is None:
             self.verdict = self.evaluation.decide(rt)
-        for entity in rt.entities.values():
-            if entity.in_world() and rt.scenario_drives(entity):
-                move(rt, entity, dt)
+        movers = [e for e in rt.entities.values() if e.in_world() and rt.scenario_drives(e)]
+        move_all(rt, movers, dt)
         self.storyboard.settle(rt)
         rt.time += dt
         rt.tick += 1

@@ -28,11 +28,14 @@ class EntityKind(Enum):
 
     @property
     def object_type(self) -> ObjectType:
-        return {
-            EntityKind.VEHICLE: ObjectType.NPC_VEHICLE,
-            EntityKind.PEDESTRIAN: ObjectType.PEDESTRIAN,
-            EntityKind.MISC_OBJECT: ObjectType.OBSTACLE,
-        }[self]
+        return _OBJECT_TYPES[self]
+
+
+_OBJECT_TYPES = {
+    EntityKind.VEHICLE: ObjectType.NPC_VEHICLE,
+    EntityKind.PEDESTRIAN: ObjectType.PEDESTRIAN,
+    EntityKind.MISC_OBJECT: ObjectType.OBSTACLE,
+}
 
 
 @dataclass(frozen=True)
