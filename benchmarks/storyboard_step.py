@@ -21,11 +21,6 @@ from pathlib import Path
 ROOT = Path(__file__).parents[1]
 sys.path.insert(0, str(ROOT))
 
-from egosim.maps import load_map  # noqa: E402
-from egosim.scenario_files import openscenario_scenario  # noqa: E402
-from egosim.world import World  # noqa: E402
-from egosim.world.openscenario import read_openscenario  # noqa: E402
-from egosim.world.scenario import ScenarioLoadOptions  # noqa: E402
 from tests.world.openscenario.stories import (  # noqa: E402
     event,
     init_speed,
@@ -38,15 +33,23 @@ from tests.world.openscenario.stories import (  # noqa: E402
     vehicle,
 )
 
+from egosim.maps import load_map  # noqa: E402
+from egosim.scenario_files import openscenario_scenario  # noqa: E402
+from egosim.world import World  # noqa: E402
+from egosim.world.openscenario import read_openscenario  # noqa: E402
+from egosim.world.scenario import ScenarioLoadOptions  # noqa: E402
+
 DT = 0.01
 CARS = 19
 
 
 def headway(car: str) -> str:
     return f"""<Condition name="h{car}" delay="0" conditionEdge="rising"><ByEntityCondition>
-      <TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="{car}"/></TriggeringEntities>
+      <TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="{car}"/>
+        </TriggeringEntities>
       <EntityCondition><TimeHeadwayCondition entityRef="Ego" value="1.5" freespace="true"
-        rule="lessThan" coordinateSystem="entity"/></EntityCondition></ByEntityCondition></Condition>"""
+        rule="lessThan" coordinateSystem="entity"/></EntityCondition></ByEntityCondition>
+          </Condition>"""
 
 
 def lane_change(target: int) -> str:
@@ -79,9 +82,11 @@ def benchmark_text() -> str:
               </LaneOffsetAction></LateralAction></PrivateAction>"""
             trigger = start(time_is(5.0 + k % 4))
         stories.append(
-            f"""<Story name="S{k}"><Act name="A{k}"><ManeuverGroup name="G{k}" maximumExecutionCount="1">
+            f"""<Story name="S{k}"><Act name="A{k}"><ManeuverGroup name="G{k}"
+              maximumExecutionCount="1">
             <Actors selectTriggeringEntities="false"><EntityRef entityRef="{name}"/></Actors>
-            <Maneuver name="M{k}">{event(f"E{k}", action, trigger)}</Maneuver></ManeuverGroup></Act></Story>"""
+            <Maneuver name="M{k}">{event(f"E{k}", action, trigger)}</Maneuver></ManeuverGroup>
+              </Act></Story>"""
         )
     return scenario(entities, init, "".join(stories), time_is(1e6))
 

@@ -12,11 +12,10 @@ import pytest
 
 from egosim.bridge import simulation_context
 from egosim.bridge.codes import ControlMode
-from egosim.bridge.scenarios import on_scenario_load
+from egosim.bridge.scenarios import on_scenario_load, prepare_scenario
 from egosim.maps import load_map
 from egosim.msgs import get_profile
 from egosim.world import World
-from egosim.bridge.scenarios import prepare_scenario
 
 PROFILE = get_profile("26.r1")
 GALLERY = Path(__file__).parents[2] / "examples" / "openscenario"

@@ -28,14 +28,18 @@ def vehicle(name: str, length: float = 4.0, width: float = 2.0, centre_x: float 
       <BoundingBox><Center x="{centre_x}" y="0" z="0.7"/>
         <Dimensions width="{width}" length="{length}" height="1.4"/></BoundingBox>
       <Performance maxSpeed="70" maxAcceleration="10" maxDeceleration="10"/>
-      <Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.6" positionX="3" positionZ="0.3"/>
-        <RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.6" positionX="0" positionZ="0.3"/></Axles>
+      <Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.6" positionX="3"
+        positionZ="0.3"/>
+        <RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.6" positionX="0"
+          positionZ="0.3"/></Axles>
     </Vehicle></ScenarioObject>"""
 
 
 def pedestrian(name: str) -> str:
-    return f"""<ScenarioObject name="{name}"><Pedestrian name="walker" pedestrianCategory="pedestrian" mass="70">
-      <BoundingBox><Center x="0" y="0" z="0.9"/><Dimensions width="0.5" length="0.5" height="1.8"/></BoundingBox>
+    return f"""<ScenarioObject name="{name}"><Pedestrian name="walker"
+      pedestrianCategory="pedestrian" mass="70">
+      <BoundingBox><Center x="0" y="0" z="0.9"/><Dimensions width="0.5" length="0.5"
+        height="1.8"/></BoundingBox>
     </Pedestrian></ScenarioObject>"""
 
 
@@ -78,7 +82,8 @@ def event(
 
 
 def story(actor: str, *events: str, act_trigger: str = "", executions: int = 1) -> str:
-    return f"""<Story name="S"><Act name="A"><ManeuverGroup name="G" maximumExecutionCount="{executions}">
+    return f"""<Story name="S"><Act name="A"><ManeuverGroup name="G"
+      maximumExecutionCount="{executions}">
       <Actors selectTriggeringEntities="false"><EntityRef entityRef="{actor}"/></Actors>
       <Maneuver name="M">{"".join(events)}</Maneuver></ManeuverGroup>{act_trigger}</Act></Story>"""
 
@@ -104,7 +109,8 @@ def scenario(
     )
     return f"""<?xml version="1.0"?>
 <OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="{minor}" date="2026-01-01T00:00:00" author="test" description="test"/>
+  <FileHeader revMajor="1" revMinor="{minor}" date="2026-01-01T00:00:00" author="test"
+    description="test"/>
   <ParameterDeclarations>{parameters}</ParameterDeclarations>
   <VariableDeclarations>{variables}</VariableDeclarations>
   <CatalogLocations>{catalogs}</CatalogLocations>

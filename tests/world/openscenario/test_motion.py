@@ -134,7 +134,7 @@ def test_a_longitudinal_distance_action_puts_the_target_at_the_freespace_gap() -
         + teleport("Car", lane(200))
         + f'<Private entityRef="Car">{keep}</Private>',
     )
-    world, run = start_world(text)
+    _world, run = start_world(text)
     ego, car = run.rt.entity("Ego"), run.rt.entity("Car")
     ego_front = ego.box_centre()[0] + ego.definition.length / 2
     car_rear = car.box_centre()[0] - car.definition.length / 2
@@ -149,7 +149,8 @@ def test_a_timed_trajectory_puts_the_entity_at_each_vertex_at_its_time() -> None
         <Vertex time="4"><Position><WorldPosition x="140" y="-1.75"/></Position></Vertex>
         <Vertex time="6"><Position><WorldPosition x="140" y="8.25"/></Position></Vertex>
       </Polyline></Shape></Trajectory></TrajectoryRef>
-      <TimeReference><Timing domainAbsoluteRelative="relative" scale="1" offset="0"/></TimeReference>
+      <TimeReference><Timing domainAbsoluteRelative="relative" scale="1" offset="0"/>
+        </TimeReference>
       <TrajectoryFollowingMode followingMode="position"/>
     </FollowTrajectoryAction></RoutingAction></PrivateAction>"""
     world, run = start_world(

@@ -87,7 +87,7 @@ def test_parameters_derive_in_order_and_follow_values_set_from_outside() -> None
         parameter_scenario(), "p.xosc", parameters={"Speed_kph": "72", "Lane": "-2"}
     )
     assert program.parameters["_Speed"] == pytest.approx(20.0)
-    world, run = start_world(parameter_scenario().replace('value="36"', 'value="54"'))
+    _world, run = start_world(parameter_scenario().replace('value="36"', 'value="54"'))
     ego = run.rt.entity("Ego")
     assert (ego.x, ego.y, ego.speed) == pytest.approx((80.0, -1.75, 15.0))
 
@@ -108,10 +108,13 @@ CATALOG = """<?xml version="1.0"?><OpenSCENARIO>
       <ParameterDeclarations>
         <ParameterDeclaration name="length" parameterType="double" value="4"/>
       </ParameterDeclarations>
-      <BoundingBox><Center x="1" y="0" z="0.7"/><Dimensions width="2" length="$length" height="1.4"/></BoundingBox>
+      <BoundingBox><Center x="1" y="0" z="0.7"/><Dimensions width="2" length="$length"
+        height="1.4"/></BoundingBox>
       <Performance maxSpeed="20" maxAcceleration="3" maxDeceleration="8"/>
-      <Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.6" positionX="3" positionZ="0.3"/>
-        <RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.6" positionX="0" positionZ="0.3"/></Axles>
+      <Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.6" positionX="3"
+        positionZ="0.3"/>
+        <RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.6" positionX="0"
+          positionZ="0.3"/></Axles>
     </Vehicle>
   </Catalog></OpenSCENARIO>"""
 
@@ -120,7 +123,8 @@ def test_catalogue_entries_take_their_parameter_assignments() -> None:
     entities = """<ScenarioObject name="Truck"><CatalogReference catalogName="cars" entryName="box">
       <ParameterAssignments><ParameterAssignment parameterRef="length" value="${2 * 6}"/>
       </ParameterAssignments></CatalogReference></ScenarioObject>
-      <ScenarioObject name="Car"><CatalogReference catalogName="cars" entryName="box"/></ScenarioObject>"""
+      <ScenarioObject name="Car"><CatalogReference catalogName="cars" entryName="box"/>
+        </ScenarioObject>"""
     program = read_openscenario(scenario(entities, ""), "c.xosc", [("cars.xosc", CATALOG)])
     lengths = {d.name: (d.length, d.max_speed) for d in program.entities}
     assert lengths == {"Truck": (12.0, 20.0), "Car": (4.0, 20.0)}
@@ -145,7 +149,8 @@ def test_the_ego_is_the_external_one_else_ego_or_hero_else_the_first_vehicle() -
 
 def test_an_unsupported_element_is_one_line_naming_it_and_the_rest_still_runs() -> None:
     unsupported = """<GlobalAction><TrafficAction><TrafficSwarmAction semiMajorAxis="10"
-      semiMinorAxis="5" innerRadius="2" offset="0" numberOfVehicles="3"><CentralObject entityRef="Ego"/>
+      semiMinorAxis="5" innerRadius="2" offset="0" numberOfVehicles="3"><CentralObject
+        entityRef="Ego"/>
       </TrafficSwarmAction></TrafficAction></GlobalAction>"""
     text = scenario(
         vehicle("Ego") + vehicle("Car"),

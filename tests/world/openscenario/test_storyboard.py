@@ -49,9 +49,11 @@ def fired_at(world, run, seconds: float, name: str = "fired"):  # type: ignore[n
 
 def test_a_time_headway_trigger_fires_at_the_headway_it_states() -> None:
     headway = """<Condition name="h" delay="0" conditionEdge="none"><ByEntityCondition>
-      <TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="Ego"/></TriggeringEntities>
+      <TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="Ego"/>
+        </TriggeringEntities>
       <EntityCondition><TimeHeadwayCondition entityRef="Car" value="2" freespace="true"
-        rule="lessThan" coordinateSystem="entity" relativeDistanceType="longitudinal"/></EntityCondition>
+        rule="lessThan" coordinateSystem="entity" relativeDistanceType="longitudinal"/>
+          </EntityCondition>
     </ByEntityCondition></Condition>"""
     text = cars(
         story("Car", event("E", set_variable("fired", "true"), start(headway))),
@@ -175,7 +177,8 @@ def test_storyboard_element_state_conditions_see_states_and_transitions() -> Non
 def test_collision_standstill_and_travelled_distance_conditions() -> None:
     def entity_condition(body: str, who: str = "Car") -> str:
         return f"""<Condition name="c" delay="0" conditionEdge="none"><ByEntityCondition>
-          <TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="{who}"/></TriggeringEntities>
+          <TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="{who}"/>
+            </TriggeringEntities>
           <EntityCondition>{body}</EntityCondition></ByEntityCondition></Condition>"""
 
     crash = entity_condition(
