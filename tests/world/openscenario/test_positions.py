@@ -9,10 +9,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
-from egosim.maps import load_map
-from egosim.world.openscenario.geometry_path import SampledPath
-from egosim.world.signals import RED
 from tests.world.openscenario.stories import (
     event,
     lane,
@@ -26,6 +22,10 @@ from tests.world.openscenario.stories import (
     time_is,
     vehicle,
 )
+
+from egosim.maps import load_map
+from egosim.world.openscenario.geometry_path import SampledPath
+from egosim.world.signals import RED
 
 JUNCTION = Path(__file__).parents[2] / "data" / "maps" / "junction.xodr"
 
@@ -88,7 +88,8 @@ def test_a_clothoid_of_constant_curvature_is_a_circular_arc() -> None:
     follow = f"""<PrivateAction><RoutingAction><FollowTrajectoryAction>
       <Trajectory name="arc" closed="false"><Shape><Clothoid curvature="{1 / radius}"
         curvaturePrime="0" length="{math.pi / 2 * radius}">
-        <Position><WorldPosition x="100" y="-1.75" h="0"/></Position></Clothoid></Shape></Trajectory>
+        <Position><WorldPosition x="100" y="-1.75" h="0"/></Position></Clothoid></Shape>
+      </Trajectory>
       <TimeReference><None/></TimeReference><TrajectoryFollowingMode followingMode="position"/>
     </FollowTrajectoryAction></RoutingAction></PrivateAction>"""
     text = scenario(
@@ -105,7 +106,8 @@ def test_a_clothoid_of_constant_curvature_is_a_circular_arc() -> None:
 
 def test_a_degree_one_nurbs_runs_through_its_control_points() -> None:
     points = "".join(
-        f'<ControlPoint weight="1"><Position><WorldPosition x="{x}" y="{y}"/></Position></ControlPoint>'
+        f'<ControlPoint weight="1"><Position><WorldPosition x="{x}" y="{y}"/></Position>'
+        "</ControlPoint>"
         for x, y in ((0, 0), (10, 0), (10, 10))
     )
     text = scenario(
