@@ -10,13 +10,15 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from ..bridge import HANDLERS, Bridge, ClockMode, simulation_context
+from ..bridge.codes import ControlMode
 from ..bridge.network import load_network_settings
 from ..maps import MapLoadError, load_map, scenario_map_location
 from ..render import open_renderer
 from ..replay import RecorderError
 from ..ros1 import Node, Ros1Error
+from ..scenario_files import read_scenario_file
 from ..world import World
-from ..world.scenario import Scenario, ScenarioError, load_default_scenario, parse_scenario
+from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, load_default_scenario
 from ..yamltext import YamlFileError
 from .attachments import Attach, Attachment, RunningSimulator
 from .drive_log import drive_log_stage
@@ -42,16 +44,11 @@ class StartupError(Exception):
         self.exit_code = exit_code
 
 
-def read_scenario_file(path: Path) -> Scenario:
-    """The scenario in the file at `path` (OSError, UnicodeDecodeError, ScenarioError)."""
-    return parse_scenario(path.read_text(encoding="utf-8"), str(path))
-
-
 def startup_scenario(options: RunOptions, map_name: str) -> Callable[[], Scenario] | None:
     """What reads the scenario a run starts with: --scenario, else the town's default."""
     path = options.scenario
     if path is not None:
-        return lambda: read_scenario_file(path)
+        return lambda: read_scenario_file(path, dict(options.scenario_parameters) or None)
     if map_name == DEFAULT_MAP:
         return load_default_scenario
     return None
@@ -60,7 +57,7 @@ def startup_scenario(options: RunOptions, map_name: str) -> Callable[[], Scenari
 def build_world(options: RunOptions) -> World:
     """The world of `options`: the scenario's own map unless --map names one (which must
     then be the map the scenario is for); no scenario: --map (default town)."""
-    scenario = _read_scenario(options.scenario) if options.scenario is not None else None
+    scenario = _read_scenario(options) if options.scenario is not None else None
     if options.map is not None:
         source = options.map
     elif scenario is not None and options.scenario is not None:
@@ -84,18 +81,37 @@ def build_world(options: RunOptions) -> World:
             )
         )
     try:
-        return World(lane_map, scenario, physics_step_s=options.physics_dt)
+        world = World(lane_map, physics_step_s=options.physics_dt)
+        if scenario is not None:
+            drives = options.ctrl_mode is ControlMode.AUTO
+            world.load_scenario(scenario, ScenarioLoadOptions(scenario_drives_ego=drives))
+        return world
     except ScenarioError as error:
         raise StartupError(str(error)) from error
 
 
-def _read_scenario(path: Path) -> Scenario:
+def _read_scenario(options: RunOptions) -> Scenario:
+    path = options.scenario
+    assert path is not None
     try:
-        return read_scenario_file(path)
+        return read_scenario_file(path, dict(options.scenario_parameters) or None)
     except (OSError, UnicodeDecodeError) as error:
         raise StartupError(f"cannot read scenario {path}: {error}") from error
     except ScenarioError as error:
         raise StartupError(str(error)) from error
+
+
+def _scenario_ended(world: World) -> bool:
+    """The OpenSCENARIO storyboard the run started with has ended."""
+    return world.storyboard is not None and world.storyboard.finished
+
+
+def _report_scenario_end(world: World) -> None:
+    storyboard = world.storyboard
+    if storyboard is not None and storyboard.finished:
+        outcome = storyboard.outcome()
+        verdict = "" if outcome.verdict is None else f", evaluation {outcome.verdict}"
+        log.info("scenario ended at t=%.2f s: %s%s", outcome.time, outcome.state, verdict)
 
 
 def run(
@@ -161,6 +177,7 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
             node.shutdown("startup failed")
             reason = f"cannot register with the ROS master: {error}"
             raise StartupError(reason, EXIT_ROS_FAILED) from error
+        context.ego_session(world.egos[0]).set_ctrl_mode(options.ctrl_mode, by="--ctrl-mode")
         running = RunningSimulator(
             options, context, inbox, node, startup_scenario(options, world.map.name)
         )
@@ -186,9 +203,11 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
             stop,
             max_steps,
             held=lambda: context.sync.holds_time,
+            done=None if options.keep_running else lambda: _scenario_ended(world),
         )
         try:
             loop.run()
+            _report_scenario_end(world)
         finally:
             for attachment in attachments:
                 attachment.close()

@@ -251,6 +251,9 @@ def _result(case: CaseSpec, folder: Path, problem: Problem | None) -> dict[str, 
         "infractions": None if score is None else score["infractions"],
         "criteria": [],
     }
+    outcome = None if drive is None else drive.get("scenario")
+    if outcome is not None:
+        result["scenario_outcome"] = outcome
     if problem is None and drive is not None and drive["end"].startswith("bad route"):
         problem = Problem(drive["end"])
     if problem is None and score is None:
@@ -261,6 +264,8 @@ def _result(case: CaseSpec, folder: Path, problem: Problem | None) -> dict[str, 
         failed = [c.text + (f" ({c.reason})" if c.reason else "") for c in checks if not c.passed]
     else:
         failed = []
+    if outcome is not None and outcome.get("verdict") == "failure":
+        failed.append("the scenario's evaluation failed")
     if problem is not None:
         tail = None if problem.log is None else log_tail(folder, problem.log)
         result.update(status=ERROR, reason=problem.reason, log_tail=tail)

@@ -106,6 +106,10 @@ class CaseDrive:
                 return False
             return self._start(world)
         self.evaluator.observe(world)
+        storyboard = world.storyboard
+        if storyboard is not None and storyboard.finished:
+            self.end = f"scenario {storyboard.outcome().state}"
+            return True
         if (reason := self.evaluator.finish_reason) is not None:
             self.end = reason
             return True
@@ -145,13 +149,25 @@ class CaseDrive:
         if self.evaluator is not None:
             score = self.evaluator.score(timed_out=self.end == "time_limit").as_dict()
         sim_time = 0.0 if self.world is None else self.world.sim_time - self.start_sim_s
-        return {"end": self.end, "sim_time_s": sim_time, "drive_wall_s": wall, "score": score}
+        result = {"end": self.end, "sim_time_s": sim_time, "drive_wall_s": wall, "score": score}
+        storyboard = None if self.world is None else self.world.storyboard
+        if storyboard is not None:
+            outcome = storyboard.outcome()
+            result["scenario"] = {
+                "state": outcome.state,
+                "time_s": outcome.time,
+                "verdict": outcome.verdict,
+            }
+        return result
 
 
 def main(case_dir: Path) -> int:
     case = CaseSpec.from_dict(json.loads((case_dir / CASE_FILE).read_text(encoding="utf-8")))
-    scenario_path = case_dir / SCENARIO_FILE
-    scenario_path.write_text(yaml.safe_dump(case.scenario, sort_keys=False), encoding="utf-8")
+    if case.openscenario:
+        scenario_path = Path(case.openscenario)
+    else:
+        scenario_path = case_dir / SCENARIO_FILE
+        scenario_path.write_text(yaml.safe_dump(case.scenario, sort_keys=False), encoding="utf-8")
     master = Master("http://127.0.0.1:0/").start()
     try:
         os.environ["ROS_MASTER_URI"] = master.uri
@@ -169,6 +185,9 @@ def main(case_dir: Path) -> int:
             log_level="WARNING",
             physics_rate_hz=PHYSICS_RATE_HZ,
             data_roots=(case_dir,),
+            scenario_parameters=tuple(case.scenario_parameters.items()),
+            # The drive stage ends the run, with the scenario's end among its reasons.
+            keep_running=True,
         )
         status = run(options, [drive.attach], stop)
         result = {"exit_status": status, **drive.result()}

@@ -5,7 +5,9 @@ MultiEgoSetting and the live view alike).
 a headless simulator has no human input, so the ego gets no command at all and holds
 its brake (the live view's keyboard driving is the exception: it drives an ego in
 keyboard mode). 4 auto: MORAI's internal controller drives, here the lane-following
-autopilot of world.traffic.autopilot, commanded before every step. Commands hold
+autopilot of world.traffic.autopilot, commanded before every step (with an OpenSCENARIO
+storyboard running, the storyboard drives the main ego instead: bridge/storyboard.py).
+Commands hold
 until the next one, so a change of mode drops the command the old input left in
 force: the ego brakes until its new input commands it.
 """
@@ -23,10 +25,16 @@ from .ego_session import EgoSession
 def drive_autopilots(context: BridgeContext) -> None:
     """Command every road-vehicle ego in auto mode for the coming step (loop thread)."""
     world = context.world
+    # With a storyboard running, the scenario drives the main ego in auto mode.
+    scripted = world.egos[0].unique_id if world.storyboard is not None else None
     auto: list[tuple[EgoSession, Vehicle]] = []
     for ego in world.egos:
         session = context.ego_session(ego)
-        if session.ctrl_mode is ControlMode.AUTO and isinstance(ego.vehicle, Vehicle):
+        if (
+            session.ctrl_mode is ControlMode.AUTO
+            and isinstance(ego.vehicle, Vehicle)
+            and ego.unique_id != scripted
+        ):
             auto.append((session, ego.vehicle))
     if not auto:
         return

@@ -24,7 +24,8 @@ from ..batch.results import (
     summary,
     write_results,
 )
-from ..batch.suite import load_suite
+from ..batch.suite import DEFAULT_TIME_LIMIT_S, load_suite, scenario_suite
+from ..scenario_files import is_openscenario
 
 EXIT_ALL_PASSED = 0
 EXIT_SOME_FAILED = 1
@@ -47,7 +48,31 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         "and ROS master, score every drive from the world, and write results.json, "
         "junit.xml, report.html and a bag per case to the output folder.",
     )
-    parser.add_argument("suite", type=Path, metavar="SUITE.yaml")
+    parser.add_argument(
+        "suite",
+        type=Path,
+        metavar="SUITE.yaml|FILE.xosc",
+        help="a suite file, or an OpenSCENARIO scenario or ParameterValueDistribution file "
+        "(one case per concrete scenario; needs --stack)",
+    )
+    parser.add_argument(
+        "--stack",
+        metavar="COMMAND",
+        help="with an OpenSCENARIO file: the shell command that starts the stack",
+    )
+    parser.add_argument(
+        "--time-limit",
+        type=float,
+        default=DEFAULT_TIME_LIMIT_S,
+        metavar="SECONDS",
+        help="with an OpenSCENARIO file: simulated time a case may take (default %(default)s)",
+    )
+    parser.add_argument(
+        "--clock",
+        choices=("sim", "sync"),
+        default="sim",
+        help="with an OpenSCENARIO file: sim (as fast as possible) or sync (the stack steps)",
+    )
     parser.add_argument(
         "--workers",
         type=positive_int,
@@ -101,7 +126,14 @@ def run(args: argparse.Namespace) -> int:
         print("egosim batch: --workers is for local runs; Ray places the cases", file=sys.stderr)
         return EXIT_BAD_INPUT
     try:
-        cases = selected(load_suite(args.suite), args.filter)
+        if is_openscenario(args.suite):
+            if not args.stack:
+                print("egosim batch: an OpenSCENARIO file needs --stack COMMAND", file=sys.stderr)
+                return EXIT_BAD_INPUT
+            suite = scenario_suite(args.suite, args.stack, args.time_limit, args.clock)
+        else:
+            suite = load_suite(args.suite)
+        cases = selected(suite, args.filter)
     except SuiteError as error:
         print(f"egosim batch: {error}", file=sys.stderr)
         return EXIT_BAD_INPUT

@@ -15,9 +15,11 @@ from typing import Any, ClassVar
 
 from ..bridge import BridgeContext, ControlMode
 from ..bridge.scenarios import log_scenario_loaded, scenario_path
-from ..datapaths import PathOutsideRootsError, read_regular_file
+from ..bridge.storyboard import scenario_drives_ego
+from ..datapaths import PathOutsideRootsError
 from ..replay.codes import SET_START_TIME, CommandResult, PlaybackStatus, ProcessCommand
-from ..world.scenario import Scenario, ScenarioError, parse_scenario
+from ..scenario_files import OPENSCENARIO_SUFFIX, read_scenario_file
+from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions
 from ..world.vehicle import Vehicle
 from .keyboard import HeldKeys, KeyboardDriver
 
@@ -25,7 +27,7 @@ log = logging.getLogger(__name__)
 
 #: Control modes the page offers: keyboard, external (ROS /ctrl_cmd), autopilot.
 PAGE_CTRL_MODES = (ControlMode.KEYBOARD, ControlMode.EXTERNAL, ControlMode.AUTO)
-SCENARIO_SUFFIXES = (".yaml", ".yml")
+SCENARIO_SUFFIXES = (".yaml", ".yml", OPENSCENARIO_SUFFIX)
 #: At most this many scenario files are listed (a data root may be a large tree).
 MAX_LISTED_SCENARIOS = 200
 
@@ -42,9 +44,9 @@ class _Read:
     again: Callable[[], Scenario]
 
 
-def _read_file(path: Path) -> _Read | ControlError:
+def _read_file(path: Path, roots: tuple[Path, ...]) -> _Read | ControlError:
     def parse() -> Scenario:
-        return parse_scenario(read_regular_file(path).decode("utf-8"), str(path))
+        return read_scenario_file(path, roots=roots)
 
     try:
         return _Read(parse(), parse)
@@ -140,7 +142,7 @@ class ViewControls:
             path = scenario_path(name, self.context.data_roots)
         except (PathOutsideRootsError, OSError) as error:
             return ControlError(f"scenario {name!r} not loaded: {error}")
-        return _read_file(path)
+        return _read_file(path, tuple(self.context.data_roots))
 
     def _read_again(self) -> _Read | ControlError:
         source = self.reload_source
@@ -167,7 +169,8 @@ class ViewControls:
 
     def _load(self, scenario: Scenario) -> None:
         try:
-            report = self.context.world.load_scenario(scenario)
+            options = ScenarioLoadOptions(scenario_drives_ego=scenario_drives_ego(self.context))
+            report = self.context.world.load_scenario(scenario, options)
         except ScenarioError as error:
             raise ControlError(str(error)) from error
         self._keyboards.clear()

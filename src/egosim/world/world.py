@@ -26,6 +26,7 @@ from egosim.world.contact import Bodies, ContactModel, Response, respond
 from egosim.world.map import LaneMap, LaneProjections
 from egosim.world.recorded_scene import RecordedScene
 from egosim.world.scenario import Scenario, ScenarioLoadOptions, ScenarioLoadReport
+from egosim.world.scenario.model import StoryboardRun
 from egosim.world.scenario.placement import (
     check_map,
     ego_placement,
@@ -62,6 +63,7 @@ from egosim.world.traffic.npc_vehicles import NpcSpawn
 from egosim.world.traffic.object_list import ObjectList
 from egosim.world.traffic.obstacles import ObstacleSpawn
 from egosim.world.traffic.pedestrians import PedestrianSpawn
+from egosim.world.traffic.scripted import ScriptedObjects
 from egosim.world.vehicle import (
     DEFAULT_EGO_MODEL,
     EgoVehicle,
@@ -144,6 +146,13 @@ class World:
         self.npc_ghosts = NpcGhosts()
         self.pedestrians = PedestrianCrowd()
         self.obstacles = StaticObstacles()
+        self.scripted = ScriptedObjects()
+        """The vehicles, pedestrians and objects a storyboard places at every step."""
+        self.scripted_egos: set[int] = set()
+        """Egos (unique ids) whose pose a storyboard places: not stepped, immovable."""
+        self.storyboard: StoryboardRun | None = None
+        """The running OpenSCENARIO storyboard of the last scenario loaded, if it has one
+        (the tick pipeline's storyboard stage steps it)."""
         self._obstacle_occupants = LaneOccupants.empty()
         self._next_id = 1
         self._command_timeout_s: float | None = None
@@ -180,6 +189,12 @@ class World:
 
     def _allocate_ids(self) -> Iterator[int]:
         return itertools.count(self._next_id)
+
+    def reserve_ids(self, count: int) -> list[int]:
+        """`count` fresh object ids (a storyboard's entities)."""
+        ids = list(range(self._next_id, self._next_id + count))
+        self._next_id += count
+        return ids
 
     # -- egos ------------------------------------------------------------------------
 
@@ -294,13 +309,21 @@ class World:
     def shown_tables(self) -> list[ObjectTable]:
         """NPCs, pedestrians and obstacles in view: the recorded ones where a replay shows
         them, else the simulated ones."""
-        recorded = self.recorded
+        recorded, scripted = self.recorded, self.scripted
         return [
-            ObjectTable.concatenate([self.npcs.table(), self.npc_ghosts.table()])
+            ObjectTable.concatenate(
+                [self.npcs.table(), self.npc_ghosts.table(), scripted.table(ObjectType.NPC_VEHICLE)]
+            )
             if recorded.npcs is None
             else recorded.npcs,
-            self.pedestrians.table() if recorded.pedestrians is None else recorded.pedestrians,
-            self.obstacles.table() if recorded.obstacles is None else recorded.obstacles,
+            ObjectTable.concatenate(
+                [self.pedestrians.table(), scripted.table(ObjectType.PEDESTRIAN)]
+            )
+            if recorded.pedestrians is None
+            else recorded.pedestrians,
+            ObjectTable.concatenate([self.obstacles.table(), scripted.table(ObjectType.OBSTACLE)])
+            if recorded.obstacles is None
+            else recorded.obstacles,
         ]
 
     def objects(self) -> ObjectTable:
@@ -333,6 +356,7 @@ class World:
         an unknown id becomes a new NPC. Returns the ids refused: those of an ego, a
         pedestrian or an obstacle."""
         taken = {ego.unique_id for ego in self.egos}
+        taken.update(self.scripted.unique_ids())
         taken.update(int(i) for i in self.pedestrians.unique_ids)
         taken.update(int(i) for i in self.obstacles.table().unique_ids)
         accepted = [p for p in placements if p.unique_id not in taken]
@@ -402,13 +426,20 @@ class World:
         recorded = self.recorded
         surfaces = self._road_surfaces()
         for index, ego in enumerate(self.egos):
-            # A replayed main ego holds the recorded pose show_recorded gave it.
-            if index > 0 or recorded.ego is None:
+            # A replayed main ego holds the recorded pose show_recorded gave it, and a
+            # storyboard places the egos it drives.
+            if (index > 0 or recorded.ego is None) and ego.unique_id not in self.scripted_egos:
                 ego.vehicle.step(dt, surfaces[index])
         lights = LightsView.of(self.signals)
         egos, walkers = self._lane_users()
         others = LaneOccupants.concatenate(
-            [egos, self.npc_ghosts.occupants(self.map), walkers, self._obstacle_occupants]
+            [
+                egos,
+                self.npc_ghosts.occupants(self.map),
+                self.scripted.occupants(self.map),
+                walkers,
+                self._obstacle_occupants,
+            ]
         )
         if recorded.npcs is None:
             self.npcs.step(dt, lights, others)
@@ -597,6 +628,10 @@ class World:
         ego_inverse = 1.0 / np.array(ego_mass)
         if recorded.ego is not None:
             ego_inverse[0] = 0.0
+        for k, ego in enumerate(self.egos):
+            if ego.unique_id in self.scripted_egos:
+                ego_inverse[k] = 0.0
+        # Scripted objects keep 0: the storyboard dictates their motion.
         others = np.zeros(len(table) - len(self.egos))
         if recorded.npcs is None:
             others[: len(self.npcs)] = np.where(self.npcs.parked(), 0.0, 1.0 / self.npcs.mass)
@@ -604,14 +639,29 @@ class World:
         if recorded.pedestrians is None:
             others[start : start + len(self.pedestrians)] = 1.0 / PEDESTRIAN_MASS_KG
         if recorded.obstacles is None:
-            others[len(others) - len(self.obstacles) :] = self.obstacles.inverse_masses()
+            first = self._first_obstacle_row() - len(self.egos)
+            others[first : first + len(self.obstacles)] = self.obstacles.inverse_masses()
         return Bodies(footprints, table.velocities[:, :2], np.concatenate((ego_inverse, others)))
 
     def _shown_npc_count(self) -> int:
         """Rows of vehicles in objects() after the egos: simulated NPCs and ghosts, or the
         replayed ones."""
         recorded = self.recorded.npcs
-        return len(self.npcs) + len(self.npc_ghosts) if recorded is None else len(recorded)
+        if recorded is not None:
+            return len(recorded)
+        return (
+            len(self.npcs) + len(self.npc_ghosts) + len(self.scripted.table(ObjectType.NPC_VEHICLE))
+        )
+
+    def _first_obstacle_row(self) -> int:
+        """Row in objects() of the first obstacle: after the egos, vehicles, pedestrians."""
+        recorded = self.recorded.pedestrians
+        walkers = (
+            len(self.pedestrians) + len(self.scripted.table(ObjectType.PEDESTRIAN))
+            if recorded is None
+            else len(recorded)
+        )
+        return len(self.egos) + self._shown_npc_count() + walkers
 
     def _apply(self, response: Response, bodies: Bodies) -> None:
         """Hand each moved simulated body its share of the response."""
@@ -619,7 +669,7 @@ class World:
         displacement, velocity = response.displacements, response.velocities
         change = velocity - bodies.velocities
         for k, ego in enumerate(self.egos):
-            if moved[k]:
+            if moved[k] and ego.unique_id not in self.scripted_egos:
                 ego.vehicle.shove(tuple(displacement[k]), tuple(change[k]))
         start = len(self.egos)
         if self.recorded.npcs is None:
@@ -632,8 +682,8 @@ class World:
             if rows.size:
                 self.pedestrians.shove(rows, displacement[start + rows])
         if self.recorded.obstacles is None:
-            start = len(moved) - len(self.obstacles)
-            rows = np.flatnonzero(moved[start:])
+            start = self._first_obstacle_row()
+            rows = np.flatnonzero(moved[start : start + len(self.obstacles)])
             if rows.size:
                 self.obstacles.shove(rows, displacement[start + rows], velocity[start + rows])
                 self._place_obstacles_on_lanes()
@@ -693,6 +743,21 @@ class World:
         self.pedestrians.spawn(walkers)
         self.obstacles.spawn(things)
         self._place_obstacles_on_lanes()
+        self.scripted.clear()
+        self.scripted_egos.clear()
+        self.storyboard = None
+        if scenario.storyboard is not None:
+            kinds = {
+                "vehicle": options.load_surrounding_vehicle_data,
+                "pedestrian": options.load_pedestrian_data,
+                "miscellaneous object": options.load_object_data,
+            }
+            self.storyboard = scenario.storyboard.start(
+                self,
+                options.load_ego_vehicle_data,
+                frozenset(kind for kind, wanted in kinds.items() if wanted),
+                options.scenario_drives_ego,
+            )
         self._contacts.clear()
         self.ego_contacts, self.vehicle_contacts = {}, []
         self._footprints = self._current_footprints()
@@ -700,11 +765,13 @@ class World:
         network = scenario.network if options.load_network_connection_data else None
         if options.load_network_connection_data:
             self.network_settings_request = network
+        scripted = self.scripted
         return ScenarioLoadReport(
-            ego_placed=ego is not None,
-            npcs_spawned=len(npcs),
-            pedestrians_spawned=len(walkers),
-            obstacles_spawned=len(things),
+            ego_placed=ego is not None
+            or bool(scenario.storyboard and options.load_ego_vehicle_data),
+            npcs_spawned=len(npcs) + len(scripted.table(ObjectType.NPC_VEHICLE)),
+            pedestrians_spawned=len(walkers) + len(scripted.table(ObjectType.PEDESTRIAN)),
+            obstacles_spawned=len(things) + len(scripted.table(ObjectType.OBSTACLE)),
             network_settings=network,
             paused=self.paused,
         )

@@ -15,6 +15,7 @@ from egosim.world.map.georef import GeoReference
 from egosim.world.map.light_type import LightType
 from egosim.world.map.polyline import segment_headings, stations
 from egosim.world.map.projection import LaneProjection, LaneProjections, SegmentTable
+from egosim.world.map.road_coordinates import RoadCoordinates
 from egosim.world.map.road_marking import RoadMarking
 
 # Gap between lanes on the flattened station axis, so a station never reaches the next lane.
@@ -157,6 +158,9 @@ class LaneMap:
         self.georef = georef
         self.markings: tuple[RoadMarking, ...] = ()
         """Paint the map's data lists (empty: see egosim.world.map.markings)."""
+        self.roads: RoadCoordinates | None = None
+        """The roads the lanes were built from (OpenDRIVE's), None for a map of lanes
+        only (see egosim.world.map.lane_roads)."""
         self.lane_ids: tuple[str, ...] = tuple(self.lanes)
         self._index = {lane_id: i for i, lane_id in enumerate(self.lane_ids)}
         self._check_references()
@@ -194,6 +198,12 @@ class LaneMap:
         """This map with the road markings its data lists; lanes and indexes are shared."""
         result = copy.copy(self)
         result.markings = tuple(markings)
+        return result
+
+    def with_roads(self, roads: RoadCoordinates) -> LaneMap:
+        """This map with the road coordinates of the data it was built from."""
+        result = copy.copy(self)
+        result.roads = roads
         return result
 
     def _check_references(self) -> None:

@@ -17,6 +17,8 @@ class ScenarioLoadOptions:
     load_surrounding_vehicle_data / load_pedestrian_data / load_object_data: place the
         file's NPC vehicles / pedestrians / obstacles.
     set_pause: leave the world paused after loading.
+    scenario_drives_ego: an OpenSCENARIO storyboard drives the ego from its Init on (the
+        ego's control mode is auto); otherwise its stack does.
     """
 
     delete_all: bool = True
@@ -26,6 +28,7 @@ class ScenarioLoadOptions:
     load_pedestrian_data: bool = True
     load_object_data: bool = True
     set_pause: bool = False
+    scenario_drives_ego: bool = False
 
 
 @dataclass(frozen=True)

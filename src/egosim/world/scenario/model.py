@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import PurePath
-from typing import Any
+from typing import Any, Protocol
 
 from egosim.world.scenario.errors import ScenarioError
 from egosim.world.signals import IntersectionProgram, PhaseTiming
@@ -100,6 +100,50 @@ class SignalsSpec:
     """Where each intersection's entry sits in the file."""
 
 
+@dataclass(frozen=True)
+class Outcome:
+    """How a scenario stands: its storyboard's state and MORAI's evaluation verdict."""
+
+    state: str
+    """"running", "stopped" (its StopTrigger fired), "success" or "failure" (an
+    evaluation group fired)."""
+    time: float
+    """Scenario time of the end (or now, while running), s."""
+    verdict: str | None
+    """"success", "failure", or None: no evaluation, or none of its groups fired."""
+
+
+class StoryboardRun(Protocol):
+    """An OpenSCENARIO storyboard running on a world (egosim.world.openscenario), stepped
+    once per tick before the world (the tick pipeline's storyboard stage)."""
+
+    @property
+    def finished(self) -> bool:
+        """Its StopTrigger (or an evaluation group) has ended the scenario."""
+        ...
+
+    def outcome(self) -> Outcome:
+        """Its state now (or at its end) and its evaluation's verdict."""
+        ...
+
+    def step(self, dt: float, ego_driven: bool) -> list[str]:
+        """Advance dt s; ego_driven: the scenario drives the ego this step. Returns the
+        lines to report (each once)."""
+        ...
+
+
+class StoryboardProgram(Protocol):
+    """A storyboard ready to run: `start` places its entities (its Init) on a world."""
+
+    def start(
+        self, world: Any, load_ego: bool, kinds: frozenset[str], drives_ego: bool
+    ) -> StoryboardRun:
+        """Run Init on `world`; load_ego: place the ego as Init says; kinds: the entity
+        kinds to create (vehicle, pedestrian, miscellaneous object); drives_ego: the
+        scenario drives the ego (its control mode is auto)."""
+        ...
+
+
 def map_name_of(reference: str) -> str:
     """The name of the map a scenario's `map` field refers to: a map name as it is, a
     path its last part (`maps/kcity/` -> `kcity`, `maps/track.xodr` -> `track`)."""
@@ -125,6 +169,8 @@ class Scenario:
     source: YamlDocument = field(
         default_factory=lambda: YamlDocument("<scenario>", None, error_type=ScenarioError)
     )
+    storyboard: StoryboardProgram | None = None
+    """An OpenSCENARIO file's storyboard (its entities and what they do)."""
 
     def error(self, path: FieldPath, message: str) -> ScenarioError:
         """An error naming this scenario's file, the line of `path` and the field."""

@@ -8,6 +8,7 @@ from egosim.world.map.georef import GeoReference
 from egosim.world.map.lanes import Lane, LaneMap, Sidewalk
 from egosim.world.map.opendrive.crosswalks import road_crosswalks
 from egosim.world.map.opendrive.document import SOURCE, Document, read_document
+from egosim.world.map.opendrive.road_frame import OpenDriveRoads
 from egosim.world.map.opendrive.road_lanes import LaneKey, RoadLane, road_lanes, road_markings
 from egosim.world.map.opendrive.signals import build_signals
 from egosim.world.map.opendrive.topology import lane_links, neighbours
@@ -67,7 +68,8 @@ def build_opendrive_map(name: str, xml_text: str, notes: list[str]) -> LaneMap:
         lane_map = LaneMap(name, built, lights, intersections, crosswalks, sidewalks, georef)
     except MapGeometryError as error:
         raise MapRecordError(SOURCE, "lane graph", str(error)) from None
-    return lane_map.with_markings(markings)
+    lane_map = lane_map.with_markings(markings)
+    return lane_map.with_roads(OpenDriveRoads(document.roads, lanes, lane_map))
 
 
 def read_georeference(document: Document, notes: list[str]) -> GeoReference:
