@@ -1,0 +1,11 @@
+"""MORAI SIM's own scenario files: the JSON documents its scenario editor saves.
+
+Public API:
+    read_morai_scenario(text, label) -> MoraiScenario   the Scenario and what was not done
+    unity_to_enu, heading_of                            MORAI's axes and angles -> egosim's
+"""
+
+from egosim.world.scenario.morai.reader import MoraiScenario, read_morai_scenario
+from egosim.world.scenario.morai.units import heading_of, unity_to_enu
+
+__all__ = ["MoraiScenario", "heading_of", "read_morai_scenario", "unity_to_enu"]
