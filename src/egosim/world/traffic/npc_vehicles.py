@@ -43,7 +43,7 @@ _PER_NPC_ARRAYS = (
     "unique_ids", "dims", "lane", "next_lanes", "s", "speed", "accel", "lateral",
     "target_speed", "speed_factor", "delay", "crashed", "yellow", "pose", "yaw_rate", "mass",
     "change_to", "change_timer", "change_duration", "slide_from", "slide_elapsed",
-    "active_distance", "dormant",
+    "active_distance", "dormant", "wake_speed",
 )  # fmt: skip
 _PER_NPC_LISTS = ("names", "routes", "route_pos")
 
@@ -68,8 +68,8 @@ class NpcSpawn:
     `speed_factor` times each lane's limit; it waits `start_delay_s` s before moving and
     follows `route` (lane indices) where the route names a successor, or the lane after a
     successor (routes may leave junction connectors out). With a finite
-    `active_distance` (m) it stands until an ego comes within that distance of it, and
-    only then starts its delay."""
+    `active_distance` (m) it stands until an ego comes within that distance of it, then
+    sets off at `speed` (after its delay)."""
 
     unique_id: int
     model: VehicleModel
@@ -136,6 +136,8 @@ class NpcFleet:
         """m; an ego this close wakes a dormant NPC."""
         self.dormant = np.empty(0, bool)
         """Per NPC: still waiting for an ego to come within its active distance."""
+        self.wake_speed = np.empty(0)
+        """m/s a dormant NPC sets off at (its spawn speed)."""
 
     def __len__(self) -> int:
         return len(self.unique_ids)
@@ -173,6 +175,8 @@ class NpcFleet:
         distances = [n.active_distance for n in spawns]
         self.active_distance = np.append(self.active_distance, distances)
         self.dormant = np.append(self.dormant, np.isfinite(distances))
+        self.wake_speed = np.append(self.wake_speed, [n.speed for n in spawns])
+        self.speed[self.dormant] = 0.0
         self.next_lanes = np.vstack(
             (self.next_lanes, np.full((len(spawns), LOOKAHEAD_LANES), -1, np.int64))
         )
@@ -228,8 +232,11 @@ class NpcFleet:
 
     def wake(self, points: FloatArray) -> None:
         """Dormant NPCs within their active distance of any of `points` (K, 2) m (the
-        egos) wake up, for good."""
-        self.dormant = still_dormant(self.dormant, self.pose, self.active_distance, points)
+        egos) wake up, for good, moving at their spawn speed."""
+        dormant = still_dormant(self.dormant, self.pose, self.active_distance, points)
+        woken = self.dormant & ~dormant
+        self.speed[woken] = self.wake_speed[woken]
+        self.dormant = dormant
 
     def shove(self, indices: IntArray, displacement: FloatArray, velocity: FloatArray) -> None:
         """A contact's response: move NPCs `indices` by `displacement` (K, 2) m and take

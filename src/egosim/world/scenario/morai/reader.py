@@ -77,6 +77,12 @@ class MoraiScenario:
 def read_morai_scenario(document: str | bytes, label: str = "<scenario>") -> MoraiScenario:
     """The scenario of a MORAI scenario file's text; ScenarioError names the line of a
     JSON syntax error and the JSON path of anything else (every problem at once)."""
+    return _Reader(Reading(label), morai_document(document, label)).scenario()
+
+
+def morai_document(document: str | bytes, label: str = "<scenario>") -> dict[str, Any]:
+    """A MORAI scenario file's JSON object, not yet read; ScenarioError names the line and
+    column of a syntax error."""
     try:
         data = json.loads(document)
     except json.JSONDecodeError as error:
@@ -85,7 +91,7 @@ def read_morai_scenario(document: str | bytes, label: str = "<scenario>") -> Mor
         raise ScenarioError(label, None, "", f"not a JSON document: {error}") from None
     if not isinstance(data, dict):
         raise ScenarioError(label, None, "", "a MORAI scenario is a JSON object")
-    return _Reader(Reading(label), data).scenario()
+    return data
 
 
 def _start_fields(initial: bool) -> frozenset[str]:
@@ -519,4 +525,4 @@ def _distinct(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
     return kept
 
 
-__all__ = ["MoraiScenario", "read_morai_scenario"]
+__all__ = ["MoraiScenario", "morai_document", "read_morai_scenario"]
