@@ -292,6 +292,20 @@ def test_positions_measured_from_other_offsets_move_into_the_maps_frame() -> Non
     assert len(report.notes) == 1 and "moved into the map's frame" in report.notes[0]
 
 
+def test_a_link_the_map_does_not_have_is_refused_naming_the_file_s_field() -> None:
+    document = morai.scenario(
+        "mgeo_sample", vehicles=(morai.npc(morai.on_link("A2256W000001", 0.5), 1),)
+    )
+    world = World(load_map("mgeo_sample"))
+    with pytest.raises(ScenarioError) as caught:
+        world.load_scenario(read(document).scenario)
+    assert str(caught.value) == (
+        "scenario.json: vehicleList[0].initPosition.initLink: "
+        "no lane 'A2256W000001' in map 'mgeo_sample'"
+    )
+    assert len(world.npcs) == 0
+
+
 def test_a_scenario_for_another_map_is_refused() -> None:
     with pytest.raises(ScenarioError, match="scenario is for map 'town'"):
         world_of(morai.scenario("town"))

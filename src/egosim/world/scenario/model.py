@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import PurePath
 from typing import Any, Protocol
@@ -202,8 +203,13 @@ class Scenario:
     """The frame the file's positions are in (a MORAI scenario's map offsets), when the
     file says; a load moves them into the map's frame. None: the map's own frame."""
 
+    field_names: Mapping[str, str] = field(default_factory=dict)
+    """What the file calls the fields errors name, where it is not egosim's YAML (a MORAI
+    file's start is its `initPosition`, a lane its `initLink`)."""
+
     def error(self, path: FieldPath, message: str) -> ScenarioError:
         """An error naming this scenario's file, the line of `path` and the field."""
+        path = tuple(self.field_names.get(p, p) if isinstance(p, str) else p for p in path)
         error = self.source.error(path, message)
         if isinstance(error, ScenarioError):
             return error
