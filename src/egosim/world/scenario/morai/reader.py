@@ -62,7 +62,7 @@ STANDING_STUB_M = 1.0
 """A pedestrian that does not walk stands at the start of a path this long, facing it."""
 _SAME_POINT_M = 1e-6
 
-FIELD_NAMES = {"start": "initPosition", "lane": "initLink"}
+FIELD_NAMES = {"map": "mapInfo.mapName", "start": "initPosition", "lane": "initLink"}
 """The fields placement errors name, as this format calls them."""
 _POSITION_COPY = frozenset({"_x", "_y", "_z"})
 """MORAI writes each coordinate again as text for its editor; the numbers are read."""
