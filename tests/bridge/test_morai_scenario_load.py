@@ -109,7 +109,7 @@ def test_a_network_request_on_a_file_without_network_settings_changes_nothing(
 def test_what_is_not_carried_out_is_logged_once_per_field(
     roots: Path, caplog: pytest.LogCaptureFixture
 ) -> None:
-    world, context = context_of(roots)
+    _, context = context_of(roots)
     with caplog.at_level(logging.WARNING):
         load(context, "two_cars", delete_all=True, **ALL_KINDS)
     lane_change = [r.message for r in caplog.records if "isLaneChange" in r.message]

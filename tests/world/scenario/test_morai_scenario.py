@@ -387,3 +387,30 @@ def test_a_file_with_only_a_map_loads_and_keeps_the_ego() -> None:
     report = world.load_scenario(read(morai.scenario("straight")).scenario)
     assert not report.ego_placed and world.ego_status().pose == before
     assert len(world.npcs) == 0
+
+
+def test_paths_no_pedestrian_walks_and_walkers_without_a_path_are_reported() -> None:
+    document = morai.scenario(
+        "straight",
+        pedestrians=(
+            morai.pedestrian(60.0, 9.0, -90.0, 3, waypoints=True),
+            morai.pedestrian(70.0, 9.0, -90.0, 4, waypoints=True, moving_m=4.0),
+        ),
+        paths=(
+            {"pathName": "ObstaclePath - 8", "waypointData": []},
+            morai.path(3, (60.0, 9.0), (60.0, -9.0)),
+        ),
+    )
+    read_scenario = read(document)
+    assert read_scenario.scenario.pedestrians[1].waypoints == ((70.0, 9.0), (70.0, 5.0))
+    notes = read_scenario.notes
+    assert any(
+        n.startswith("scenario.json: waypointDataList[].pathName: a path no pedestrian walks")
+        and n.endswith("(waypointDataList[0])")
+        for n in notes
+    )
+    assert any(
+        "pedestrianList[].isWaypointMode: no waypointDataList path" in n
+        and n.endswith("(pedestrianList[1])")
+        for n in notes
+    )

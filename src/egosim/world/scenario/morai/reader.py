@@ -177,7 +177,7 @@ class _Reader:
         things = [self._object(item, path) for path, item in entries(r, data, "objectList")]
         starts = [self._signal(item, path) for path, item in entries(r, data, "tlList")]
         r.check_fields(data, (), _TOP_READ, _TOP_IGNORED)
-        for k, name in enumerate(self.paths):
+        for name, (k, _) in self.paths.items():
             if name not in self.used_paths:
                 r.report(("waypointDataList", k, "pathName"), "a path no pedestrian walks: not run")
         r.problems.raise_any()
@@ -227,10 +227,11 @@ class _Reader:
             r.fail((*path, "globalCoordinateSystem"), str(error))
             return name, None
 
-    def _waypoint_paths(self) -> dict[str, list[tuple[float, float]]]:
-        """pathName -> its points, ENU (the file keeps them in Unity's axes)."""
+    def _waypoint_paths(self) -> dict[str, tuple[int, list[tuple[float, float]]]]:
+        """pathName -> its place in waypointDataList and its points, ENU (the file keeps
+        them in Unity's axes)."""
         r = self.r
-        paths: dict[str, list[tuple[float, float]]] = {}
+        paths: dict[str, tuple[int, list[tuple[float, float]]]] = {}
         for path, item in entries(r, self.data, "waypointDataList"):
             name = text(r, item, "pathName", path, "")
             points: list[tuple[float, float]] = []
@@ -250,7 +251,9 @@ class _Reader:
                     east, north, _ = unity_to_enu(*vector)
                     points.append((east, north))
             r.check_fields(item, path, frozenset({"pathName", "waypointData"}), {})
-            paths[name] = points
+            index = path[-1]
+            assert isinstance(index, int)  # entries() gives (list name, index)
+            paths[name] = (index, points)
         return paths
 
     # -- shared pieces --------------------------------------------------------------
@@ -455,7 +458,7 @@ class _Reader:
         if flag(r, data, "isWaypointMode", path, False):
             unique_id = data.get("UNIQUEID")
             name = PEDESTRIAN_PATH.format(unique_id)
-            points = self.paths.get(name)
+            _, points = self.paths.get(name, (0, None))
             if points is not None:
                 self.used_paths.add(name)
                 return _distinct(points) if points else [(pose.x, pose.y)]
