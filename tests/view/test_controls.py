@@ -14,6 +14,7 @@ from egosim.view.hub import FrameHub
 from egosim.view.stage import ViewStage
 from egosim.world.scenario import load_default_scenario
 from egosim.world.vehicle import Gear
+from tests import morai_scenarios as morai
 from tests.e2e import scenarios
 
 DT = 0.01
@@ -95,6 +96,22 @@ def test_scenarios_load_from_the_data_roots_only(town: BridgeContext, tmp_path: 
     }
     assert town.world.ego_lane_state(0).lane_id == "R5_E_1"
     assert len(town.world.npcs.unique_ids) == 2
+
+
+def test_morai_scenarios_are_listed_and_load_but_other_json_is_not_offered(
+    town: BridgeContext, tmp_path: Path
+) -> None:
+    controls, _ = controls_of(town)
+    document = morai.scenario(
+        "town", vehicles=(morai.npc(morai.on_link("R5_E_1", 0.5), 1, data_id=30100010),)
+    )
+    morai.write(tmp_path, "morai_scen.json", document)
+    (tmp_path / "maps").mkdir()
+    (tmp_path / "maps" / "link_set.json").write_text('[{"idx": "L1", "points": []}]')
+    (tmp_path / "results.json").write_text('{"cases": []}')
+    assert controls.apply({"op": "scenarios"})["scenarios"] == ["morai_scen.json"]
+    assert controls.apply({"op": "load", "name": "morai_scen"})["ok"]
+    assert town.world.npcs.names == ["2016_Hyundai_Ioniq"]
 
 
 def test_reload_puts_the_scenario_back(town: BridgeContext) -> None:

@@ -84,7 +84,9 @@ def build_world(options: RunOptions) -> World:
         world = World(lane_map, physics_step_s=options.physics_dt)
         if scenario is not None:
             drives = options.ctrl_mode is ControlMode.AUTO
-            world.load_scenario(scenario, ScenarioLoadOptions(scenario_drives_ego=drives))
+            report = world.load_scenario(scenario, ScenarioLoadOptions(scenario_drives_ego=drives))
+            for note in report.notes:
+                log.warning("%s", note)
         return world
     except ScenarioError as error:
         raise StartupError(str(error)) from error

@@ -26,7 +26,7 @@ from egosim.app.attachments import RunningSimulator
 from egosim.app.options import RunOptions
 from egosim.app.runner import run
 from egosim.batch.case import CaseSpec
-from egosim.batch.files import BAG_FILE, CASE_FILE, SCENARIO_FILE, SCORE_FILE
+from egosim.batch.files import BAG_FILE, CASE_FILE, MORAI_SCENARIO_FILE, SCENARIO_FILE, SCORE_FILE
 from egosim.batch.ros_graph import stack_connected
 from egosim.bridge import ClockMode
 from egosim.bridge.context import BridgeContext
@@ -34,6 +34,7 @@ from egosim.bridge.pipeline import Stage, Tick
 from egosim.evaluation import DriveEvaluator, EvaluationSettings, InfractionKind, Route
 from egosim.evaluation.route import RouteError
 from egosim.ros1 import Master
+from egosim.scenario_files import is_morai_scenario
 from egosim.world import World
 from egosim.world.map import LaneMap
 
@@ -165,6 +166,9 @@ def main(case_dir: Path) -> int:
     case = CaseSpec.from_dict(json.loads((case_dir / CASE_FILE).read_text(encoding="utf-8")))
     if case.openscenario:
         scenario_path = Path(case.openscenario)
+    elif is_morai_scenario(Path(case.scenario_file)):
+        scenario_path = case_dir / MORAI_SCENARIO_FILE
+        scenario_path.write_text(json.dumps(case.scenario, indent=1), encoding="utf-8")
     else:
         scenario_path = case_dir / SCENARIO_FILE
         scenario_path.write_text(yaml.safe_dump(case.scenario, sort_keys=False), encoding="utf-8")

@@ -6,7 +6,8 @@ import copy
 import csv
 import json
 import string
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from functools import cache
 from importlib import resources
 from pathlib import Path
@@ -19,19 +20,39 @@ from egosim.batch.errors import SuiteError
 from egosim.batch.sweep import Value, case_name, format_value, parameter_sets
 from egosim.evaluation import METRIC_NAMES, CriterionError, InfractionKind, parse_criterion
 from egosim.maps import scenario_map_location
-from egosim.scenario_files import is_openscenario, read_openscenario_file
+from egosim.scenario_files import is_morai_scenario, is_openscenario, read_openscenario_file
 from egosim.world.map import BUILTIN_MAP_NAMES
 from egosim.world.openscenario.distributions import is_distribution, read_distribution
 from egosim.world.openscenario.program import root_of
 from egosim.world.scenario import ScenarioError, parse_scenario
+from egosim.world.scenario.morai import morai_document, read_morai_scenario
 from egosim.yamltext import FieldPath, YamlDocument, YamlFileError, parse_yaml
 
 DEFAULT_TIME_LIMIT_S = 60.0
 DEFAULT_CRITERIA = ("no_collision",)
-COUNTED_LISTS = {"npc_count": "npcs", "pedestrian_count": "pedestrians"}
-"""Parameters that keep the first N entries of a scenario list."""
-SCENARIO_FIELDS = {"seed": "seed"}
-"""Parameters that set a scenario field directly."""
+
+
+@dataclass(frozen=True)
+class ScenarioLayout:
+    """Where a scenario format keeps what parameters set, and how a case's scenario is
+    checked."""
+
+    counted_lists: Mapping[str, str]
+    """Parameters that keep the first N entries of a scenario list."""
+    fields: Mapping[str, str]
+    """Parameters that set a scenario field directly."""
+    check: Callable[[dict[str, Any], str], object]
+    """Raises ScenarioError for a scenario (data, label) that cannot be used."""
+
+
+YAML_LAYOUT = ScenarioLayout(
+    {"npc_count": "npcs", "pedestrian_count": "pedestrians"}, {"seed": "seed"}, parse_scenario
+)
+MORAI_LAYOUT = ScenarioLayout(
+    {"npc_count": "vehicleList", "pedestrian_count": "pedestrianList"},
+    {},
+    lambda data, label: read_morai_scenario(json.dumps(data), label),
+)
 
 
 @cache
@@ -51,8 +72,9 @@ def load_suite(path: Path) -> list[CaseSpec]:
 
 
 def scenario_suite(path: Path, stack: str, time_limit_s: float, clock: str) -> list[CaseSpec]:
-    """The cases of one OpenSCENARIO file or ParameterValueDistribution file run with the
-    stack command `stack` (`egosim batch FILE.xosc --stack COMMAND`)."""
+    """The cases of one OpenSCENARIO file, ParameterValueDistribution file or MORAI
+    scenario file run with the stack command `stack` (`egosim batch FILE.xosc --stack
+    COMMAND`)."""
     data = {
         "stack": {"command": stack},
         "clock": clock,
@@ -111,9 +133,15 @@ def _expand(
     scenario_path = suite_dir / entry["scenario"]
     if is_openscenario(scenario_path):
         return _openscenario_cases(source, path, entry, scenario_path, suite_dir)
+    morai = is_morai_scenario(scenario_path)
+    layout = MORAI_LAYOUT if morai else YAML_LAYOUT
     try:
         scenario_text = scenario_path.read_text(encoding="utf-8")
-        scenario_data = parse_yaml(scenario_text, str(scenario_path), ScenarioError).data
+        scenario_data = (
+            morai_document(scenario_text, str(scenario_path))
+            if morai
+            else parse_yaml(scenario_text, str(scenario_path), ScenarioError).data
+        )
     except (OSError, UnicodeDecodeError) as error:
         raise source.error((*path, "scenario"), f"cannot read: {error}") from None
     except YamlFileError as error:
@@ -124,23 +152,41 @@ def _expand(
         raise source.error((*path, "sweep"), str(error)) from None
     stack_spec = _stack(data)
     route = _route(source, path, entry.get("route"), suite_dir)
-    map_name = entry.get(
-        "map", scenario_data.get("map") if isinstance(scenario_data, dict) else None
-    )
-    if map_name is not None and map_name not in BUILTIN_MAP_NAMES and "map" in entry:
-        map_name = str(suite_dir / map_name)
+    if morai:
+        map_name = _morai_map(entry, scenario_data, scenario_path, suite_dir)
+    else:
+        map_name = entry.get(
+            "map", scenario_data.get("map") if isinstance(scenario_data, dict) else None
+        )
+        if map_name is not None and map_name not in BUILTIN_MAP_NAMES and "map" in entry:
+            map_name = str(suite_dir / map_name)
     cases = []
     defaults = {**data.get("parameters", {}), **entry.get("parameters", {})}
     for swept in sets:
         name = case_name(entry["name"], swept)
         where = (*path, "sweep") if swept else path
         parameters = {**defaults, **swept}
-        scenario = _apply(source, where, name, scenario_data, parameters, stack_spec)
+        scenario = _apply(source, where, name, scenario_data, parameters, stack_spec, layout)
         cases.append(
             _case(data, entry, name, scenario_path, parameters, suite_dir, str(map_name), route)
             | {"scenario": scenario}
         )
     return [CaseSpec(**case) for case in cases]
+
+
+def _morai_map(
+    entry: dict[str, Any], data: dict[str, Any], scenario_path: Path, suite_dir: Path
+) -> str | None:
+    """The map a MORAI case runs: the entry's `map`, else the file's mapInfo.mapName (a
+    map name, or a map folder beside the file)."""
+    if "map" in entry:
+        given = str(entry["map"])
+        return given if given in BUILTIN_MAP_NAMES else str(suite_dir / given)
+    info = data.get("mapInfo")
+    name = info.get("mapName") if isinstance(info, dict) else None
+    if not isinstance(name, str) or not name:
+        return None
+    return scenario_map_location(name, scenario_path.parent)
 
 
 def _stack(data: dict[str, Any]) -> StackSpec:
@@ -288,9 +334,11 @@ def _apply(
     scenario: dict[str, Any],
     parameters: Mapping[str, Value],
     stack: StackSpec,
+    layout: ScenarioLayout,
 ) -> dict[str, Any]:
-    """The scenario with `$parameter` values replaced, the seed set and lists cut to
-    their counts; every parameter must be used somewhere (scenario or stack)."""
+    """The scenario with `$parameter` values replaced, its fields set and lists cut to
+    their counts (as `layout` says); every parameter must be used somewhere (scenario or
+    stack)."""
     used: set[str] = set()
 
     def substitute(value: Any) -> Any:
@@ -308,15 +356,15 @@ def _apply(
 
     result = substitute(copy.deepcopy(scenario))
     for key, value in parameters.items():
-        if key in SCENARIO_FIELDS:
-            result[SCENARIO_FIELDS[key]] = value
+        if key in layout.fields:
+            result[layout.fields[key]] = value
             used.add(key)
-        elif key in COUNTED_LISTS:
-            entries = result.get(COUNTED_LISTS[key], [])
+        elif key in layout.counted_lists:
+            entries = result.get(layout.counted_lists[key], [])
             if not isinstance(value, int) or not 0 <= value <= len(entries):
                 message = f"case {name}: {key} must be 0..{len(entries)} (the scenario's list)"
                 raise source.error(path, message)
-            result[COUNTED_LISTS[key]] = entries[:value]
+            result[layout.counted_lists[key]] = entries[:value]
             used.add(key)
     used |= _stack_fields(stack) & set(parameters)
     unused = [key for key in parameters if key not in used]
@@ -324,7 +372,7 @@ def _apply(
         message = f"case {name}: parameter {unused[0]!r} is used by neither scenario nor stack"
         raise source.error(path, message)
     try:
-        parse_scenario(result, f"{name} ({source.label})")
+        layout.check(result, f"{name} ({source.label})")
     except ScenarioError as error:
         raise source.error(path, str(error)) from None
     return result

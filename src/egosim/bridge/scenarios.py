@@ -1,11 +1,12 @@
 """Scenario loading by topic (/ScenarioLoad) and service (/Service_MoraiSL).
 
 ScenarioLoad.file_name comes from the network, so it resolves only inside the
-configured scenario roots (a bare name may omit the .yaml or .xosc extension), must be a
-regular file (a named pipe would never finish), and is read and parsed on the
-transport's thread (`prepare_scenario`), so the simulation loop never waits on a
-user's file; the loop only applies the parsed scenario. An OpenSCENARIO file's
-catalogue directories must lie inside the roots too; its map must be the one running.
+configured scenario roots (a bare name may omit the .yaml, .xosc or .json extension, as
+MORAI SIM's own scenario names do), must be a regular file (a named pipe would never
+finish), and is read and parsed on the transport's thread (`prepare_scenario`), so the
+simulation loop never waits on a user's file; the loop only applies the parsed scenario.
+An OpenSCENARIO file's catalogue directories must lie inside the roots too; its map must
+be the one running.
 """
 
 from __future__ import annotations
@@ -109,6 +110,8 @@ def log_scenario_loaded(scenario: Scenario, report: ScenarioLoadReport, by: str 
         report.obstacles_spawned,
         ", paused" if report.paused else "",
     )
+    for note in report.notes:
+        log.warning("%s", note)
 
 
 def apply_network_settings(context: BridgeContext, scenario: Scenario) -> None:

@@ -25,7 +25,7 @@ from ..batch.results import (
     write_results,
 )
 from ..batch.suite import DEFAULT_TIME_LIMIT_S, load_suite, scenario_suite
-from ..scenario_files import is_openscenario
+from ..scenario_files import is_morai_scenario, is_openscenario
 
 EXIT_ALL_PASSED = 0
 EXIT_SOME_FAILED = 1
@@ -51,27 +51,27 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "suite",
         type=Path,
-        metavar="SUITE.yaml|FILE.xosc",
+        metavar="SUITE.yaml|FILE.xosc|FILE.json",
         help="a suite file, or an OpenSCENARIO scenario or ParameterValueDistribution file "
-        "(one case per concrete scenario; needs --stack)",
+        "(one case per concrete scenario), or a MORAI scenario file (one case); needs --stack",
     )
     parser.add_argument(
         "--stack",
         metavar="COMMAND",
-        help="with an OpenSCENARIO file: the shell command that starts the stack",
+        help="with a scenario file: the shell command that starts the stack",
     )
     parser.add_argument(
         "--time-limit",
         type=float,
         default=DEFAULT_TIME_LIMIT_S,
         metavar="SECONDS",
-        help="with an OpenSCENARIO file: simulated time a case may take (default %(default)s)",
+        help="with a scenario file: simulated time a case may take (default %(default)s)",
     )
     parser.add_argument(
         "--clock",
         choices=("sim", "sync"),
         default="sim",
-        help="with an OpenSCENARIO file: sim (as fast as possible) or sync (the stack steps)",
+        help="with a scenario file: sim (as fast as possible) or sync (the stack steps)",
     )
     parser.add_argument(
         "--workers",
@@ -126,9 +126,9 @@ def run(args: argparse.Namespace) -> int:
         print("egosim batch: --workers is for local runs; Ray places the cases", file=sys.stderr)
         return EXIT_BAD_INPUT
     try:
-        if is_openscenario(args.suite):
+        if is_openscenario(args.suite) or is_morai_scenario(args.suite):
             if not args.stack:
-                print("egosim batch: an OpenSCENARIO file needs --stack COMMAND", file=sys.stderr)
+                print("egosim batch: a scenario file needs --stack COMMAND", file=sys.stderr)
                 return EXIT_BAD_INPUT
             suite = scenario_suite(args.suite, args.stack, args.time_limit, args.clock)
         else:

@@ -18,7 +18,7 @@ from ..bridge.scenarios import log_scenario_loaded, scenario_path
 from ..bridge.storyboard import scenario_drives_ego
 from ..datapaths import PathOutsideRootsError
 from ..replay.codes import SET_START_TIME, CommandResult, PlaybackStatus, ProcessCommand
-from ..scenario_files import OPENSCENARIO_SUFFIX, read_scenario_file
+from ..scenario_files import looks_like_scenario, read_scenario_file
 from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions
 from ..world.vehicle import Vehicle
 from .keyboard import HeldKeys, KeyboardDriver
@@ -27,7 +27,6 @@ log = logging.getLogger(__name__)
 
 #: Control modes the page offers: keyboard, external (ROS /ctrl_cmd), autopilot.
 PAGE_CTRL_MODES = (ControlMode.KEYBOARD, ControlMode.EXTERNAL, ControlMode.AUTO)
-SCENARIO_SUFFIXES = (".yaml", ".yml", OPENSCENARIO_SUFFIX)
 #: At most this many scenario files are listed (a data root may be a large tree).
 MAX_LISTED_SCENARIOS = 200
 
@@ -121,7 +120,7 @@ class ViewControls:
             for path in sorted(base.rglob("*")):
                 if len(names) >= MAX_LISTED_SCENARIOS:
                     break
-                if path.suffix in SCENARIO_SUFFIXES and path.is_file():
+                if looks_like_scenario(path):
                     names.append(path.relative_to(base).as_posix())
         return {"scenarios": names}
 

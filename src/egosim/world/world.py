@@ -26,6 +26,7 @@ from egosim.world.contact import Bodies, ContactModel, Response, respond
 from egosim.world.map import LaneMap, LaneProjections
 from egosim.world.recorded_scene import RecordedScene
 from egosim.world.scenario import Scenario, ScenarioLoadOptions, ScenarioLoadReport
+from egosim.world.scenario.frame import in_map_frame
 from egosim.world.scenario.model import StoryboardRun
 from egosim.world.scenario.placement import (
     check_map,
@@ -432,6 +433,7 @@ class World:
                 ego.vehicle.step(dt, surfaces[index])
         lights = LightsView.of(self.signals)
         egos, walkers = self._lane_users()
+        self._wake_dormant()
         others = LaneOccupants.concatenate(
             [
                 egos,
@@ -450,6 +452,15 @@ class World:
             self._place_obstacles_on_lanes()
         self.sim_time += dt
         self._collide()
+
+    def _wake_dormant(self) -> None:
+        """NPCs and pedestrians waiting for an ego to come near set off when one has."""
+        if not (self.npcs.dormant.any() or self.pedestrians.dormant.any()):
+            return
+        poses = [ego.vehicle.status().pose for ego in self.egos]
+        points = np.array([(pose.x, pose.y) for pose in poses], dtype=np.float64)
+        self.npcs.wake(points)
+        self.pedestrians.wake(points)
 
     def _road_surfaces(self) -> list[RoadSurface]:
         """The road under each ego: the height of its lane there, and the pitch the
@@ -701,6 +712,7 @@ class World:
         """
         options = options or ScenarioLoadOptions()
         check_map(scenario, self.map)
+        scenario, notes = in_map_frame(scenario, self.map.georef)
         ids = self._allocate_ids()
         # Every section is checked, so that a file's mistakes are all reported at once.
         problems = Problems()
@@ -739,6 +751,8 @@ class World:
             if main.vehicle.model != model:
                 main.vehicle = ego_vehicle(model, pose, self._command_timeout_s)
             main.vehicle.teleport(pose, speed)
+            if scenario.ego is not None and scenario.ego.gear is not None:
+                main.vehicle.set_gear(scenario.ego.gear)
         self.npcs.spawn(npcs)
         self.pedestrians.spawn(walkers)
         self.obstacles.spawn(things)
@@ -774,6 +788,7 @@ class World:
             obstacles_spawned=len(things) + len(scripted.table(ObjectType.OBSTACLE)),
             network_settings=network,
             paused=self.paused,
+            notes=notes,
         )
 
     def _signals_for(self, scenario: Scenario) -> TrafficSignals:
@@ -781,13 +796,25 @@ class World:
         for intersection_id, path in spec.paths.items():
             if intersection_id not in self.map.intersections:
                 raise scenario.error((*path, "id"), f"no intersection {intersection_id} in the map")
-        try:
-            return TrafficSignals(
-                self.map, spec.intersections, IntersectionProgram(timing=spec.default)
+        programs = dict(spec.intersections)
+        phase_paths = {i: (*path, "initial_phase") for i, path in spec.paths.items()}
+        signalised = sorted(i for i, site in self.map.intersections.items() if site.light_ids)
+        for start in spec.starts:
+            if not 0 <= start.index < len(signalised):
+                raise scenario.error(
+                    start.path,
+                    f"no signalised intersection number {start.index} in map "
+                    f"{self.map.name!r} (it has {len(signalised)}, numbered from 0)",
+                )
+            intersection_id = signalised[start.index]
+            programs[intersection_id] = IntersectionProgram(
+                timing=spec.default, initial_phase=start.phase, initial_elapsed_s=start.elapsed_s
             )
+            phase_paths[intersection_id] = start.path
+        try:
+            return TrafficSignals(self.map, programs, IntersectionProgram(timing=spec.default))
         except UnknownPhaseError as error:
-            path = spec.paths[error.intersection_id]
-            raise scenario.error((*path, "initial_phase"), str(error)) from None
+            raise scenario.error(phase_paths[error.intersection_id], str(error)) from None
 
 
 __all__ = ["DEFAULT_PHYSICS_STEP_S", "Ego", "EgoLaneState", "ObjectState", "World"]

@@ -42,3 +42,5 @@ class ScenarioLoadReport:
     network_settings: dict[str, Any] | None
     """The file's `network` section when load_network_connection_data was set (else None)."""
     paused: bool
+    notes: tuple[str, ...] = ()
+    """What the load did that the caller should report (positions moved between frames)."""

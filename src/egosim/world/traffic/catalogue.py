@@ -58,6 +58,7 @@ MORAI_OBSTACLE_DATA_IDS: dict[int, str] = {
     40100033: "Barrier",
     40100047: "Barrier",
     40100049: "Barrier",
+    40100092: "Box",
     40200086: "Cone",
 }
 """MORAI SIM's obstacle `DataID`s (scenario files' `objectList`) -> an obstacle model, or a
