@@ -7,9 +7,11 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import IO, Protocol
 
 from egosim.batch.logs import BoundedLog
 
@@ -18,30 +20,40 @@ POLL_S = 0.05
 DEFAULT_SIGNALS = Path(__file__).with_name("default_signals.py")
 
 
+class OutputReader(Protocol):
+    """What reads a process's output (stdout and stderr, merged) in a thread of its own."""
+
+    def join(self, timeout_s: float) -> None: ...
+
+
 class GroupProcess:
     """A process started in a new session (its group is everything it starts) with the
     default signal handling (default_signals: whatever mask and ignored signals its parent
-    has, SIGINT stops it gracefully) and whose output goes to a bounded log."""
+    has, SIGINT stops it gracefully) and whose output goes to a bounded log (`log`: its
+    path), or to the reader `log` makes of it. With `commands` its standard input is a
+    pipe (`self.popen.stdin`), else empty."""
 
     def __init__(
         self,
         args: Sequence[str],
-        log_path: Path,
+        log: Path | Callable[[IO[bytes]], OutputReader],
         env: dict[str, str] | None = None,
         cwd: Path | None = None,
         on_line: Callable[[str], None] | None = None,
+        commands: bool = False,
     ) -> None:
         self.popen = subprocess.Popen(
             [sys.executable, "-I", "-S", str(DEFAULT_SIGNALS), *args],
             env=env,
             cwd=cwd,
-            stdin=subprocess.DEVNULL,
+            stdin=subprocess.PIPE if commands else subprocess.DEVNULL,
             stdout=subprocess.PIPE,
             stderr=subprocess.STDOUT,
             start_new_session=True,
         )
         assert self.popen.stdout is not None
-        self.log = BoundedLog(self.popen.stdout, log_path, on_line)
+        stdout = self.popen.stdout
+        self.log = BoundedLog(stdout, log, on_line) if isinstance(log, Path) else log(stdout)
 
     def poll(self) -> int | None:
         return self.popen.poll()
@@ -55,16 +67,31 @@ class GroupProcess:
             return True
         return True
 
-    def stop(self, first_signal: int = signal.SIGINT, grace_s: float = GRACE_S) -> int:
-        """`first_signal` to the whole group, SIGKILL to what is left after `grace_s`;
-        the exit status of the process itself."""
+    def stop(
+        self,
+        first_signal: int = signal.SIGINT,
+        grace_s: float = GRACE_S,
+        hurry: threading.Event | None = None,
+    ) -> int:
+        """`first_signal` to the whole group, SIGKILL to what is left after `grace_s` (at
+        once when `hurry` is set); the exit status of the process itself."""
         with contextlib.suppress(ProcessLookupError):
             os.killpg(self.popen.pid, first_signal)
-        deadline = time.monotonic() + grace_s
-        while time.monotonic() < deadline:
-            if self.popen.poll() is not None and not self._group_alive():
-                break
-            time.sleep(POLL_S)
+        self.wait_group(grace_s, hurry)
+        return self.kill()
+
+    def wait_group(self, timeout_s: float, hurry: threading.Event | None = None) -> bool:
+        """Wait up to `timeout_s` (less if `hurry` is set) for the process and everything
+        in its group to end; whether they did."""
+        hurry = hurry or threading.Event()
+        deadline = time.monotonic() + timeout_s
+        while not (self.popen.poll() is not None and not self._group_alive()):
+            if time.monotonic() >= deadline or hurry.wait(POLL_S):
+                return False
+        return True
+
+    def kill(self) -> int:
+        """SIGKILL to whatever is left of the group; the exit status of the process."""
         with contextlib.suppress(ProcessLookupError):
             os.killpg(self.popen.pid, signal.SIGKILL)
         status = self.popen.wait()
