@@ -69,9 +69,12 @@ def run_case(
     if case.bags == "failed" and result["status"] == PASSED and result["bag"] is not None:
         (folder / BAG_FILE).unlink()
         result["bag"] = None
+    stack_cpu_s = None if supervisor.stack is None else supervisor.stack.cpu_s
     result["timings"] = {
         "case_wall_s": round(time.monotonic() - started, 3),
         "drive_wall_s": result.pop("drive_wall_s", None),
+        "simulator_cpu_s": result.pop("simulator_cpu_s", None),
+        "stack_cpu_s": None if stack_cpu_s is None else round(stack_cpu_s, 3),
     }
     return result
 
@@ -209,6 +212,7 @@ def _result(case: CaseSpec, folder: Path, problem: str | None) -> dict[str, Any]
         "end": None if drive is None else drive["end"],
         "sim_time_s": None if drive is None else round(drive["sim_time_s"], 6),
         "drive_wall_s": None if drive is None else round(drive["drive_wall_s"], 3),
+        "simulator_cpu_s": None if drive is None else round(drive["cpu_s"], 3),
         "metrics": None if score is None else _rounded(score["metrics"]),
         "infractions": None if score is None else score["infractions"],
         "criteria": [],

@@ -54,9 +54,28 @@ class GroupProcess:
         assert self.popen.stdout is not None
         stdout = self.popen.stdout
         self.log = BoundedLog(stdout, log, on_line) if isinstance(log, Path) else log(stdout)
+        self.cpu_s: float | None = None
+        """User + system CPU time of the process and what it waited for, once it ended."""
+        self._reaping = threading.Lock()
 
     def poll(self) -> int | None:
-        return self.popen.poll()
+        return self._reap(os.WNOHANG)
+
+    def wait(self) -> int:
+        status = self._reap(0)
+        assert status is not None
+        return status
+
+    def _reap(self, options: int) -> int | None:
+        """The exit status once the process has ended (with its CPU time: os.wait4, not
+        Popen's own wait, which drops it)."""
+        with self._reaping:
+            if self.popen.returncode is None:
+                pid, status, usage = os.wait4(self.popen.pid, options)
+                if pid != 0:
+                    self.popen.returncode = os.waitstatus_to_exitcode(status)
+                    self.cpu_s = usage.ru_utime + usage.ru_stime
+            return self.popen.returncode
 
     def _group_alive(self) -> bool:
         try:
@@ -85,7 +104,7 @@ class GroupProcess:
         in its group to end; whether they did."""
         hurry = hurry or threading.Event()
         deadline = time.monotonic() + timeout_s
-        while not (self.popen.poll() is not None and not self._group_alive()):
+        while not (self.poll() is not None and not self._group_alive()):
             if time.monotonic() >= deadline or hurry.wait(POLL_S):
                 return False
         return True
@@ -94,6 +113,6 @@ class GroupProcess:
         """SIGKILL to whatever is left of the group; the exit status of the process."""
         with contextlib.suppress(ProcessLookupError):
             os.killpg(self.popen.pid, signal.SIGKILL)
-        status = self.popen.wait()
+        status = self.wait()
         self.log.join(GRACE_S)
         return status

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import resource
 import threading
 import time
 from collections.abc import Callable
@@ -147,12 +148,19 @@ class CaseDrive:
         return {"end": self.end, "sim_time_s": sim_time, "drive_wall_s": wall, "score": score}
 
 
+def _cpu_s() -> float:
+    """User + system CPU time of this process so far."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
 def simulate_case(
     case_dir: Path, stop: threading.Event, renderer: Callable[[], CameraRenderer]
 ) -> int:
     """Drive the case in `case_dir` until its drive ends or `stop` is set; the run's exit
     status. The process's ROS_MASTER_URI and ROS_IP are the case's afterwards (the worker
     puts its environment back)."""
+    cpu_before = _cpu_s()
     case = CaseSpec.from_dict(json.loads((case_dir / CASE_FILE).read_text(encoding="utf-8")))
     scenario_path = case_dir / SCENARIO_FILE
     scenario_path.write_text(yaml.safe_dump(case.scenario, sort_keys=False), encoding="utf-8")
@@ -173,7 +181,7 @@ def simulate_case(
             data_roots=(case_dir,),
         )
         status = run(options, [drive.attach], stop, handle_signals=False, renderer=renderer)
-        result = {"exit_status": status, **drive.result()}
+        result = {"exit_status": status, **drive.result(), "cpu_s": _cpu_s() - cpu_before}
         (case_dir / SCORE_FILE).write_text(json.dumps(result), encoding="utf-8")
         return status
     finally:

@@ -73,7 +73,7 @@ class WarmSimulator:
             return None
         if line is EXITED:
             assert self._process is not None
-            self._exit_status = self._process.popen.wait()
+            self._exit_status = self._process.wait()
             self.in_case = False
             return None
         assert isinstance(line, str)
