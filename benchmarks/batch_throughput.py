@@ -1,5 +1,5 @@
 """`egosim batch` throughput: cases per hour for the pure-pursuit lap suite, locally with
-1 and 2 workers and on a local Ray instance.
+1, 2 (and 4) workers and on a local Ray instance.
 
 Writes a suite of N cases (the example stack, sync clock, the first 50 m of the town lap,
 seeds 1..N) to a temporary folder, exports morai_msgs for rospy there (`egosim msgs
@@ -14,7 +14,9 @@ and `--rounds`, the runs alternate checkout by checkout, so a shared machine's l
 on each alike; every row gives the load average when it began.
 
 CPU per case counts the processes the batch started (its driver, simulators and stacks;
-not Ray's own workers and actors, which a Ray run does not start as its children).
+not Ray's own workers and actors, which a Ray run does not start as its children). The
+simulator and stack CPU columns are the medians of results.json's `simulator_cpu_s` and
+`stack_cpu_s`, where the checkout records them.
 
 Usage: .venv/bin/python benchmarks/batch_throughput.py [--cases 12] [--runs local1 local2 ray]
            [--checkout DIR ...] [--rounds 1] [--route-m 50]
@@ -37,7 +39,12 @@ import yaml
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
-RUNS = {"local1": ["--workers", "1"], "local2": ["--workers", "2"], "ray": ["--ray"]}
+RUNS = {
+    "local1": ["--workers", "1"],
+    "local2": ["--workers", "2"],
+    "local4": ["--workers", "4"],
+    "ray": ["--ray"],
+}
 
 
 def _children_cpu_s() -> float:
@@ -94,14 +101,27 @@ def run_batch(suite: Path, out: Path, options: list[str], env: dict[str, str]) -
     return (
         f"{passed}/{len(cases)} | {load:.1f} | {batch_wall:.1f} (command {wall:.1f}) "
         f"| {len(cases) / batch_wall * 3600:.0f} | {statistics.mean(case_walls):.2f} "
-        f"| {statistics.mean(drive_walls):.2f} | {cpu / len(cases):.2f} | {sim_s:.2f} |"
+        f"| {statistics.mean(drive_walls):.2f} | {cpu / len(cases):.2f} "
+        f"| {_median_timing(cases, 'simulator_cpu_s')} | {_median_timing(cases, 'stack_cpu_s')} "
+        f"| {sim_s:.2f} |"
     )
+
+
+def _median_timing(cases: list[dict], key: str) -> str:
+    """The median of a case timing (a worker's first case, which builds what the worker
+    keeps, costs more), '-' where results.json has none."""
+    values = [c["timings"].get(key) for c in cases]
+    if None in values:
+        return "-"
+    return f"{statistics.median(values):.2f}"
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", type=int, default=12)
-    parser.add_argument("--runs", nargs="+", choices=list(RUNS), default=list(RUNS))
+    parser.add_argument(
+        "--runs", nargs="+", choices=list(RUNS), default=["local1", "local2", "ray"]
+    )
     parser.add_argument("--route-m", type=float, default=50.0, help="route length per case")
     parser.add_argument(
         "--checkout", type=Path, action="append", default=[], help="an egosim source tree"
@@ -120,9 +140,10 @@ def main() -> None:
         print(f"{args.cases} cases, {args.route_m:g} m routes")
         print(
             "| checkout | run | passed | load | wall (s) | cases/hour | case wall mean (s) "
-            "| drive wall mean (s) | CPU per case (s) | simulated per case (s) |"
+            "| drive wall mean (s) | CPU per case (s) | simulator CPU (s) | stack CPU (s) "
+            "| simulated per case (s) |"
         )
-        print("|---|---|---|---:|---:|---:|---:|---:|---:|---:|")
+        print("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
         for round_ in range(args.rounds):
             for run in args.runs:
                 for k, checkout in enumerate(checkouts):
