@@ -16,6 +16,9 @@ import pytest
 import yaml
 from rosbags.rosbag1 import Reader
 
+from egosim.batch.case_runner import run_case
+from egosim.batch.suite import load_suite
+from egosim.batch.warm_simulator import WarmSimulator
 from tests.batch.processes import processes_using
 from tests.batch.results_files import comparable, read_results
 from tests.batch.suites import STRAIGHT_SCENARIO
@@ -136,3 +139,21 @@ def test_its_bag_is_the_bag_it_records_alone(after_others, alone) -> None:
     recorded = bag_messages(after_others / "observes" / "drive.bag")
     assert recorded == bag_messages(alone / "observes" / "drive.bag")
     assert len(recorded["/Ego_topic"]) in (20, 21)  # 50 Hz over 40 ticks of 10 ms
+
+
+def test_a_worker_that_cannot_start_says_why_in_the_case_log(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    broken = tmp_path / "broken" / "egosim"
+    broken.mkdir(parents=True)
+    (broken / "__init__.py").write_text("raise ImportError('this egosim is broken')\n")
+    monkeypatch.setenv("PYTHONPATH", str(broken.parent))
+    (case,) = load_suite(write_suite(tmp_path / "suite"))[-1:]
+    simulator = WarmSimulator()
+    try:
+        result = run_case(case, str(tmp_path / "out"), simulator)
+    finally:
+        simulator.close()
+    assert result["status"] == "error"
+    assert result["reason"].startswith("simulator did not start its ROS master: ")
+    assert "ImportError: this egosim is broken" in result["reason"]

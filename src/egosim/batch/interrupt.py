@@ -1,9 +1,11 @@
 """How a batch is told to stop: once (SIGINT or SIGTERM) it ends every running case in
-order, keeping its drive; twice, it ends what is left at once."""
+order, keeping its drive; twice, it ends what is left at once; a third time, the process
+exits there and then."""
 
 from __future__ import annotations
 
 import contextlib
+import os
 import signal
 import threading
 from collections.abc import Callable, Iterator
@@ -11,6 +13,8 @@ from dataclasses import dataclass, field
 from types import FrameType
 
 SIGNALS = (signal.SIGINT, signal.SIGTERM)
+EXIT_SIGNALLED = 128
+"""Stopped by a signal: 128 + its number (130 after Ctrl-C, 143 after SIGTERM)."""
 
 
 @dataclass
@@ -43,6 +47,8 @@ def interrupted_by_signals(interrupt: Interrupt) -> Iterator[Callable[[], None]]
         return
 
     def handle(number: int, frame: FrameType | None) -> None:
+        if interrupt.hurry.is_set():
+            os._exit(EXIT_SIGNALLED + number)
         interrupt.request(number)
 
     previous = {number: signal.getsignal(number) for number in SIGNALS}

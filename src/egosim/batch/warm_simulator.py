@@ -45,6 +45,7 @@ class WarmSimulator:
     def __init__(self) -> None:
         self._process: GroupProcess | None = None
         self._lines: queue.Queue[str | object] = queue.Queue()
+        self._logs: _CaseLogs
         self._done: Done | None = None
         self._exit_status: int | None = None
         self.in_case = False
@@ -59,9 +60,11 @@ class WarmSimulator:
             self._start()
         self._done = None
         self.in_case = True
+        self._logs.pending = folder
         if not self._send(run_command(folder)):
             self._end_process(0.0)
             self._start()
+            self._logs.pending = folder
             self._send(run_command(folder))
 
     def take(self) -> str | None:
@@ -122,10 +125,14 @@ class WarmSimulator:
         self._exit_status = None
         self._process = GroupProcess(
             [sys.executable, "-m", "egosim.batch.worker"],
-            lambda stream: _CaseLogs(stream, self._lines),
+            self._logs_of,
             env=env,
             commands=True,
         )
+
+    def _logs_of(self, stream: IO[bytes]) -> _CaseLogs:
+        self._logs = _CaseLogs(stream, self._lines)
+        return self._logs
 
     def _send(self, command: bytes) -> bool:
         assert self._process is not None and self._process.popen.stdin is not None
@@ -163,12 +170,15 @@ class WarmSimulator:
 
 class _CaseLogs:
     """Reads the worker's output in a thread: each case's part to that case's
-    simulator.log, its protocol lines also to `lines`; output between cases (there
-    should be none) to this process's log."""
+    simulator.log, its protocol lines also to `lines`. What comes before a case's first
+    line belongs to the case the worker was handed (`pending`: a worker that fails to
+    start says why there); output between cases (there should be none) goes to this
+    process's log."""
 
     def __init__(self, stream: IO[bytes], lines: queue.Queue[str | object]) -> None:
         self._stream = stream
         self._lines = lines
+        self.pending: Path | None = None
         self._thread = threading.Thread(target=self._copy, name="simulator worker", daemon=True)
         self._thread.start()
 
@@ -178,10 +188,14 @@ class _CaseLogs:
             for raw in self._stream:
                 text = raw.decode("utf-8", "replace").rstrip("\n")
                 if (folder := case_dir_of(text)) is not None:
-                    if current is not None:
-                        current.close()
-                    current = BoundedFile(folder / SIMULATOR_LOG)
+                    self.pending = None
+                    if current is None or current.path != folder / SIMULATOR_LOG:
+                        if current is not None:
+                            current.close()
+                        current = BoundedFile(folder / SIMULATOR_LOG)
                     continue
+                if current is None and self.pending is not None:
+                    current = BoundedFile(self.pending / SIMULATOR_LOG)
                 if current is None:
                     log.warning("simulator worker: %s", text)
                     continue

@@ -15,7 +15,7 @@ from ..app.exit_codes import EXIT_BAD_INPUT
 from ..batch.case import CaseSpec
 from ..batch.errors import SuiteError
 from ..batch.html_report import write_html_report
-from ..batch.interrupt import Interrupt, interrupted_by_signals
+from ..batch.interrupt import EXIT_SIGNALLED, Interrupt, interrupted_by_signals
 from ..batch.junit import write_junit
 from ..batch.pool import default_workers, failed, run_local, run_ray
 from ..batch.progress import BatchProgress
@@ -30,8 +30,6 @@ from ..batch.suite import load_suite
 
 EXIT_ALL_PASSED = 0
 EXIT_SOME_FAILED = 1
-EXIT_SIGNALLED = 128
-"""Stopped by a signal: 128 + its number (130 after Ctrl-C, 143 after SIGTERM)."""
 LOCAL_RAY = "local"
 
 
