@@ -1,4 +1,4 @@
-"""One suite, locally and as Ray tasks, gives the same results.json case by case: stacks in
+"""One suite, locally and on Ray actors, gives the same results.json case by case: stacks in
 sync mode (so every drive is the same on every run) that drive, crash at once, crash
 while driving, hang, never connect; and a car that cannot stop for a red light. Ray's
 workers start their children with SIGINT blocked: a case still stops its simulator

@@ -44,9 +44,11 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "batch",
         help="run a stack through a suite of scenarios and score every drive",
-        description="Run the suite's stack once per case, each case with its own simulator "
-        "and ROS master, score every drive from the world, and write results.json, "
-        "junit.xml, report.html and a bag per case to the output folder.",
+        description="Run the suite's stack once per case, each case with its own ROS "
+        "master and world on a simulator each worker keeps warm, score every drive from "
+        "the world, and write results.json, junit.xml, report.html and a bag per case to "
+        "the output folder. SIGINT or SIGTERM stops the running cases in order (their "
+        "drives kept) and still writes every output; a second signal stops at once.",
     )
     parser.add_argument("suite", type=Path, metavar="SUITE.yaml")
     parser.add_argument(
@@ -54,7 +56,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         type=positive_int,
         default=None,
         metavar="N",
-        help="cases at a time on this machine (default: the number of cores)",
+        help="cases at a time on this machine, each worker keeping a simulator warm "
+        "(default: the number of cores)",
     )
     parser.add_argument(
         "--ray",
@@ -62,8 +65,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         const=LOCAL_RAY,
         default=None,
         metavar="ADDRESS",
-        help="one Ray task per case: on the cluster at ADDRESS, else the one `ray start` "
-        "runs here, else a new local one (needs pip install egosim[ray])",
+        help="run the cases on Ray actors, one per CPU: of the cluster at ADDRESS, else of "
+        "the one `ray start` runs here, else of a new local one (needs pip install "
+        "egosim[ray])",
     )
     parser.add_argument(
         "--filter",
