@@ -48,7 +48,7 @@ class WarmSimulator:
         self._logs: _CaseLogs
         self._done: Done | None = None
         self._exit_status: int | None = None
-        self.in_case = False
+        self._in_case = False
 
     # The case's side ------------------------------------------------------------------
 
@@ -59,7 +59,7 @@ class WarmSimulator:
         if self._process is None:
             self._start()
         self._done = None
-        self.in_case = True
+        self._in_case = True
         self._logs.pending = folder
         if not self._send(run_command(folder)):
             self._end_process(0.0)
@@ -77,17 +77,17 @@ class WarmSimulator:
         if line is EXITED:
             assert self._process is not None
             self._exit_status = self._process.wait()
-            self.in_case = False
+            self._in_case = False
             return None
         assert isinstance(line, str)
         if (done := done_of(line)) is not None:
             self._done = done
-            self.in_case = False
+            self._in_case = False
         return line
 
     @property
     def finished(self) -> bool:
-        return not self.in_case
+        return not self._in_case
 
     @property
     def status(self) -> int | None:
@@ -165,7 +165,7 @@ class WarmSimulator:
                 "simulator worker %d did not exit within %g s: killed", process.popen.pid, grace_s
             )
         process.kill()
-        self.in_case = False
+        self._in_case = False
 
 
 class _CaseLogs:

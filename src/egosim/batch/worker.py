@@ -40,6 +40,8 @@ LINGER_S = 5.0
 EXIT_FAILED = 1
 """A case whose run raised, as a process dying of it would exit."""
 POLL_S = 0.2
+WORKER_LINE = "egosim batch worker"
+"""Begins the first line of a case's simulator.log: which worker ran it, its how-manieth."""
 
 
 class SharedRenderer:
@@ -82,6 +84,7 @@ class Worker:
         self._current: threading.Event | None = None
         self._threads: set[threading.Thread] = set()
         self._sockets: set[str] = set()
+        self.cases = 0
 
     def settle(self) -> None:
         """What the worker itself runs: a case must leave no thread or socket beyond."""
@@ -101,6 +104,8 @@ class Worker:
     def run(self, case_dir: Path) -> bool:
         """Run one case; whether the worker may run another."""
         print(case_line(case_dir), flush=True)
+        self.cases += 1
+        print(f"{WORKER_LINE} {os.getpid()}: case {self.cases} in this process", flush=True)
         stop = threading.Event()
         self._current = stop
         if self.leaving.is_set():
