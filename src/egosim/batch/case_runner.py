@@ -139,7 +139,7 @@ class _Supervisor:
         deadline = time.monotonic() + timeout_s
         while time.monotonic() < deadline:
             self._check_interrupt()
-            line = self.simulator.take()
+            line = self.simulator.take(POLL_S)
             if line is not None and line.startswith(f"{PREFIX}{what}"):
                 return line
             if line is None:
@@ -147,7 +147,6 @@ class _Supervisor:
                     return None
                 if watch_stack and self._stack_ended():
                     return None
-                time.sleep(POLL_S)
         return None
 
     def _stack_ended(self) -> bool:
@@ -161,7 +160,7 @@ class _Supervisor:
             self._check_interrupt()
             if time.monotonic() > deadline:
                 return f"case exceeded its wall-clock limit of {self.case.wall_limit_s:g} s"
-            line = self.simulator.take()
+            line = self.simulator.take(POLL_S)
             self.drive_ended |= line is not None and line.startswith(f"{PREFIX}{ENDED}")
             if line is not None:
                 continue
@@ -172,7 +171,6 @@ class _Supervisor:
                 if self.stack_status != 0:
                     return f"stack exited with status {self.stack_status} during the drive"
                 return None
-            time.sleep(POLL_S)
         if self.simulator.status != 0:
             return self._simulator_failure(f"exited with status {self.simulator.status}")
         return None

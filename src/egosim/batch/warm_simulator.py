@@ -67,11 +67,11 @@ class WarmSimulator:
             self._logs.pending = folder
             self._send(run_command(folder))
 
-    def take(self) -> str | None:
-        """The case's next protocol line (None if none has come yet); after its `done`
-        line, or the worker's exit, `finished` holds."""
+    def take(self, wait_s: float = 0.0) -> str | None:
+        """The case's next protocol line (None if none came within `wait_s`); after its
+        `done` line, or the worker's exit, `finished` holds."""
         try:
-            line = self._lines.get_nowait()
+            line = self._lines.get(timeout=wait_s) if wait_s > 0 else self._lines.get_nowait()
         except queue.Empty:
             return None
         if line is EXITED:
@@ -104,12 +104,11 @@ class WarmSimulator:
             self._send(stop_command())
         deadline = time.monotonic() + grace_s
         while not self.finished:
-            if self.take() is not None:
+            if self.take(POLL_S) is not None:
                 continue
             if hurry.is_set() or time.monotonic() >= deadline:
                 self._kill()
                 return
-            time.sleep(POLL_S)
 
     # The slot's side ------------------------------------------------------------------
 
@@ -150,8 +149,7 @@ class WarmSimulator:
         assert self._process is not None
         self._process.kill()
         while not self.finished:
-            if self.take() is None:
-                time.sleep(POLL_S)
+            self.take(POLL_S)
 
     def _end_process(self, grace_s: float) -> None:
         """Close the worker's input (it ends its case, if any, and exits), SIGKILL its
