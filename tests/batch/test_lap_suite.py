@@ -1,5 +1,5 @@
 """The example suite end to end: the pure-pursuit stack (a real rospy node) through six
-cases on the town, locally and as Ray tasks, with the same results."""
+cases on the town, locally and on Ray actors, with the same results."""
 
 from __future__ import annotations
 

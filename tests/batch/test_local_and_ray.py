@@ -1,4 +1,4 @@
-"""One suite, locally and as Ray tasks, gives the same results.json case by case: stacks in
+"""One suite, locally and on Ray actors, gives the same results.json case by case: stacks in
 sync mode (so every drive is the same on every run) that drive, crash at once, crash
 while driving, hang, never connect; and a car that cannot stop for a red light. Ray's
 workers start their children with SIGINT blocked: a case still stops its simulator
@@ -14,6 +14,7 @@ from typing import Any
 import pytest
 import yaml
 
+from egosim.batch.pool import default_workers
 from tests.batch.processes import processes_using
 from tests.batch.results_files import comparable, read_results
 from tests.batch.suites import STRAIGHT_SCENARIO
@@ -69,7 +70,7 @@ def write_suite(folder: Path) -> Path:
     return path
 
 
-def run_batch(suite: Path, out: Path, *options: str) -> dict[str, Any]:
+def run_batch(suite: Path, out: Path, *options: str) -> None:
     batch = subprocess.run(
         [sys.executable, "-m", "egosim", "batch", str(suite), "--out", str(out), *options],
         check=False,
@@ -79,7 +80,6 @@ def run_batch(suite: Path, out: Path, *options: str) -> dict[str, Any]:
     )
     assert batch.returncode == 1, batch.stderr  # some cases fail, as they should
     assert processes_using(out) == []
-    return read_results(out)
 
 
 @pytest.fixture(scope="module")
@@ -88,14 +88,28 @@ def suite(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 @pytest.fixture(scope="module")
-def local(suite: Path, tmp_path_factory: pytest.TempPathFactory) -> dict[str, Any]:
-    return run_batch(suite, tmp_path_factory.mktemp("local"), "--workers", "2")
+def local_out(suite: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("local")
+    run_batch(suite, out, "--workers", "2")
+    return out
 
 
 @pytest.fixture(scope="module")
-def on_ray(suite: Path, tmp_path_factory: pytest.TempPathFactory) -> dict[str, Any]:
+def on_ray_out(suite: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
     pytest.importorskip("ray", reason="Ray is an optional extra: pip install egosim[ray]")
-    return run_batch(suite, tmp_path_factory.mktemp("ray"), "--ray")
+    out = tmp_path_factory.mktemp("ray")
+    run_batch(suite, out, "--ray")
+    return out
+
+
+@pytest.fixture(scope="module")
+def local(local_out: Path) -> dict[str, Any]:
+    return read_results(local_out)
+
+
+@pytest.fixture(scope="module")
+def on_ray(on_ray_out: Path) -> dict[str, Any]:
+    return read_results(on_ray_out)
 
 
 def by_name(document: dict[str, Any]) -> dict[str, dict[str, Any]]:
@@ -138,6 +152,18 @@ def test_a_red_light_the_car_cannot_stop_for_is_run(local) -> None:
     assert 1.5 < run["time_s"] < 2.0
     stopped = cases["red_light[speed_mps=20]"]
     assert stopped["infractions"] == [] and stopped["metrics"]["distance_m"] < 40.0
+
+
+@pytest.mark.parametrize("runner", ["local", "on_ray"])
+def test_each_worker_keeps_one_simulator_for_its_cases(
+    runner: str, request: pytest.FixtureRequest
+) -> None:
+    out = request.getfixturevalue(f"{runner}_out")
+    cases = read_results(out)["cases"]
+    # The first line of a case's simulator log: "egosim batch worker PID: case N ...".
+    workers = {(out / c["folder"] / "simulator.log").read_text().split()[3] for c in cases}
+    slots = 2 if runner == "local" else default_workers()  # Ray: an actor per CPU
+    assert len(workers) <= min(slots, len(cases))
 
 
 def test_ray_tasks_give_the_same_results_case_by_case(local, on_ray) -> None:

@@ -17,6 +17,7 @@ from ..render import open_renderer
 from ..replay import RecorderError
 from ..ros1 import Node, Ros1Error
 from ..scenario_files import read_scenario_file
+from ..sensors.camera_render import CameraRenderer
 from ..world import World
 from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, load_default_scenario
 from ..yamltext import YamlFileError
@@ -117,21 +118,35 @@ def _report_scenario_end(world: World) -> None:
 
 
 def run(
-    options: RunOptions, attach: Sequence[Attach] = (), stop: threading.Event | None = None
+    options: RunOptions,
+    attach: Sequence[Attach] = (),
+    stop: threading.Event | None = None,
+    *,
+    handle_signals: bool = True,
+    renderer: Callable[[], CameraRenderer] = open_renderer,
 ) -> int:
     """Run the simulator until stopped; the process exit status.
 
     `attach` builds what rides on the loop (the live view, a batch case's drive) once the
-    simulator is up; setting `stop` ends the run as Ctrl-C does.
+    simulator is up; setting `stop` ends the run as Ctrl-C does. With `handle_signals`
+    (on the main thread) SIGINT and SIGTERM set `stop` while it runs; a caller that runs
+    one simulation after another in a process handles them itself. `renderer` opens the
+    cameras' engine (a process that runs many simulations opens one and shares it).
     """
     try:
-        return _run(options, attach, stop or threading.Event())
+        return _run(options, attach, stop or threading.Event(), handle_signals, renderer)
     except StartupError as error:
         print(f"egosim: {error}", file=sys.stderr)
         return error.exit_code
 
 
-def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -> int:
+def _run(
+    options: RunOptions,
+    attach: Sequence[Attach],
+    stop: threading.Event,
+    handle_signals: bool,
+    renderer: Callable[[], CameraRenderer],
+) -> int:
     world = build_world(options)
     try:
         settings = load_network_settings(
@@ -148,7 +163,8 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
             raise StartupError(f"--record: {error}") from error
 
     # The bag is closed (index and header written) however the run ends.
-    with stop_on_signals(stop), recorder or contextlib.nullcontext():
+    signals = stop_on_signals(stop) if handle_signals else contextlib.nullcontext()
+    with signals, recorder or contextlib.nullcontext():
         try:
             node = Node(NODE_NAME, list(options.ros_argv))
         except (OSError, Ros1Error) as error:
@@ -165,7 +181,7 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
             data_roots=options.data_roots or (Path.cwd(),),
             bridge=bridge,
             hold_output=node.holding_output,
-            open_renderer=open_renderer,
+            open_renderer=renderer,
         )
         if recorder is not None:
             bridge.taps.append(recorder.tap())

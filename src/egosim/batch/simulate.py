@@ -1,23 +1,21 @@
-"""The simulator of one case: `python -m egosim.batch.simulate CASE_DIR`.
+"""The simulator of one case, as a simulator worker (egosim.batch.worker) runs it.
 
-Reads CASE_DIR/case.json, starts its own ROS master on a port the system picks (so two
-cases never share one), runs `egosim run` with the case's scenario and a drive observer
-on the tick pipeline, and writes CASE_DIR/score.json however the drive ends (route done,
-blocked, time limit, or SIGINT/SIGTERM from the case's supervisor).
-
-Lines on stdout tell the supervisor how far it got:
-    egosim-batch: master URI     the master is up (the stack may be started)
-    egosim-batch: running        the stack is connected and the drive has begun
-    egosim-batch: ended REASON   the drive is over (the simulator then stops)
+Reads CASE_DIR/case.json, starts a ROS master of its own on a port the system picks (so
+two cases never share one, and each begins with an empty graph and parameter server),
+runs `egosim run` with the case's scenario and a drive observer on the tick pipeline,
+and writes CASE_DIR/score.json however the drive ends (route done, blocked, time limit,
+or stopped by its supervisor). Its `master`, `running` and `ended` lines on stdout
+(worker_protocol) tell the supervisor how far it got.
 """
 
 from __future__ import annotations
 
 import json
 import os
-import sys
+import resource
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 import yaml
@@ -28,6 +26,7 @@ from egosim.app.runner import run
 from egosim.batch.case import CaseSpec
 from egosim.batch.files import BAG_FILE, CASE_FILE, MORAI_SCENARIO_FILE, SCENARIO_FILE, SCORE_FILE
 from egosim.batch.ros_graph import stack_connected
+from egosim.batch.worker_protocol import ENDED, MASTER, PREFIX, RUNNING
 from egosim.bridge import ClockMode
 from egosim.bridge.context import BridgeContext
 from egosim.bridge.pipeline import Stage, Tick
@@ -35,6 +34,7 @@ from egosim.evaluation import DriveEvaluator, EvaluationSettings, InfractionKind
 from egosim.evaluation.route import RouteError
 from egosim.ros1 import Master
 from egosim.scenario_files import is_morai_scenario
+from egosim.sensors.camera_render import CameraRenderer
 from egosim.world import World
 from egosim.world.map import LaneMap
 
@@ -98,7 +98,7 @@ class CaseDrive:
         self.world = context.world
         self.over = self._observe(context.world)
         if self.over:
-            print(f"egosim-batch: ended {self.end}", flush=True)
+            print(f"{PREFIX}{ENDED} {self.end}", flush=True)
             self.stop.set()
 
     def _observe(self, world: World) -> bool:
@@ -141,7 +141,7 @@ class CaseDrive:
         self.start_sim_s = world.sim_time
         self.started_wall = time.monotonic()
         self.evaluator = DriveEvaluator(world, route, evaluation_settings(self.case.scoring))
-        print("egosim-batch: running", flush=True)
+        print(f"{PREFIX}{RUNNING}", flush=True)
         return False
 
     def result(self) -> dict:
@@ -162,7 +162,19 @@ class CaseDrive:
         return result
 
 
-def main(case_dir: Path) -> int:
+def _cpu_s() -> float:
+    """User + system CPU time of this process so far."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+def simulate_case(
+    case_dir: Path, stop: threading.Event, renderer: Callable[[], CameraRenderer]
+) -> int:
+    """Drive the case in `case_dir` until its drive ends or `stop` is set; the run's exit
+    status. The process's ROS_MASTER_URI and ROS_IP are the case's afterwards (the worker
+    puts its environment back)."""
+    cpu_before = _cpu_s()
     case = CaseSpec.from_dict(json.loads((case_dir / CASE_FILE).read_text(encoding="utf-8")))
     if case.openscenario:
         scenario_path = Path(case.openscenario)
@@ -176,10 +188,8 @@ def main(case_dir: Path) -> int:
     try:
         os.environ["ROS_MASTER_URI"] = master.uri
         os.environ.setdefault("ROS_IP", "127.0.0.1")
-        print(f"egosim-batch: master {master.uri}", flush=True)
-        stop = threading.Event()
+        print(f"{PREFIX}{MASTER} {master.uri}", flush=True)
         drive = CaseDrive(case, master.uri, stop)
-
         options = RunOptions(
             map=case.map,
             scenario=scenario_path,
@@ -193,13 +203,9 @@ def main(case_dir: Path) -> int:
             # The drive stage ends the run, with the scenario's end among its reasons.
             keep_running=True,
         )
-        status = run(options, [drive.attach], stop)
-        result = {"exit_status": status, **drive.result()}
+        status = run(options, [drive.attach], stop, handle_signals=False, renderer=renderer)
+        result = {"exit_status": status, **drive.result(), "cpu_s": _cpu_s() - cpu_before}
         (case_dir / SCORE_FILE).write_text(json.dumps(result), encoding="utf-8")
         return status
     finally:
         master.shutdown()
-
-
-if __name__ == "__main__":
-    sys.exit(main(Path(sys.argv[1])))

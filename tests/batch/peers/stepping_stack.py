@@ -4,8 +4,9 @@ every frame with --brake (all a good stack can do with a red light too close to 
 
 Without --frames it steps until the simulator goes away. With --frames N it writes
 `stepped` in its case folder after N frames and then, as told by its last argument:
-`exit CODE` (exits with CODE), `hang` (stops stepping and ignores SIGINT) or `idle` (stops
-stepping and exits 0 on SIGINT). The drive it leaves is N ticks long whenever it ends.
+`exit CODE` (exits with CODE), `hang` (stops stepping and ignores SIGINT, noting each in
+`sigint` in its case folder) or `idle` (stops stepping and exits 0 on SIGINT). The drive it
+leaves is N ticks long whenever it ends.
 """
 
 from __future__ import annotations
@@ -75,8 +76,9 @@ def main() -> int:
         node.shutdown("done")
         return int(args.then[1])
     interrupted = threading.Event()
+    sigint = Path(os.environ["EGOSIM_CASE_DIR"], "sigint")
     ignore = args.then[0] == "hang"
-    signal.signal(signal.SIGINT, signal.SIG_IGN if ignore else lambda *_: interrupted.set())
+    signal.signal(signal.SIGINT, lambda *_: sigint.touch() if ignore else interrupted.set())
     while not interrupted.wait(0.5):
         pass
     node.shutdown("interrupted")
