@@ -24,7 +24,7 @@ from .inbox import Inbox
 from .loop import SimulationLoop
 from .options import RunOptions
 from .recording import TopicRecorder, open_recorder
-from .signals import stop_on_signals
+from .signals import StopControl, stop_on_signals
 from .summary import ready_summary
 
 log = logging.getLogger("egosim")
@@ -98,21 +98,30 @@ def _read_scenario(path: Path) -> Scenario:
 
 
 def run(
-    options: RunOptions, attach: Sequence[Attach] = (), stop: threading.Event | None = None
+    options: RunOptions,
+    attach: Sequence[Attach] = (),
+    stop: threading.Event | None = None,
+    *,
+    stop_deadline_s: float | None = None,
 ) -> int:
     """Run the simulator until stopped; the process exit status.
 
     `attach` builds what rides on the loop (the live view, a batch case's drive) once the
-    simulator is up; setting `stop` ends the run as Ctrl-C does.
+    simulator is up; setting `stop` ends the run as Ctrl-C does. SIGINT, SIGTERM and
+    `rosnode kill` stop it cleanly; a second signal ends the process at once with the bag
+    closed, and so does a clean stop that overruns `stop_deadline_s` (see app/signals.py).
     """
-    try:
-        return _run(options, attach, stop or threading.Event())
-    except StartupError as error:
-        print(f"egosim: {error}", file=sys.stderr)
-        return error.exit_code
+    # Signals are handled from the start, before any bag exists: none ends the process
+    # with a bag left open.
+    with stop_on_signals(stop or threading.Event(), stop_deadline_s) as control:
+        try:
+            return _run(options, attach, control)
+        except StartupError as error:
+            print(f"egosim: {error}", file=sys.stderr)
+            return error.exit_code
 
 
-def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -> int:
+def _run(options: RunOptions, attach: Sequence[Attach], control: StopControl) -> int:
     world = build_world(options)
     try:
         settings = load_network_settings(
@@ -120,6 +129,8 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
         )
     except (OSError, YamlFileError) as error:
         raise StartupError(f"network settings: {error}") from error
+    if control.stop.is_set():  # asked to stop while the map loaded: nothing to undo yet
+        return EXIT_OK
 
     recorder = None
     if options.record is not None:
@@ -127,15 +138,17 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
             recorder = TopicRecorder(open_recorder(options.record))
         except RecorderError as error:
             raise StartupError(f"--record: {error}") from error
+        control.close_when_forced(recorder.close)
 
     # The bag is closed (index and header written) however the run ends.
-    with stop_on_signals(stop), recorder or contextlib.nullcontext():
+    with recorder or contextlib.nullcontext():
         try:
             node = Node(NODE_NAME, list(options.ros_argv))
         except (OSError, Ros1Error) as error:
             reason = f"cannot join or start the ROS master: {error}"
             raise StartupError(reason, EXIT_ROS_FAILED) from error
-        node.on_shutdown(lambda reason: stop.set())
+        # `rosnode kill` stops the loop first; the node shuts down after it, below.
+        node.on_shutdown_request(control.request)
         inbox = Inbox()
         # Messages are built in the newest release; peers of others get them converted.
         bridge = Bridge(node, settings, HANDLERS, inbox, options.protocol)
@@ -180,15 +193,25 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
             inbox,
             options.physics_dt,
             options.rtf,
-            stop,
+            control.stop,
             max_steps,
             held=lambda: context.sync.holds_time,
         )
+        control.running()
         try:
             loop.run()
+            if control.reason is None:
+                finished = max_steps is not None and loop.steps >= max_steps
+                control.request(
+                    f"--duration {options.duration:g} s simulated" if finished else "stop requested"
+                )
         finally:
+            control.stopping()
+            log.info("stopping: %s", control.reason or "the loop failed")
+            # Closed first: whoever still waits on the loop (a service call, a page's
+            # request) gets its answer now, not at its timeout.
+            inbox.close()
             for attachment in attachments:
                 attachment.close()
-            inbox.close()
-            node.shutdown("egosim stopping")
+            node.shutdown(control.reason or "egosim stopping")
     return EXIT_OK
