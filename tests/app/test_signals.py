@@ -90,7 +90,6 @@ def test_a_clean_stop_that_overruns_its_deadline_is_forced(
     with stop_on_signals(threading.Event(), deadline_s=0.2, exit_process=exits) as control:
         closed: list[float] = []
         control.close_when_forced(closed.append)
-        control.running()
         control.request("requested by /test")
         began = time.monotonic()
         assert exits.happened.wait(WAIT_S)
@@ -105,23 +104,10 @@ def test_a_clean_stop_that_overruns_its_deadline_is_forced(
 
 def test_a_clean_stop_done_in_time_is_not_forced(exits: Exits) -> None:
     with stop_on_signals(threading.Event(), deadline_s=0.2, exit_process=exits) as control:
-        control.running()
         control.request("requested by /test")
         control.done()
         time.sleep(0.4)
     assert exits.statuses == []
-
-
-def test_a_stop_asked_for_during_start_up_has_its_deadline_from_the_loop_start(
-    exits: Exits,
-) -> None:
-    with stop_on_signals(threading.Event(), deadline_s=0.3, exit_process=exits) as control:
-        control.request("SIGINT")
-        time.sleep(0.5)  # start-up goes on: no deadline runs yet
-        assert exits.statuses == []
-        control.running()
-        assert exits.happened.wait(WAIT_S)
-    assert exits.statuses == [EXIT_STOP_FORCED]
 
 
 def test_off_the_main_thread_requests_and_the_deadline_still_work(exits: Exits) -> None:
@@ -129,7 +115,6 @@ def test_off_the_main_thread_requests_and_the_deadline_still_work(exits: Exits) 
 
     def run() -> None:
         with stop_on_signals(threading.Event(), deadline_s=0.1, exit_process=exits) as control:
-            control.running()
             control.request("from a thread")
             exits.happened.wait(WAIT_S)
         seen.extend(exits.statuses)

@@ -133,7 +133,6 @@ def record_from_network(
         for topic in topics:
             node.subscribe(topic, ANY_TYPE, _recording_callback(recorder, node.resolve_name(topic)))
         log.info("recording %d topics into %s", len(topics), recorder.recorder.path)
-        control.running()
         if not control.stop.wait(duration):
             control.request(f"--duration {duration:g} s recorded")
         control.stopping()

@@ -130,6 +130,7 @@ def _run(options: RunOptions, attach: Sequence[Attach], control: StopControl) ->
     except (OSError, YamlFileError) as error:
         raise StartupError(f"network settings: {error}") from error
     if control.stop.is_set():  # asked to stop while the map loaded: nothing to undo yet
+        log.info("stopping: %s (during start-up)", control.reason)
         return EXIT_OK
 
     recorder = None
@@ -149,6 +150,8 @@ def _run(options: RunOptions, attach: Sequence[Attach], control: StopControl) ->
             raise StartupError(reason, EXIT_ROS_FAILED) from error
         # `rosnode kill` stops the loop first; the node shuts down after it, below.
         node.on_shutdown_request(control.request)
+        if _stopped_during_startup(control, node):
+            return EXIT_OK
         inbox = Inbox()
         # Messages are built in the newest release; peers of others get them converted.
         bridge = Bridge(node, settings, HANDLERS, inbox, options.protocol)
@@ -171,6 +174,8 @@ def _run(options: RunOptions, attach: Sequence[Attach], control: StopControl) ->
             node.shutdown("startup failed")
             reason = f"cannot register with the ROS master: {error}"
             raise StartupError(reason, EXIT_ROS_FAILED) from error
+        if _stopped_during_startup(control, node):
+            return EXIT_OK
         running = RunningSimulator(
             options, context, inbox, node, startup_scenario(options, world.map.name)
         )
@@ -197,7 +202,6 @@ def _run(options: RunOptions, attach: Sequence[Attach], control: StopControl) ->
             max_steps,
             held=lambda: context.sync.holds_time,
         )
-        control.running()
         try:
             loop.run()
             if control.reason is None:
@@ -215,3 +219,13 @@ def _run(options: RunOptions, attach: Sequence[Attach], control: StopControl) ->
                 attachment.close()
             node.shutdown(control.reason or "egosim stopping")
     return EXIT_OK
+
+
+def _stopped_during_startup(control: StopControl, node: Node) -> bool:
+    """A stop asked for while the run was starting ends it before its next (long) step:
+    registering every row, then building what rides on it. True if it did."""
+    if not control.stop.is_set():
+        return False
+    log.info("stopping: %s (during start-up)", control.reason)
+    node.shutdown(control.reason or "stop requested")
+    return True

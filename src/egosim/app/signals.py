@@ -47,13 +47,13 @@ Closer = Callable[[float], object]
 class StopControl:
     """The stop requests of one run, seen by a watcher thread (see the module docstring).
 
-    The first request (a signal, or `request` from any thread) logs its reason and sets
+    The first request (a signal, or `request` from any thread) keeps its reason and sets
     `stop`. A second signal forces the exit: every closer runs (the bag gets its index),
     then the process exits with 128 + the signal's number. With `deadline_s`, a clean stop
     not `done` that long after it began is forced too, after logging every thread's stack
-    (exit status EXIT_STOP_FORCED). A stop begins when it is asked for while the loop
-    runs, when the loop starts if it was asked for during start-up, or when the loop
-    ends (a --duration run) if nobody asked.
+    (exit status EXIT_STOP_FORCED). A stop begins when it is asked for (during start-up
+    too: the run then stops after the step it is in), or when the loop ends by itself (a
+    --duration run).
     """
 
     def __init__(
@@ -68,7 +68,6 @@ class StopControl:
         self._exit_process = exit_process
         self._closers: list[Closer] = []
         self._lock = threading.Lock()
-        self._running = False
         self._began: float | None = None
         self._signals = 0
         self._done = False
@@ -84,8 +83,7 @@ class StopControl:
         with self._lock:
             if self.reason is None:
                 self.reason = reason
-                if self._running:
-                    self._began = time.monotonic()
+                self._began = time.monotonic()
         self.stop.set()
         self._wake()
 
@@ -93,14 +91,6 @@ class StopControl:
         """Run `closer(seconds)` before a forced exit (registration order)."""
         with self._lock:
             self._closers.append(closer)
-
-    def running(self) -> None:
-        """The loop starts: a stop asked for during start-up begins now."""
-        with self._lock:
-            self._running = True
-            if self.reason is not None:
-                self._began = time.monotonic()
-        self._wake()
 
     def stopping(self) -> None:
         """The loop has ended (stopped, or its duration is over): the stop begins now,
