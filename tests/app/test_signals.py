@@ -43,10 +43,13 @@ def control(exits: Exits) -> Iterator[StopControl]:
         yield control
 
 
-def test_a_signal_asks_for_a_clean_stop(control: StopControl, exits: Exits) -> None:
-    os.kill(os.getpid(), signal.SIGTERM)
+@pytest.mark.parametrize("number", [signal.SIGINT, signal.SIGTERM, signal.SIGHUP])
+def test_a_signal_asks_for_a_clean_stop(
+    control: StopControl, exits: Exits, number: signal.Signals
+) -> None:
+    os.kill(os.getpid(), number)
     assert control.stop.wait(WAIT_S)
-    assert control.reason == "SIGTERM"
+    assert control.reason == number.name
     time.sleep(0.1)
     assert exits.statuses == []
 
@@ -126,7 +129,19 @@ def test_off_the_main_thread_requests_and_the_deadline_still_work(exits: Exits) 
 
 
 def test_the_previous_handlers_come_back(exits: Exits) -> None:
-    before = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
+    numbers = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+    before = [signal.getsignal(n) for n in numbers]
     with stop_on_signals(threading.Event(), exit_process=exits):
         assert signal.getsignal(signal.SIGINT) is not before[0]
-    assert (signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)) == before
+    assert [signal.getsignal(n) for n in numbers] == before
+
+
+def test_nohup_keeps_its_hangup_ignored(exits: Exits) -> None:
+    previous = signal.signal(signal.SIGHUP, signal.SIG_IGN)
+    try:
+        with stop_on_signals(threading.Event(), exit_process=exits) as control:
+            assert signal.getsignal(signal.SIGHUP) is signal.SIG_IGN
+            os.kill(os.getpid(), signal.SIGHUP)
+            assert not control.stop.wait(0.3)
+    finally:
+        signal.signal(signal.SIGHUP, previous)

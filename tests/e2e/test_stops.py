@@ -5,8 +5,12 @@ stop that cannot finish, ends the process within the bound with the bag indexed.
 
 from __future__ import annotations
 
+import os
+import pty
 import random
 import re
+import select
+import shutil
 import signal
 import sys
 import time
@@ -37,6 +41,7 @@ pytestmark = pytest.mark.ros
 
 EVENT = ("/Service_MoraiEventCmd", "morai_msgs/MoraiEventCmdSrv")
 STUCK = Path(__file__).parent / "peers" / "stuck_egosim.py"
+REPO = Path(__file__).parents[2]
 EXIT_STOP_FORCED = 4  # egosim.app.exit_codes, as a shell sees it
 
 
@@ -183,3 +188,54 @@ def _recorder_node(master_uri: str, recorder: RosProcess) -> str:
         )
 
     return until(subscribed, "egosim record to subscribe to /Ego_topic")
+
+
+def test_ctrl_c_in_a_terminal_stops_make_run_cleanly_and_make_reports_130(
+    ros_env: dict[str, str], tmp_path: Path
+) -> None:
+    """The quick start's stop as a user makes it: Ctrl-C typed in the terminal reaches make
+    and egosim alike. egosim stops cleanly with its bag closed; make ends with the
+    interrupt (130 in a shell), as the README says."""
+    require_ros()
+    if shutil.which("make") is None:
+        pytest.skip("make is not installed")
+    bag = tmp_path / "make_run.bag"
+    env = {**ros_env, "ROS_MASTER_URI": f"http://127.0.0.1:{free_port()}/", "ROS_IP": "127.0.0.1"}
+    args = f"--no-view --record {bag}"
+    pid, terminal = pty.fork()
+    if pid == 0:  # the child: make on the terminal's side, as typed in a shell
+        os.chdir(REPO)
+        os.execvpe("make", ["make", "run", f"ARGS={args}"], env)
+    output = _read_until(terminal, b"egosim: ready")
+    since = time.monotonic()
+    os.write(terminal, b"\x03")  # Ctrl-C: the terminal sends SIGINT to its foreground job
+    output += _read_until(terminal, None)
+    _, status = os.waitpid(pid, 0)
+    seconds = time.monotonic() - since
+    os.close(terminal)
+    text = output.decode(errors="replace")
+    assert os.waitstatus_to_exitcode(status) == -signal.SIGINT, text[-3000:]  # 130 in a shell
+    assert seconds <= STOP_BOUND_S
+    assert "stopping: SIGINT" in text
+    assert f"bag {bag} closed" in text
+    assert bag_problem(bag) is None
+
+
+def _read_until(terminal: int, mark: bytes | None, timeout: float = 120.0) -> bytes:
+    """What the terminal shows until `mark` appears (None: until it closes)."""
+    seen = b""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        ready, _, _ = select.select([terminal], [], [], 0.5)
+        if not ready:
+            continue
+        try:
+            chunk = os.read(terminal, 4096)
+        except OSError:  # the other side closed
+            return seen
+        if not chunk:
+            return seen
+        seen += chunk
+        if mark is not None and mark in seen:
+            return seen
+    raise AssertionError(f"the terminal never showed {mark!r}: {seen[-3000:]!r}")

@@ -1,5 +1,5 @@
-"""How a run stops: SIGINT, SIGTERM, `rosnode kill` or the caller ask for a clean stop; a
-second signal, or a clean stop that overruns its deadline, ends the process at once with
+"""How a run stops: SIGINT, SIGTERM, SIGHUP, `rosnode kill` or the caller ask for a clean
+stop; a second signal, or a clean stop that overruns its deadline, ends the process at once with
 the bag closed.
 
 Signals are read by a watcher thread from the interpreter's wakeup file descriptor, and the
@@ -29,7 +29,9 @@ from .exit_codes import EXIT_STOP_FORCED
 
 log = logging.getLogger(__name__)
 
-STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+#: Ctrl-C, `kill`, and the terminal going away (a closed window, a dropped SSH session):
+#: each stops cleanly, so the bag is closed.
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 #: A clean stop not done this long after it began is forced (s): the documented bound on a
 #: stop is 2 s, and the forced exit needs the rest.
 CLEAN_STOP_DEADLINE_S = 1.4
@@ -190,7 +192,7 @@ def stop_on_signals(
     deadline_s: float | None = None,
     exit_process: Callable[[int], object] = os._exit,
 ) -> Iterator[StopControl]:
-    """SIGINT and SIGTERM go to a StopControl while inside (see it); the previous handlers
+    """SIGINT, SIGTERM and SIGHUP go to a StopControl while inside (see it); the previous handlers
     and wakeup descriptor come back after. Off the main thread no signal is handled (Python
     delivers them to the main thread only), but requests and the deadline still work."""
     control = StopControl(stop, deadline_s, exit_process)
@@ -203,7 +205,11 @@ def stop_on_signals(
         return
     previous_fd = signal.set_wakeup_fd(control.wakeup_fd, warn_on_full_buffer=False)
     # The handlers only make the interpreter write the signal's number to the wakeup fd.
-    previous = {number: signal.signal(number, _noted) for number in STOP_SIGNALS}
+    # A SIGHUP ignored from the start stays so: `nohup egosim run` outlives its terminal.
+    numbers = [
+        n for n in STOP_SIGNALS if n != signal.SIGHUP or signal.getsignal(n) != signal.SIG_IGN
+    ]
+    previous = {number: signal.signal(number, _noted) for number in numbers}
     try:
         yield control
     finally:
