@@ -1,14 +1,15 @@
 """How a run stops: SIGINT, SIGTERM, SIGHUP, `rosnode kill` or the caller ask for a clean
-stop; a second signal, or a clean stop that overruns its deadline, ends the process at once with
-the bag closed.
+stop; a second signal, or a clean stop that overruns its deadline, ends the process at once
+with the bag closed.
 
 Signals are read by a watcher thread from the interpreter's wakeup file descriptor, and the
 Python-level handlers do nothing. A handler runs on the main thread, between two of its
 bytecodes: wherever the main thread happens to be (inside a lock, a queue, the stop
-event's own lock, a C call that never returns). A handler that takes a lock there can
-deadlock, and one that needs the main thread to move on waits as long as the main thread
-is stuck. The watcher needs nothing from the main thread, so a stop is seen, and a forced
-exit happens, whatever the main thread is doing.
+event's own lock, a wait that the handler cannot end). A handler that takes a lock there
+can deadlock, and one that needs the main thread to move on waits as long as the main
+thread is stuck. The watcher needs nothing from the main thread, so a stop is seen, and a
+forced exit happens, whatever the main thread is doing (short of a C call that holds the
+interpreter lock all along: then no Python thread runs at all).
 """
 
 from __future__ import annotations
