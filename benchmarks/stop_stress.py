@@ -122,14 +122,17 @@ def stop_once(plan: Plan, root: Path, number: int) -> StopResult:
     allowed = {0, EXIT_STOP_FORCED}
     if plan.stop is StopKind.SECOND_SIGINT:
         allowed.add(128 + signal.SIGINT)
-    if problem is None and status not in allowed:
-        problem = f"exit status {status}"
-    if problem is None and seconds > STOP_BOUND_S:
-        problem = f"took {seconds:.2f} s"
-    if problem is None and (bag.exists() or not plan.during_startup):
-        problem = bag_problem(bag)
-    if problem is None and bag.exists() and number % 10 == 0 and not rosbag_says_indexed(bag):
-        problem = "Debian's rosbag info does not read it as indexed"
+    problems = [problem] if problem else []
+    if status not in allowed:
+        problems.append(f"exit status {status}")
+    if seconds > STOP_BOUND_S:
+        problems.append(f"took {seconds:.2f} s")
+    # A bag is checked whatever else went wrong: a slow stop must still have closed it.
+    if bag.exists() or not plan.during_startup:
+        problems.append(bag_problem(bag) or "")
+    if bag.exists() and number % 10 == 0 and not rosbag_says_indexed(bag):
+        problems.append("Debian's rosbag info does not read it as indexed")
+    problem = "; ".join(p for p in problems if p) or None
     return StopResult(plan, seconds, status, problem, forced)
 
 

@@ -156,14 +156,14 @@ def stop_once(plan: Plan, data_root: Path, network: Path, number: int) -> StopRe
     ended = time.monotonic()
     driver.join(30)
     seconds = max(ended - stopped_at[0], 0.0) if stopped_at else float("inf")
-    problem = failure[0] if failure else None
-    if problem is None and status != EXIT_OK:
-        problem = f"exit status {status}"
-    if problem is None and seconds > STOP_BOUND_S:
-        problem = f"took {seconds:.2f} s"
-    if problem is None and not (plan.during_startup and not bag.exists()):
-        problem = bag_problem(bag)
-    return StopResult(plan, seconds, status, problem)
+    problems = list(failure)
+    if status != EXIT_OK:
+        problems.append(f"exit status {status}")
+    if seconds > STOP_BOUND_S:
+        problems.append(f"took {seconds:.2f} s")
+    if bag.exists() or not plan.during_startup:  # stopped before the bag was opened: none
+        problems.append(bag_problem(bag) or "")
+    return StopResult(plan, seconds, status, "; ".join(p for p in problems if p) or None)
 
 
 @pytest.mark.usefixtures("signals_to_this_test")
