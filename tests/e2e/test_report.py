@@ -149,7 +149,10 @@ def test_a_recording_begun_after_a_collision_holds_none_of_it(
     listened to /CollisionData then) must not find that collision in its first message;
     and while the ego rests against the barrier, the report tells that contact apart."""
     scenario = write(tmp_path, "obstacle.yaml", OBSTACLE_AHEAD)
-    simulator = egosim("--map", "straight", "--scenario", str(scenario), "--no-view")
+    simulator = egosim(
+        "--map", "straight", "--scenario", str(scenario), "--no-view",
+        "--clock", "sim", "--rtf", "4",
+    )  # fmt: skip
     driver = rospy_client(simulator)
     driver.subscribe(*EGO)
     driver.stream(*CTRL, {"longlCmdType": 1, "accel": 0.5}, rate=20)
