@@ -28,7 +28,7 @@ from .inbox import Inbox
 from .loop import SimulationLoop
 from .options import RunOptions
 from .recording import TopicRecorder, open_recorder
-from .signals import stop_on_signals
+from .signals import StopControl, stop_on_signals
 from .summary import ready_summary
 
 log = logging.getLogger("egosim")
@@ -124,27 +124,35 @@ def run(
     *,
     handle_signals: bool = True,
     renderer: Callable[[], CameraRenderer] = open_renderer,
+    stop_deadline_s: float | None = None,
 ) -> int:
     """Run the simulator until stopped; the process exit status.
 
     `attach` builds what rides on the loop (the live view, a batch case's drive) once the
-    simulator is up; setting `stop` ends the run as Ctrl-C does. With `handle_signals`
-    (on the main thread) SIGINT and SIGTERM set `stop` while it runs; a caller that runs
-    one simulation after another in a process handles them itself. `renderer` opens the
-    cameras' engine (a process that runs many simulations opens one and shares it).
+    simulator is up; setting `stop` ends the run as Ctrl-C does. SIGINT, SIGTERM and
+    `rosnode kill` stop it cleanly; a second signal ends the process at once with the bag
+    closed, and so does a clean stop that overruns `stop_deadline_s` (see app/signals.py).
+    Without `handle_signals` no signal is handled: a caller that runs one simulation after
+    another in a process handles them itself. `renderer` opens the cameras' engine (a
+    process that runs many simulations opens one and shares it).
     """
-    try:
-        return _run(options, attach, stop or threading.Event(), handle_signals, renderer)
-    except StartupError as error:
-        print(f"egosim: {error}", file=sys.stderr)
-        return error.exit_code
+    # Signals are handled from the start, before any bag exists: none ends the process
+    # with a bag left open.
+    control_scope = stop_on_signals(
+        stop or threading.Event(), stop_deadline_s, signals=handle_signals
+    )
+    with control_scope as control:
+        try:
+            return _run(options, attach, control, renderer)
+        except StartupError as error:
+            print(f"egosim: {error}", file=sys.stderr)
+            return error.exit_code
 
 
 def _run(
     options: RunOptions,
     attach: Sequence[Attach],
-    stop: threading.Event,
-    handle_signals: bool,
+    control: StopControl,
     renderer: Callable[[], CameraRenderer],
 ) -> int:
     world = build_world(options)
@@ -154,6 +162,9 @@ def _run(
         )
     except (OSError, YamlFileError) as error:
         raise StartupError(f"network settings: {error}") from error
+    if control.stop.is_set():  # asked to stop while the map loaded: nothing to undo yet
+        log.info("stopping: %s (during start-up)", control.reason)
+        return EXIT_OK
 
     recorder = None
     if options.record is not None:
@@ -161,16 +172,19 @@ def _run(
             recorder = TopicRecorder(open_recorder(options.record))
         except RecorderError as error:
             raise StartupError(f"--record: {error}") from error
+        control.close_when_forced(recorder.close)
 
     # The bag is closed (index and header written) however the run ends.
-    signals = stop_on_signals(stop) if handle_signals else contextlib.nullcontext()
-    with signals, recorder or contextlib.nullcontext():
+    with recorder or contextlib.nullcontext():
         try:
             node = Node(NODE_NAME, list(options.ros_argv))
         except (OSError, Ros1Error) as error:
             reason = f"cannot join or start the ROS master: {error}"
             raise StartupError(reason, EXIT_ROS_FAILED) from error
-        node.on_shutdown(lambda reason: stop.set())
+        # `rosnode kill` stops the loop first; the node shuts down after it, below.
+        node.on_shutdown_request(control.request)
+        if _stopped_during_startup(control, node):
+            return EXIT_OK
         inbox = Inbox()
         # Messages are built in the newest release; peers of others get them converted.
         bridge = Bridge(node, settings, HANDLERS, inbox, options.protocol)
@@ -195,6 +209,8 @@ def _run(
             node.shutdown("startup failed")
             reason = f"cannot register with the ROS master: {error}"
             raise StartupError(reason, EXIT_ROS_FAILED) from error
+        if _stopped_during_startup(control, node):
+            return EXIT_OK
         context.ego_session(world.egos[0]).set_ctrl_mode(options.ctrl_mode, by="--ctrl-mode")
         running = RunningSimulator(
             options, context, inbox, node, startup_scenario(options, world.map.name)
@@ -218,17 +234,40 @@ def _run(
             inbox,
             options.physics_dt,
             options.rtf,
-            stop,
+            control.stop,
             max_steps,
             held=lambda: context.sync.holds_time,
             done=None if options.keep_running else lambda: _scenario_ended(world),
         )
         try:
             loop.run()
+            if control.reason is None:
+                finished = max_steps is not None and loop.steps >= max_steps
+                if finished:
+                    reason = f"--duration {options.duration:g} s simulated"
+                elif _scenario_ended(world):
+                    reason = "the scenario ended"
+                else:
+                    reason = "stop requested"
+                control.request(reason)
             _report_scenario_end(world)
         finally:
+            control.stopping()
+            log.info("stopping: %s", control.reason or "the loop failed")
+            # Closed first: whoever still waits on the loop (a service call, a page's
+            # request) gets its answer now, not at its timeout.
+            inbox.close()
             for attachment in attachments:
                 attachment.close()
-            inbox.close()
-            node.shutdown("egosim stopping")
+            node.shutdown(control.reason or "egosim stopping")
     return EXIT_OK
+
+
+def _stopped_during_startup(control: StopControl, node: Node) -> bool:
+    """A stop asked for while the run was starting ends it before its next (long) step:
+    registering every row, then building what rides on it. True if it did."""
+    if not control.stop.is_set():
+        return False
+    log.info("stopping: %s (during start-up)", control.reason)
+    node.shutdown(control.reason or "stop requested")
+    return True

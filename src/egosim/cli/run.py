@@ -10,6 +10,7 @@ from pathlib import Path
 
 from ..app.options import ClockMode, RunOptions
 from ..app.runner import run as run_simulator
+from ..app.signals import CLEAN_STOP_DEADLINE_S, exit_now
 from ..bridge.codes import ControlMode
 from ..msgs import DEFAULT_PROFILE, PROFILES
 from ..view import DEFAULT_HOST, DEFAULT_PORT, ViewOptions, live_view
@@ -181,4 +182,4 @@ def run(args: argparse.Namespace) -> int:
     attach = []
     if not args.no_view:
         attach.append(live_view(ViewOptions(args.view_host, args.view_port, args.view_readonly)))
-    return run_simulator(options, attach)
+    exit_now(run_simulator(options, attach, stop_deadline_s=CLEAN_STOP_DEADLINE_S))
