@@ -309,6 +309,27 @@ class TrafficSignalStateAction:
 
 
 @dataclass(frozen=True)
+class SignalPhaseAction:
+    """TrafficSignalControllerAction: the controller's phase starts now."""
+
+    node: Node
+    controller: str
+    phase: str
+
+    def start(self, rt: Runtime, actors: Sequence[str]) -> Done:
+        controller = rt.signal_controllers.get(self.controller)
+        if controller is None:
+            rt.note_once(self.node.note(f"not applied: no controller {self.controller!r}"))
+            return Done()
+        names = [phase.name for phase in controller.phases]
+        if self.phase not in names:
+            rt.note_once(self.node.note(f"not applied: {self.controller!r} has no phase {self.phase!r}"))
+            return Done()
+        controller.jump_to(names.index(self.phase), rt.time)
+        return Done()
+
+
+@dataclass(frozen=True)
 class SpeedInInit:
     """An Init SpeedAction on an ego its stack drives: the ego starts at that speed."""
 

@@ -18,13 +18,16 @@ import numpy as np
 
 from egosim.world.collision import Footprints, touching_pairs
 from egosim.world.openscenario.conditions import Trigger
+from egosim.world.openscenario.ego_model import UnusableFiguresError, scenario_ego_model
 from egosim.world.openscenario.entities import EntityDefinition, EntityKind, EntityState
 from egosim.world.openscenario.motion import move_all
 from egosim.world.openscenario.runtime import Runtime
+from egosim.world.openscenario.signal_controllers import SignalController
 from egosim.world.openscenario.storyboard import COMPLETE, Storyboard
 from egosim.world.scenario.model import Outcome
 from egosim.world.traffic.scripted import ScriptedObject
 from egosim.world.vehicle import ControlCommand, LongitudinalMode, Pose, Vehicle
+from egosim.world.vehicle.catalogue import VehicleModel
 
 if TYPE_CHECKING:
     from egosim.world.world import World
@@ -56,6 +59,7 @@ class ScenarioRun:
         world: World,
         storyboard: Storyboard,
         evaluation: Evaluation,
+        signal_controllers: dict[str, SignalController],
         definitions: list[EntityDefinition],
         ego: str | None,
         parameters: dict[str, object],
@@ -69,15 +73,19 @@ class ScenarioRun:
         self.evaluation = evaluation
         self.verdict: str | None = None
         entities: dict[str, EntityState] = {}
+        notes: list[str] = []
         for definition in definitions:
             if definition.name == ego:
                 entities[definition.name] = EntityState(
-                    self._ego_definition(definition), is_ego=True
+                    self._ego_definition(definition, load_ego, notes), is_ego=True
                 )
             elif definition.kind.value in kinds:
                 entities[definition.name] = EntityState(definition)
         self.rt = Runtime(world, entities, dict(parameters), dict(variables), ego)  # type: ignore[arg-type]
         self.rt.ego_driven = drives_ego
+        self.rt.signal_controllers = signal_controllers
+        for note in notes:
+            self.rt.note_once(note)
         self.load_ego = load_ego
         others = [e for e in entities.values() if not e.is_ego]
         self._ids = dict(zip((e.name for e in others), world.reserve_ids(len(others)), strict=True))
@@ -87,6 +95,7 @@ class ScenarioRun:
         if ego is not None and ego in entities:
             self._read_ego(entities[ego])
             entities[ego].placed = True
+        self._run_signal_controllers()
         storyboard.begin(self.rt)
         storyboard.settle(self.rt)
         for entity in entities.values():
@@ -97,9 +106,25 @@ class ScenarioRun:
                 )
         self._publish(initial=True)
 
-    def _ego_definition(self, definition: EntityDefinition) -> EntityDefinition:
-        """The ego keeps its egosim model (the one its stack drives): that model's box."""
-        model = self.world.egos[0].vehicle.model
+    def _ego_definition(
+        self, definition: EntityDefinition, load_ego: bool, notes: list[str]
+    ) -> EntityDefinition:
+        """The ego becomes the scenario's car (scenario_ego_model) when the scenario
+        places it and its model is a car; its box is then the scenario's."""
+        main = self.world.egos[0]
+        base = main.catalogue_model
+        model = main.vehicle.model
+        if load_ego and isinstance(base, VehicleModel):
+            model = base
+            if definition.kind is EntityKind.VEHICLE:
+                try:
+                    model = scenario_ego_model(definition, base)
+                except UnusableFiguresError as error:
+                    notes.append(
+                        f"the ego {definition.name!r} keeps the figures of {base.name}: "
+                        f"the scenario's {error}"
+                    )
+            main.use_model(model, self.world.command_timeout_s)
         return EntityDefinition(
             definition.name,
             EntityKind.VEHICLE,
@@ -150,6 +175,7 @@ class ScenarioRun:
         if ego is not None and not ego_driven:
             self._read_ego(ego)
         self._observe(dt)
+        self._run_signal_controllers()
         self.storyboard.decide(rt)
         if self.verdict is None:
             self.verdict = self.evaluation.decide(rt)
@@ -160,6 +186,22 @@ class ScenarioRun:
         rt.tick += 1
         self._publish()
         return self._drain()
+
+    def _run_signal_controllers(self) -> None:
+        """Each controller's phase now; a phase it enters sets its lights."""
+        rt = self.rt
+        for controller in rt.signal_controllers.values():
+            if not controller.phases:
+                continue
+            phase, _ = controller.phase_at(rt.time)
+            if phase == controller.current:
+                continue
+            controller.current = phase
+            for light, aspect in controller.phases[phase].states:
+                try:
+                    rt.world.signals.set_light(light, aspect)
+                except (KeyError, ValueError) as error:
+                    rt.note_once(controller.node.note(f"phase {controller.phase_name!r}: {error}"))
 
     def _drain(self) -> list[str]:
         notes, self.rt.notes = self.rt.notes, []

@@ -15,6 +15,7 @@ from egosim.world.openscenario.actions import (
     NoteAction,
     SpeedInInit,
     TeleportAction,
+    SignalPhaseAction,
     TrafficSignalStateAction,
     ValueAction,
     VisibilityAction,
@@ -472,6 +473,10 @@ def global_action(element: Element, catalogs: CatalogResolver) -> Action:
             if aspect is None:
                 raise UnsupportedElementError(signal.node, f"state {state!r} is unknown")
             return TrafficSignalStateAction(signal.node, signal.text("name"), aspect)
+        if signal is not None and signal.tag == "TrafficSignalControllerAction":
+            return SignalPhaseAction(
+                signal.node, signal.text("trafficSignalControllerRef"), signal.text("phase")
+            )
         raise UnsupportedElementError(
             signal.node if signal is not None else choice.node, "is not carried out by egosim"
         )

@@ -291,7 +291,20 @@ def _by_value(element: Element) -> Check:
         if wanted is None:
             raise UnsupportedElementError(choice.node, f"state {choice.text('state')!r} is unknown")
         return _light_check(light, wanted)
+    if tag == "TrafficSignalControllerCondition":
+        return _phase_check(choice.text("trafficSignalControllerRef"), choice.text("phase"))
     raise UnsupportedElementError(choice.node, "is not evaluated by egosim")
+
+
+def _phase_check(name: str, phase: str) -> Callable[[Runtime], bool]:
+    def check(rt: Runtime) -> bool:
+        controller = rt.signal_controllers.get(name)
+        if controller is None:
+            rt.note_once(f"TrafficSignalControllerCondition: no controller {name!r}")
+            return False
+        return controller.phase_name == phase
+
+    return check
 
 
 def _light_check(light: str, wanted: int) -> Callable[[Runtime], bool]:

@@ -12,6 +12,7 @@ from egosim.world.map.lane_roads import road_coordinates_of
 from egosim.world.map.road_coordinates import RoadCoordinates
 from egosim.world.openscenario.entities import EntityState
 from egosim.world.openscenario.expressions import Value
+from egosim.world.openscenario.signal_controllers import SignalController
 
 if TYPE_CHECKING:
     from egosim.world.world import World
@@ -41,6 +42,8 @@ class Runtime:
     action."""
     notes: list[str] = field(default_factory=list)
     """Lines to report (each once), oldest first; the caller empties it."""
+    signal_controllers: dict[str, SignalController] = field(default_factory=dict)
+    """RoadNetwork's TrafficSignalControllers, by name."""
     ego_driven: bool = False
     """The scenario drives the ego this step (its control mode is auto)."""
     _noted: set[str] = field(default_factory=set)
