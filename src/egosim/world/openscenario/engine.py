@@ -72,6 +72,9 @@ class ScenarioRun:
         self.storyboard = storyboard
         self.evaluation = evaluation
         self.verdict: str | None = None
+        self._ended_at: float | None = None
+        """Scenario time the storyboard ended (its stop trigger or a verdict fired, or its
+        stories all completed)."""
         entities: dict[str, EntityState] = {}
         notes: list[str] = []
         for definition in definitions:
@@ -155,7 +158,7 @@ class ScenarioRun:
             state = "stopped"
         else:
             state = "running"
-        return Outcome(state, self.rt.time, self.verdict)
+        return Outcome(state, self.rt.time if self._ended_at is None else self._ended_at, self.verdict)
 
     def entity_ids(self) -> dict[str, int]:
         """The egosim object id of each entity (the ego's is the main ego's)."""
@@ -179,11 +182,18 @@ class ScenarioRun:
         self.storyboard.decide(rt)
         if self.verdict is None:
             self.verdict = self.evaluation.decide(rt)
+        if self.finished:
+            # A stop trigger or a verdict ends the scenario at the time it fired.
+            self._ended_at = rt.time
         movers = [e for e in rt.entities.values() if e.in_world() and rt.scenario_drives(e)]
         move_all(rt, movers, dt)
         self.storyboard.settle(rt)
-        rt.time += dt
+        # Rounded to the nanosecond: summing steps of 0.01 s drifts (300 of them make
+        # 2.99999999999998), which would move a condition on time by a whole step.
+        rt.time = round(rt.time + dt, 9)
         rt.tick += 1
+        if self.finished and self._ended_at is None:
+            self._ended_at = rt.time
         self._publish()
         return self._drain()
 
