@@ -51,6 +51,10 @@ class SpeedRun(MotionRun):
     def begin(self, rt: Runtime, entity: EntityState) -> None:
         super().begin(rt, entity)
         self.start_speed = entity.speed
+        if self.target.entity == entity.name:
+            # Relative to itself: to its speed of now plus the delta (a target that
+            # moved with its own speed could never be reached).
+            self.target = SpeedTarget(self.target.speed(rt))
         change = self.target.speed(rt) - self.start_speed
         if self.shape == "step":
             self.duration = 0.0
@@ -186,8 +190,14 @@ Distance = Callable[[Runtime, EntityState], float | None]
 class SynchronizeRun(MotionRun):
     """SynchronizeAction: the entity reaches its target when the master reaches the
     master's, at the final speed if one is given (held over the steady-state distance or
-    time before the target); the speed is planned afresh every step as the constant
-    acceleration that meets both."""
+    time before the target).
+
+    The speed stays continuous: every step it follows the one speed profile that starts
+    at the speed it has, covers the distance to go in the master's time to go and ends
+    at the final speed, v(t) = v0 + (vf - v0) t/T + k t (T - t) with
+    k = 6 (D - (v0 + vf) T / 2) / T³ (its acceleration changes linearly). Without a
+    final speed it ends at the mean speed D/T. It is planned afresh each step, so it
+    follows a master that changes speed."""
 
     longitudinal = True
 
@@ -225,7 +235,7 @@ class SynchronizeRun(MotionRun):
             return entity.speed if self.final_speed is None else 0.0
         time_left = to_master_target / master.speed
         if self.final_speed is None:
-            return to_target / time_left
+            return _continuous_profile(entity.speed, to_target / time_left, to_target, time_left, dt)
         final = self.final_speed(rt)
         steady = self.steady_distance
         if self.steady_time > 0.0:
@@ -234,5 +244,13 @@ class SynchronizeRun(MotionRun):
         time = time_left - (steady / final if final > 0 else 0.0)
         if distance <= 0.0 or time <= dt:
             return final
-        # Constant acceleration from now to (distance, time) ending at `final`.
-        return max(2.0 * distance / time - final, 0.0)
+        return _continuous_profile(entity.speed, final, distance, time, dt)
+
+
+def _continuous_profile(v0: float, vf: float, distance: float, time: float, dt: float) -> float:
+    """The speed dt s into the profile from v0 to vf that covers `distance` in `time`
+    (never below standstill)."""
+    if time <= dt:
+        return vf
+    k = 6.0 * (distance - (v0 + vf) * time / 2.0) / time**3
+    return max(v0 + (vf - v0) * dt / time + k * dt * (time - dt), 0.0)

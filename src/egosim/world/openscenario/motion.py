@@ -65,8 +65,11 @@ class MotionRun:
 
 def move_all(rt: Runtime, entities: list[EntityState], dt: float) -> None:
     """Advance scenario-driven entities by dt s; those following lanes are placed on
-    them together (one lane-map lookup for all)."""
-    on_lanes = [entity for entity in entities if move(rt, entity, dt)]
+    them together (one lane-map lookup for all). Every speed is worked out before anyone
+    moves, so each action reads the others as they were at the step's start (a
+    synchronised entity does not see its master a step ahead)."""
+    speeds = [_speed_after(rt, entity, dt) for entity in entities]
+    on_lanes = [entity for entity, v1 in zip(entities, speeds, strict=True) if move(rt, entity, dt, v1)]
     if not on_lanes:
         return
     poses = rt.lane_map.poses_at([e.lane for e in on_lanes], [e.station for e in on_lanes])
@@ -80,14 +83,19 @@ def move_all(rt: Runtime, entities: list[EntityState], dt: float) -> None:
         entity.odometer += math.hypot(entity.x - x0, entity.y - y0)
 
 
-def move(rt: Runtime, entity: EntityState, dt: float) -> bool:
-    """Advance a scenario-driven entity by dt s; True when it moved along its lane and
-    still needs its pose from there (move_all gives it)."""
-    definition = entity.definition
-    v0 = entity.speed
+def _speed_after(rt: Runtime, entity: EntityState, dt: float) -> float:
+    """The speed its longitudinal action gives it at the end of this step, within its
+    top speed."""
     longitudinal = entity.longitudinal
-    v1 = longitudinal.speed(rt, entity, dt) if isinstance(longitudinal, MotionRun) else v0
-    v1 = min(max(v1, -definition.max_speed), definition.max_speed)
+    v1 = longitudinal.speed(rt, entity, dt) if isinstance(longitudinal, MotionRun) else entity.speed
+    top = entity.definition.max_speed
+    return min(max(v1, -top), top)
+
+
+def move(rt: Runtime, entity: EntityState, dt: float, v1: float) -> bool:
+    """Advance a scenario-driven entity by dt s to speed v1 at the step's end; True when
+    it moved along its lane and still needs its pose from there (move_all gives it)."""
+    v0 = entity.speed
     ds = 0.5 * (v0 + v1) * dt
     entity.acceleration = (v1 - v0) / dt
     entity.speed = v1
