@@ -186,3 +186,54 @@ def test_triggers_fire_at_the_gaps_they_state_between_boxes_or_reference_points(
         # A strict rule first holds on the step after the exact crossing time (ties at
         # the threshold fall either side by rounding: one step).
         assert starts[name] == pytest.approx(at + DT, abs=DT + 1e-9), name
+
+
+def test_a_car_turned_round_onto_the_oncoming_lane_follows_that_lane_and_its_gaps() -> None:
+    # Euro NCAP's CCFhol: the target is placed on lane -1 offset 3.5 m (onto lane 1, the
+    # westbound lane's centre) facing west; a car keeps 19.4 m of free space ahead of it.
+    keep = """<PrivateAction><LongitudinalAction><LongitudinalDistanceAction entityRef="Target"
+      distance="19.4" freespace="true" continuous="true" displacement="leadingReferencedEntity"
+      coordinateSystem="road"/></LongitudinalAction></PrivateAction>"""
+    turned = (
+        '<LanePosition roadId="1" laneId="-1" s="500" offset="3.5">'
+        '<Orientation h="3.14159265"/></LanePosition>'
+    )
+    text = scenario(
+        vehicle("Ego")
+        + vehicle("Target", length=4.0, centre_x=1.3)
+        + vehicle("Leader", length=4.4, centre_x=1.4),
+        teleport("Ego", lane(10))
+        + teleport("Target", turned)
+        + init_speed("Target", 15.0)
+        + teleport("Leader", '<RelativeObjectPosition entityRef="Target" dx="10" dy="0"/>')
+        + f'<Private entityRef="Leader">{keep}</Private>',
+    )
+    world, run = start_world(text)
+    step(world, run, 2.0)
+    target, leader = run.rt.entity("Target"), run.rt.entity("Leader")
+    assert target.x == pytest.approx(500.0 - 30.0, abs=1e-6)
+    assert target.y == pytest.approx(1.75, abs=1e-6)
+    # Both face west: the target's front is at x - (1.3 + 2), the leader's rear at
+    # x + (2.2 - 1.4).
+    assert (target.x - 3.3) - (leader.x + 0.8) == pytest.approx(19.4, abs=1e-6)
+
+
+def test_a_master_reversing_to_its_target_synchronises_the_other() -> None:
+    # Euro NCAP's CPRA: the ego reverses at 1 m/s from s = 100 to its target at s = 90
+    # (10 s); a walker standing 15 m before its crossing point must get there then.
+    sync = """<PrivateAction><SynchronizeAction masterEntityRef="Ego">
+      <TargetPositionMaster><WorldPosition x="90" y="-1.75"/></TargetPositionMaster>
+      <TargetPosition><WorldPosition x="60" y="-1.75"/></TargetPosition>
+    </SynchronizeAction></PrivateAction>"""
+    text = scenario(
+        vehicle("Ego") + vehicle("Walker", length=0.5, centre_x=0.0),
+        teleport("Ego", lane(100))
+        + init_speed("Ego", -1.0)
+        + teleport("Walker", '<WorldPosition x="45" y="-1.75" h="0"/>'),
+        story("Walker", event("E", sync)),
+    )
+    world, run = start_world(text)
+    walker = run.rt.entity("Walker")
+    step(world, run, 10.0)
+    assert run.rt.entity("Ego").x == pytest.approx(90.0, abs=1e-6)
+    assert walker.x == pytest.approx(60.0, abs=0.05)

@@ -228,12 +228,17 @@ class SynchronizeRun(MotionRun):
         to_target = self.own_distance(rt, entity)
         if to_master_target is None or to_target is None:
             return entity.speed
-        if to_master_target <= self.master_tolerance or to_target <= self.tolerance:
+        # A master reversing to its target (Euro NCAP's CPRA) closes in as fast.
+        master_speed = abs(master.speed)
+        # Done in the step the master gets there (the action ends as it arrives).
+        if to_master_target - master_speed * dt <= self.master_tolerance or (
+            to_target <= self.tolerance
+        ):
             self.done = True
             return self.final_speed(rt) if self.final_speed is not None else entity.speed
-        if master.speed <= SPEED_REACHED_MPS:
+        if master_speed <= SPEED_REACHED_MPS:
             return entity.speed if self.final_speed is None else 0.0
-        time_left = to_master_target / master.speed
+        time_left = to_master_target / master_speed
         if self.final_speed is None:
             return _continuous_profile(entity.speed, to_target / time_left, to_target, time_left, dt)
         final = self.final_speed(rt)

@@ -350,9 +350,9 @@ def _controller(element: Element, catalogs: CatalogResolver) -> Action:
 
 
 def _path_distance(target: Position) -> Callable[[Runtime, EntityState], float | None]:
-    """Distance from an entity to a target position along the way it goes: along its
-    trajectory (for a TrajectoryPosition of the one it follows), along its lanes, else
-    straight ahead."""
+    """Distance from an entity to a target position along the way it goes (backwards when
+    it reverses): along its trajectory (for a TrajectoryPosition of the one it follows),
+    along its lanes, else straight ahead."""
     cached: dict[str, SampledPath] = {}
 
     def distance(rt: Runtime, entity: EntityState) -> float | None:
@@ -371,6 +371,8 @@ def _path_distance(target: Position) -> Callable[[Runtime, EntityState], float |
             if here is None or getattr(following, "trajectory", None) is not target.trajectory:
                 here = path.project(entity.x, entity.y)
             return target.s - float(here)
+        # An entity reversing goes the other way: its target lies behind it.
+        way = -1.0 if entity.speed < 0.0 else 1.0
         if entity.lane >= 0 and following is None:
             goal = placement.lane or attach(rt, placement)
             if goal is not None:
@@ -378,9 +380,9 @@ def _path_distance(target: Position) -> Callable[[Runtime, EntityState], float |
                     rt.lane_map, entity.lane, entity.station, goal.lane_index, goal.station
                 )
                 if along is not None:
-                    return along
+                    return way * along
         dx, dy = placement.x - entity.x, placement.y - entity.y
-        return dx * math.cos(entity.heading) + dy * math.sin(entity.heading)
+        return way * (dx * math.cos(entity.heading) + dy * math.sin(entity.heading))
 
     return distance
 
