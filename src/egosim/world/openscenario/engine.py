@@ -26,7 +26,7 @@ from egosim.world.openscenario.signal_controllers import SignalController
 from egosim.world.openscenario.storyboard import COMPLETE, Storyboard
 from egosim.world.scenario.model import Outcome
 from egosim.world.traffic.scripted import ScriptedObject
-from egosim.world.vehicle import ControlCommand, LongitudinalMode, Pose, Vehicle
+from egosim.world.vehicle import Pose, Vehicle
 from egosim.world.vehicle.catalogue import VehicleModel
 
 if TYPE_CHECKING:
@@ -331,5 +331,6 @@ class ScenarioRun:
         pose = Pose(x=ego.x, y=ego.y, z=ego.z, yaw=ego.heading)
         main.vehicle.teleport(pose, ego.speed)
         if (initial or driven) and isinstance(main.vehicle, Vehicle):
-            # The ego holds the speed it was given until its stack (or auto mode) commands.
-            main.vehicle.command(ControlCommand(mode=LongitudinalMode.VELOCITY, velocity=ego.speed))
+            # The ego holds the speed it was given until its stack commands it (with no
+            # dead-man timeout before then: the stack has not spoken yet).
+            main.vehicle.hold_speed(ego.speed)
