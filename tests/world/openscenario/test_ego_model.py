@@ -6,12 +6,6 @@ from __future__ import annotations
 import math
 
 import pytest
-from egosim.scenario_files import openscenario_scenario
-from egosim.world.openscenario import read_openscenario
-from egosim.world.openscenario.ego_model import UnusableFiguresError, scenario_ego_model
-from egosim.world.openscenario.entities import EntityDefinition, EntityKind, VehicleFigures
-from egosim.world.vehicle import ControlCommand, LongitudinalMode
-from egosim.world.vehicle.catalogue import DEFAULT_EGO_MODEL, vehicle_model
 from tests.world.openscenario.stories import (
     DT,
     init_speed,
@@ -22,6 +16,13 @@ from tests.world.openscenario.stories import (
     teleport,
     vehicle,
 )
+
+from egosim.scenario_files import openscenario_scenario
+from egosim.world.openscenario import read_openscenario
+from egosim.world.openscenario.ego_model import UnusableFiguresError, scenario_ego_model
+from egosim.world.openscenario.entities import EntityDefinition, EntityKind, VehicleFigures
+from egosim.world.vehicle import ControlCommand, LongitudinalMode
+from egosim.world.vehicle.catalogue import DEFAULT_EGO_MODEL, vehicle_model
 
 # A car of Euro NCAP's catalogue size: 4.358 m long, its box centre 1.349 m ahead of
 # the rear axle, so its front is 1.349 + 2.179 = 3.528 m ahead of the reference point.
@@ -108,8 +109,6 @@ def test_figures_that_make_no_car_are_refused() -> None:
     box = EntityDefinition("Ego", EntityKind.VEHICLE, "tiny", "car", 2.0, 1.5, 1.4, (1.0, 0, 0.7))
     too_long = VehicleFigures(3.5, 0.0, 0.6, 1.4, 0.5)
     with pytest.raises(UnusableFiguresError, match="do not fit"):
-        scenario_ego_model(
-            EntityDefinition(**{**box.__dict__, "figures": too_long}), base
-        )
+        scenario_ego_model(EntityDefinition(**{**box.__dict__, "figures": too_long}), base)
     with pytest.raises(UnusableFiguresError, match="bounding box"):
         scenario_ego_model(EntityDefinition(**{**box.__dict__, "length": math.nan}), base)

@@ -9,14 +9,15 @@ import re
 from functools import cache
 from pathlib import Path
 
-from egosim.scenario_files import openscenario_scenario
-from egosim.world import World
-from egosim.world.openscenario import read_openscenario
-from egosim.world.scenario import ScenarioError, ScenarioLoadOptions
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from lxml import etree
 from tests.world.openscenario.stories import highway
+
+from egosim.scenario_files import openscenario_scenario
+from egosim.world import World
+from egosim.world.openscenario import read_openscenario
+from egosim.world.scenario import ScenarioError, ScenarioLoadOptions
 
 GALLERY = Path(__file__).parents[3] / "examples" / "openscenario"
 FILES = ("cut_in.xosc", "braking_target.xosc", "pedestrian_crossing.xosc")
@@ -52,9 +53,7 @@ ODD_VALUES = (
 )
 ATTRIBUTE = re.compile(r'(\w+)="([^"]*)"')
 ERROR_LINE = re.compile(r"^\S+\.xosc(:\d+)?: \S")
-CHECKED = settings(
-    max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow]
-)
+CHECKED = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 
 @cache
@@ -93,7 +92,9 @@ def read_load_and_run(text: str | bytes, label: str = "fuzzed.xosc") -> None:
 @CHECKED
 @given(
     st.sampled_from(FILES),
-    st.lists(st.tuples(st.integers(0, 10_000), st.sampled_from(ODD_VALUES)), min_size=1, max_size=3),
+    st.lists(
+        st.tuples(st.integers(0, 10_000), st.sampled_from(ODD_VALUES)), min_size=1, max_size=3
+    ),
 )
 def test_odd_attribute_values_are_read_or_refused_with_the_line(
     name: str, changes: list[tuple[int, str]]

@@ -5,8 +5,17 @@ runs from that command on, not before the stack has spoken."""
 from __future__ import annotations
 
 import pytest
+from tests.world.openscenario.stories import (
+    init_speed,
+    lane,
+    scenario,
+    start_world,
+    step,
+    teleport,
+    vehicle,
+)
+
 from egosim.world.vehicle import ControlCommand, Gear, LongitudinalMode
-from tests.world.openscenario.stories import init_speed, lane, scenario, start_world, step, teleport, vehicle
 
 
 def stack_driven(speed: float, timeout: float | None):  # type: ignore[no-untyped-def]

@@ -7,9 +7,6 @@ from __future__ import annotations
 from functools import cache
 from pathlib import Path
 
-from egosim.maps import load_map
-from egosim.world.map import LaneMap
-from egosim.world.signals.aspects import GREEN, RED, YELLOW
 from tests.world.openscenario.stories import (
     event,
     scenario,
@@ -22,6 +19,10 @@ from tests.world.openscenario.stories import (
     time_is,
     vehicle,
 )
+
+from egosim.maps import load_map
+from egosim.world.map import LaneMap
+from egosim.world.signals.aspects import GREEN, RED, YELLOW
 
 JUNCTION = Path(__file__).parents[2] / "data" / "maps" / "junction.xodr"
 PHASES = """<Phase name="go" duration="10">

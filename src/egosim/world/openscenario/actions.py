@@ -323,7 +323,9 @@ class SignalPhaseAction:
             return Done()
         names = [phase.name for phase in controller.phases]
         if self.phase not in names:
-            rt.note_once(self.node.note(f"not applied: {self.controller!r} has no phase {self.phase!r}"))
+            rt.note_once(
+                self.node.note(f"not applied: {self.controller!r} has no phase {self.phase!r}")
+            )
             return Done()
         controller.jump_to(names.index(self.phase), rt.time)
         return Done()

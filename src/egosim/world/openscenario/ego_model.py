@@ -7,15 +7,14 @@ base model's figure; what it cannot state (tyre stiffness, inertia, drag) is the
 model's, scaled with the mass and the frontal area so that the car handles like the
 base one.
 
-| from the file | becomes |
-| --- | --- |
-| BoundingBox length, width, height; Center x | the body; the rear overhang is the box's reach behind the rear axle |
-| Axles FrontAxle.positionX - RearAxle.positionX | the wheelbase; the front overhang is the box's reach past the front axle |
-| FrontAxle trackWidth, wheelDiameter, maxSteering | track width, wheel radius, largest front wheel angle |
-| Performance maxSpeed | the governed top speed |
-| Performance maxDeceleration | the full-brake deceleration |
-| Performance maxAcceleration | the drive torque that gives it at the wheels |
-| Vehicle mass (1.1+) | the mass (none: the base model's) |
+- BoundingBox length, width, height and Center x: the body; the rear overhang is the
+  box's reach behind the rear axle.
+- Axles, FrontAxle.positionX - RearAxle.positionX: the wheelbase; the front overhang is
+  the box's reach past the front axle. FrontAxle trackWidth, wheelDiameter and
+  maxSteering: the track, the wheel radius and the largest front wheel angle.
+- Performance maxSpeed: the governed top speed; maxDeceleration: the full-brake
+  deceleration; maxAcceleration: the drive torque that gives it at the wheels.
+- Vehicle mass (1.1+): the mass (none: the base model's).
 """
 
 from __future__ import annotations

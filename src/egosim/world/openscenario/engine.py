@@ -158,7 +158,9 @@ class ScenarioRun:
             state = "stopped"
         else:
             state = "running"
-        return Outcome(state, self.rt.time if self._ended_at is None else self._ended_at, self.verdict)
+        return Outcome(
+            state, self.rt.time if self._ended_at is None else self._ended_at, self.verdict
+        )
 
     def entity_ids(self) -> dict[str, int]:
         """The egosim object id of each entity (the ego's is the main ego's)."""

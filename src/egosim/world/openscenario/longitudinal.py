@@ -240,7 +240,9 @@ class SynchronizeRun(MotionRun):
             return entity.speed if self.final_speed is None else 0.0
         time_left = to_master_target / master_speed
         if self.final_speed is None:
-            return _continuous_profile(entity.speed, to_target / time_left, to_target, time_left, dt)
+            return _continuous_profile(
+                entity.speed, to_target / time_left, to_target, time_left, dt
+            )
         final = self.final_speed(rt)
         steady = self.steady_distance
         if self.steady_time > 0.0:

@@ -69,7 +69,9 @@ def move_all(rt: Runtime, entities: list[EntityState], dt: float) -> None:
     moves, so each action reads the others as they were at the step's start (a
     synchronised entity does not see its master a step ahead)."""
     speeds = [_speed_after(rt, entity, dt) for entity in entities]
-    on_lanes = [entity for entity, v1 in zip(entities, speeds, strict=True) if move(rt, entity, dt, v1)]
+    on_lanes = [
+        entity for entity, v1 in zip(entities, speeds, strict=True) if move(rt, entity, dt, v1)
+    ]
     if not on_lanes:
         return
     poses = rt.lane_map.poses_at([e.lane for e in on_lanes], [e.station for e in on_lanes])
