@@ -26,7 +26,7 @@ from egosim.world.openscenario.positions import (
     place,
 )
 from egosim.world.openscenario.routes import shortest_lanes
-from egosim.world.openscenario.runtime import Runtime
+from egosim.world.openscenario.runtime import Runtime, UnknownEntityError
 from egosim.world.openscenario.xmltree import Node
 
 MotionFactory = Callable[[Runtime, EntityState], MotionRun]
@@ -84,10 +84,13 @@ class MotionAction:
                     )
                 )
                 continue
+            run: MotionRun | None = None
             try:
                 run = self.make(rt, entity)
                 run.begin(rt, entity)
-            except PositionError as error:
+            except (PositionError, UnknownEntityError) as error:
+                if run is not None:
+                    run.release(entity)  # the domains it took are free again
                 rt.note_once(self.node.note(f"on {name!r} not applied: {error}"))
                 continue
             runs.append((entity, run))

@@ -21,7 +21,7 @@ from egosim.world.openscenario.conditions import Trigger
 from egosim.world.openscenario.ego_model import UnusableFiguresError, scenario_ego_model
 from egosim.world.openscenario.entities import EntityDefinition, EntityKind, EntityState
 from egosim.world.openscenario.motion import move_all
-from egosim.world.openscenario.runtime import Runtime
+from egosim.world.openscenario.runtime import Runtime, UnknownEntityError
 from egosim.world.openscenario.signal_controllers import SignalController
 from egosim.world.openscenario.storyboard import COMPLETE, Storyboard
 from egosim.world.scenario.model import Outcome
@@ -181,14 +181,19 @@ class ScenarioRun:
             self._read_ego(ego)
         self._observe(dt)
         self._run_signal_controllers()
-        self.storyboard.decide(rt)
-        if self.verdict is None:
-            self.verdict = self.evaluation.decide(rt)
+        try:
+            self.storyboard.decide(rt)
+            if self.verdict is None:
+                self.verdict = self.evaluation.decide(rt)
+        except UnknownEntityError as error:
+            # Actions and conditions say so themselves; this is for what starts with one.
+            rt.note_once(f"a storyboard element was left out: it refers to {error}")
         if self.finished:
             # A stop trigger or a verdict ends the scenario at the time it fired.
             self._ended_at = rt.time
         movers = [e for e in rt.entities.values() if e.in_world() and rt.scenario_drives(e)]
         move_all(rt, movers, dt)
+        self._take_out_the_lost(movers)
         self.storyboard.settle(rt)
         # Rounded to the nanosecond: summing steps of 0.01 s drifts (300 of them make
         # 2.99999999999998), which would move a condition on time by a whole step.
@@ -198,6 +203,17 @@ class ScenarioRun:
             self._ended_at = rt.time
         self._publish()
         return self._drain()
+
+    def _take_out_the_lost(self, movers: list[EntityState]) -> None:
+        """An entity whose motion stopped being finite (a speed of 1e308 m/s, say) leaves
+        the world, said once, rather than reach the world's lanes and contacts."""
+        for entity in movers:
+            values = (entity.x, entity.y, entity.z, entity.heading, entity.speed)
+            if not all(map(math.isfinite, values)):
+                entity.present = False
+                self.rt.note_once(
+                    f"entity {entity.name!r} left the world: its motion is not finite"
+                )
 
     def _run_signal_controllers(self) -> None:
         """Each controller's phase now; a phase it enters sets its lights."""

@@ -10,10 +10,13 @@ trajectory follows the trajectory; one on no lane goes straight along its headin
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from functools import partial
+from typing import TypeVar
 
 from egosim.world.openscenario.entities import EntityState
 from egosim.world.openscenario.lane_paths import advance
-from egosim.world.openscenario.runtime import Runtime
+from egosim.world.openscenario.runtime import Runtime, UnknownEntityError
 
 STANDSTILL_MPS = 1e-3
 MIN_HEADING_SPEED_MPS = 0.1
@@ -68,10 +71,11 @@ def move_all(rt: Runtime, entities: list[EntityState], dt: float) -> None:
     them together (one lane-map lookup for all). Every speed is worked out before anyone
     moves, so each action reads the others as they were at the step's start (a
     synchronised entity does not see its master a step ahead)."""
-    speeds = [_speed_after(rt, entity, dt) for entity in entities]
-    on_lanes = [
-        entity for entity, v1 in zip(entities, speeds, strict=True) if move(rt, entity, dt, v1)
-    ]
+    speeds = [_guarded(rt, entity, _speed_after, dt, entity.speed) for entity in entities]
+    on_lanes = []
+    for entity, v1 in zip(entities, speeds, strict=True):
+        if _guarded(rt, entity, partial(move, v1=v1), dt, False):
+            on_lanes.append(entity)
     if not on_lanes:
         return
     poses = rt.lane_map.poses_at([e.lane for e in on_lanes], [e.station for e in on_lanes])
@@ -83,6 +87,25 @@ def move_all(rt: Runtime, entities: list[EntityState], dt: float) -> None:
         forward = max(abs(entity.speed), MIN_HEADING_SPEED_MPS)
         entity.heading = heading + math.atan2(entity.lateral_speed, forward)
         entity.odometer += math.hypot(entity.x - x0, entity.y - y0)
+
+
+T = TypeVar("T")
+
+
+def _guarded(
+    rt: Runtime,
+    entity: EntityState,
+    work: Callable[[Runtime, EntityState, float], T],
+    dt: float,
+    otherwise: T,
+) -> T:
+    """`work` for the entity; `otherwise` (said once) when its action names an entity
+    the running scenario does not have."""
+    try:
+        return work(rt, entity, dt)
+    except UnknownEntityError as error:
+        rt.note_once(f"{entity.name!r} holds its motion: its action refers to {error}")
+        return otherwise
 
 
 def _speed_after(rt: Runtime, entity: EntityState, dt: float) -> float:

@@ -375,7 +375,9 @@ def _follows(rt: Runtime, lane: LanePlace, heading: float) -> bool:
 
 def place(rt: Runtime, entity: EntityState, placement: Placement) -> None:
     """Put an entity where a placement says; from there it moves along the lane it
-    stands on, if any."""
+    stands on, if any. PositionError for a place out of any map (not finite)."""
+    if not all(map(math.isfinite, (placement.x, placement.y, placement.z, placement.heading))):
+        raise PositionError("it works out to no finite place")
     entity.x, entity.y, entity.z = placement.x, placement.y, placement.z
     entity.heading = float(np.remainder(placement.heading + math.pi, math.tau) - math.pi)
     lane = attach(rt, placement)

@@ -160,9 +160,13 @@ class Reader:
             width=size.number("width"),
             height=size.number("height"),
             centre=(centre.number("x"), centre.number("y"), centre.number("z")),
-            max_speed=performance.number("maxSpeed", inf) if performance else inf,
-            max_acceleration=performance.number("maxAcceleration", inf) if performance else inf,
-            max_deceleration=performance.number("maxDeceleration", inf) if performance else inf,
+            max_speed=performance.number("maxSpeed", inf, finite=False) if performance else inf,
+            max_acceleration=performance.number("maxAcceleration", inf, finite=False)
+            if performance
+            else inf,
+            max_deceleration=performance.number("maxDeceleration", inf, finite=False)
+            if performance
+            else inf,
             external=external,
             properties=tuple(
                 (p.text("name", ""), p.text("value", ""))

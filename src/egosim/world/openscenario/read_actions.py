@@ -136,9 +136,9 @@ def _constraints(element: Element) -> tuple[float, float, float]:
     if limits is None:
         return math.inf, math.inf, math.inf
     return (
-        limits.number("maxAcceleration", math.inf),
-        limits.number("maxDeceleration", math.inf),
-        limits.number("maxSpeed", math.inf),
+        limits.number("maxAcceleration", math.inf, finite=False),
+        limits.number("maxDeceleration", math.inf, finite=False),
+        limits.number("maxSpeed", math.inf, finite=False),
     )
 
 
@@ -270,7 +270,7 @@ def _lateral(element: Element) -> Action:
     if choice.tag == "LaneOffsetAction":
         dynamics = choice.require("LaneOffsetActionDynamics")
         shape = dynamics.choice("dynamicsShape", SHAPES)
-        max_accel = dynamics.number("maxLateralAcc", math.inf)
+        max_accel = dynamics.number("maxLateralAcc", math.inf, finite=False)
         target = choice.require("LaneOffsetTarget").only_child()
         if target is None:
             raise choice.node.error("needs a lane offset target")
@@ -297,7 +297,9 @@ def _lateral(element: Element) -> Action:
         distance = choice.number("distance", 0.0)
         continuous = choice.boolean("continuous", False)
         limits = choice.child("DynamicConstraints")
-        max_speed = math.inf if limits is None else limits.number("maxSpeed", math.inf)
+        max_speed = (
+            math.inf if limits is None else limits.number("maxSpeed", math.inf, finite=False)
+        )
         return MotionAction(
             choice.node, lambda rt, e: LateralDistanceRun(ref, distance, continuous, max_speed)
         )

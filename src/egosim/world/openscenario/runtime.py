@@ -18,6 +18,14 @@ if TYPE_CHECKING:
     from egosim.world.world import World
 
 
+class UnknownEntityError(LookupError):
+    """An action or condition names an entity the running scenario does not have: never
+    declared, left out, or of a kind the load left out (ScenarioLoad's flags)."""
+
+    def __init__(self, name: str) -> None:
+        super().__init__(f"no entity {name!r} in the running scenario")
+
+
 class ElementState(Protocol):
     """A storyboard element as StoryboardElementStateCondition sees it."""
 
@@ -57,7 +65,10 @@ class Runtime:
         return road_coordinates_of(self.world.map)
 
     def entity(self, name: str) -> EntityState:
-        return self.entities[name]
+        try:
+            return self.entities[name]
+        except KeyError:
+            raise UnknownEntityError(name) from None
 
     def note_once(self, text: str) -> None:
         if text not in self._noted:
