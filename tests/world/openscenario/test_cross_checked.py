@@ -6,6 +6,8 @@ arrives with its master at a continuous speed, triggers at the gaps they state."
 
 from __future__ import annotations
 
+import math
+
 import pytest
 from tests.world.openscenario.stories import (
     DT,
@@ -237,3 +239,34 @@ def test_a_master_reversing_to_its_target_synchronises_the_other() -> None:
     step(world, run, 10.0)
     assert run.rt.entity("Ego").x == pytest.approx(90.0, abs=1e-6)
     assert walker.x == pytest.approx(60.0, abs=0.05)
+
+
+@pytest.mark.parametrize(
+    ("orientation", "heading"),
+    [
+        ('<Orientation h="0" type="relative"/>', 0.0),  # along the route, eastwards
+        ('<Orientation h="3.14159265" type="relative"/>', math.pi),  # against it
+        ("", math.pi),  # none: the named lane's own direction (lane 1 runs west)
+    ],
+)
+def test_a_route_positions_orientation_is_to_the_routes_direction(
+    orientation: str, heading: float
+) -> None:
+    # Euro NCAP's obstruction cars stand on the far lane of a route, turned relative to
+    # the route (their rear bumpers where the parameters put them).
+    route = """<Route name="East" closed="false">
+      <Waypoint routeStrategy="shortest"><Position><LanePosition roadId="1" laneId="-1"
+        s="10"/></Position></Waypoint>
+      <Waypoint routeStrategy="shortest"><Position><LanePosition roadId="1" laneId="-1"
+        s="500"/></Position></Waypoint></Route>"""
+    position = f"""<RoutePosition><RouteRef>{route}</RouteRef>{orientation}<InRoutePosition>
+      <FromLaneCoordinates pathS="100" laneId="1" laneOffset="0"/></InRoutePosition>
+      </RoutePosition>"""
+    text = scenario(
+        vehicle("Ego") + vehicle("Parked"),
+        teleport("Ego", lane(10)) + teleport("Parked", position),
+    )
+    _, run = start_world(text)
+    parked = run.rt.entity("Parked")
+    assert (parked.x, parked.y) == (pytest.approx(110.0, abs=1e-6), pytest.approx(1.75))
+    assert math.cos(parked.heading - heading) == pytest.approx(1.0, abs=1e-9)
