@@ -92,6 +92,17 @@ def test_the_ego_touches_a_standing_target_when_the_scenario_cars_front_reaches_
     assert world.ego_collision_log[0].time_s == pytest.approx(contact_at, abs=DT + 1e-9)
 
 
+def test_scripted_entities_are_listed_and_touched_with_the_scenarios_box() -> None:
+    world, _ = golf_world(True)
+    objects = world.objects()
+    (row,) = [k for k, name in enumerate(objects.names) if name == "Target_model"]
+    # 4 m long, 2 m wide, 1.4 m high; its centre 1.5 m ahead of its reference at s = 80.
+    assert tuple(objects.sizes[row]) == pytest.approx((4.0, 2.0, 1.4))
+    assert tuple(objects.positions[row][:2]) == pytest.approx((81.5, -1.75))
+    ego = world.egos[0].vehicle.model
+    assert (ego.length, ego.width) == (4.358, 1.815)
+
+
 def test_full_brake_decelerates_at_the_scenarios_max_deceleration() -> None:
     world, run = golf_world(False, speed=20.0, target_s=400.0)
     ego = world.egos[0].vehicle
