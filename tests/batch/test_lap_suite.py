@@ -15,7 +15,6 @@ from rosbags.rosbag1 import Reader
 
 from tests.batch.processes import processes_using
 from tests.batch.results_files import comparable
-from tests.e2e.conftest import built_msg_packages  # noqa: F401 (a fixture)
 
 SUITE = Path(__file__).parents[2] / "examples" / "batch" / "lap_suite.yaml"
 BATCH_TIMEOUT_S = 240

@@ -69,10 +69,10 @@ def on_multi_ego_setting(context: BridgeContext, row: Row, message: Any) -> None
         return
     world = context.world
     world.keep_egos(message.number_of_ego_vehicle)
-    model_name = world.egos[0].vehicle.model.name
+    model = world.egos[0].vehicle.model
     for k, entry in sorted(entries.items()):
         if k >= len(world.egos):
-            world.add_ego(model_name, _pose(entry, None))
+            world.add_ego(model, _pose(entry, None))
         _apply(context, k, entry, row.name)
     context.session.camera_index = int(message.camera_index)
     _sync_ego_rows(context)

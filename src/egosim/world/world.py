@@ -67,6 +67,7 @@ from egosim.world.traffic.pedestrians import PedestrianSpawn
 from egosim.world.traffic.scripted import ScriptedObjects
 from egosim.world.vehicle import (
     DEFAULT_EGO_MODEL,
+    EgoModel,
     EgoVehicle,
     Pose,
     RoadSurface,
@@ -101,6 +102,17 @@ class Ego:
     def __init__(self, unique_id: int, vehicle: EgoVehicle) -> None:
         self.unique_id = unique_id
         self.vehicle = vehicle
+        self.catalogue_model: EgoModel = vehicle.model
+        """The catalogue model it was given (a scenario may drive it with the figures of
+        its own car for a while: see use_model)."""
+
+    def use_model(self, model: EgoModel, command_timeout: float | None) -> None:
+        """Drive on as a vehicle of `model` (a scenario's car), where it is, as fast."""
+        if self.vehicle.model == model:
+            return
+        status = self.vehicle.status()
+        self.vehicle = ego_vehicle(model, status.pose, command_timeout)
+        self.vehicle.teleport(status.pose, status.velocity[0])
 
     def box_centre(self, status: VehicleStatus) -> tuple[float, float]:
         """Footprint centre, m: the reference point moved to the middle of the body."""
@@ -199,9 +211,11 @@ class World:
 
     # -- egos ------------------------------------------------------------------------
 
-    def add_ego(self, model_name: str, pose: Pose) -> Ego:
-        """A further ego vehicle (the first one is the main ego)."""
-        vehicle = ego_vehicle(ego_model(model_name), pose, self._command_timeout_s)
+    def add_ego(self, model: str | EgoModel, pose: Pose) -> Ego:
+        """A further ego vehicle (the first one is the main ego), of a catalogue model
+        named or given."""
+        chosen = ego_model(model) if isinstance(model, str) else model
+        vehicle = ego_vehicle(chosen, pose, self._command_timeout_s)
         ego = Ego(self._next_id, vehicle)
         self._next_id += 1
         self.egos.append(ego)
@@ -750,6 +764,7 @@ class World:
             main = self.egos[0]
             if main.vehicle.model != model:
                 main.vehicle = ego_vehicle(model, pose, self._command_timeout_s)
+            main.catalogue_model = model
             main.vehicle.teleport(pose, speed)
             if scenario.ego is not None and scenario.ego.gear is not None:
                 main.vehicle.set_gear(scenario.ego.gear)

@@ -26,7 +26,7 @@ from egosim.world.openscenario.positions import (
     place,
 )
 from egosim.world.openscenario.routes import shortest_lanes
-from egosim.world.openscenario.runtime import Runtime
+from egosim.world.openscenario.runtime import Runtime, UnknownEntityError
 from egosim.world.openscenario.xmltree import Node
 
 MotionFactory = Callable[[Runtime, EntityState], MotionRun]
@@ -84,10 +84,13 @@ class MotionAction:
                     )
                 )
                 continue
+            run: MotionRun | None = None
             try:
                 run = self.make(rt, entity)
                 run.begin(rt, entity)
-            except PositionError as error:
+            except (PositionError, UnknownEntityError) as error:
+                if run is not None:
+                    run.release(entity)  # the domains it took are free again
                 rt.note_once(self.node.note(f"on {name!r} not applied: {error}"))
                 continue
             runs.append((entity, run))
@@ -305,6 +308,29 @@ class TrafficSignalStateAction:
             signals.set_light(self.light, self.aspect)
         except (KeyError, ValueError) as error:
             rt.note_once(self.node.note(f"not applied: {error}"))
+        return Done()
+
+
+@dataclass(frozen=True)
+class SignalPhaseAction:
+    """TrafficSignalControllerAction: the controller's phase starts now."""
+
+    node: Node
+    controller: str
+    phase: str
+
+    def start(self, rt: Runtime, actors: Sequence[str]) -> Done:
+        controller = rt.signal_controllers.get(self.controller)
+        if controller is None:
+            rt.note_once(self.node.note(f"not applied: no controller {self.controller!r}"))
+            return Done()
+        names = [phase.name for phase in controller.phases]
+        if self.phase not in names:
+            rt.note_once(
+                self.node.note(f"not applied: {self.controller!r} has no phase {self.phase!r}")
+            )
+            return Done()
+        controller.jump_to(names.index(self.phase), rt.time)
         return Done()
 
 

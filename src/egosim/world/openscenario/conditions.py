@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 from egosim.world.openscenario.entities import EntityState
 from egosim.world.openscenario.expressions import Value
 from egosim.world.openscenario.parameters import compare
-from egosim.world.openscenario.runtime import Runtime
+from egosim.world.openscenario.runtime import Runtime, UnknownEntityError
 
 EDGES = ("rising", "falling", "risingOrFalling", "none", "once")
 Check = Callable[[Runtime], bool]
@@ -38,7 +38,11 @@ class Condition:
     _history: deque[tuple[float, bool]] = field(default_factory=deque)
 
     def evaluate(self, rt: Runtime) -> bool:
-        now = bool(self.check(rt))
+        try:
+            now = bool(self.check(rt))
+        except UnknownEntityError as error:
+            rt.note_once(f"condition {self.name!r} does not hold: {error}")
+            now = False
         previous = now if self._previous is None else self._previous
         self._previous = now
         if self.edge == "rising":

@@ -18,13 +18,16 @@ import numpy as np
 
 from egosim.world.collision import Footprints, touching_pairs
 from egosim.world.openscenario.conditions import Trigger
+from egosim.world.openscenario.ego_model import UnusableFiguresError, scenario_ego_model
 from egosim.world.openscenario.entities import EntityDefinition, EntityKind, EntityState
 from egosim.world.openscenario.motion import move_all
-from egosim.world.openscenario.runtime import Runtime
+from egosim.world.openscenario.runtime import Runtime, UnknownEntityError
+from egosim.world.openscenario.signal_controllers import SignalController
 from egosim.world.openscenario.storyboard import COMPLETE, Storyboard
 from egosim.world.scenario.model import Outcome
 from egosim.world.traffic.scripted import ScriptedObject
-from egosim.world.vehicle import ControlCommand, LongitudinalMode, Pose, Vehicle
+from egosim.world.vehicle import Pose, Vehicle
+from egosim.world.vehicle.catalogue import VehicleModel
 
 if TYPE_CHECKING:
     from egosim.world.world import World
@@ -56,6 +59,7 @@ class ScenarioRun:
         world: World,
         storyboard: Storyboard,
         evaluation: Evaluation,
+        signal_controllers: dict[str, SignalController],
         definitions: list[EntityDefinition],
         ego: str | None,
         parameters: dict[str, object],
@@ -68,16 +72,23 @@ class ScenarioRun:
         self.storyboard = storyboard
         self.evaluation = evaluation
         self.verdict: str | None = None
+        self._ended_at: float | None = None
+        """Scenario time the storyboard ended (its stop trigger or a verdict fired, or its
+        stories all completed)."""
         entities: dict[str, EntityState] = {}
+        notes: list[str] = []
         for definition in definitions:
             if definition.name == ego:
                 entities[definition.name] = EntityState(
-                    self._ego_definition(definition), is_ego=True
+                    self._ego_definition(definition, load_ego, notes), is_ego=True
                 )
             elif definition.kind.value in kinds:
                 entities[definition.name] = EntityState(definition)
         self.rt = Runtime(world, entities, dict(parameters), dict(variables), ego)  # type: ignore[arg-type]
         self.rt.ego_driven = drives_ego
+        self.rt.signal_controllers = signal_controllers
+        for note in notes:
+            self.rt.note_once(note)
         self.load_ego = load_ego
         others = [e for e in entities.values() if not e.is_ego]
         self._ids = dict(zip((e.name for e in others), world.reserve_ids(len(others)), strict=True))
@@ -87,6 +98,7 @@ class ScenarioRun:
         if ego is not None and ego in entities:
             self._read_ego(entities[ego])
             entities[ego].placed = True
+        self._run_signal_controllers()
         storyboard.begin(self.rt)
         storyboard.settle(self.rt)
         for entity in entities.values():
@@ -97,9 +109,25 @@ class ScenarioRun:
                 )
         self._publish(initial=True)
 
-    def _ego_definition(self, definition: EntityDefinition) -> EntityDefinition:
-        """The ego keeps its egosim model (the one its stack drives): that model's box."""
-        model = self.world.egos[0].vehicle.model
+    def _ego_definition(
+        self, definition: EntityDefinition, load_ego: bool, notes: list[str]
+    ) -> EntityDefinition:
+        """The ego becomes the scenario's car (scenario_ego_model) when the scenario
+        places it and its model is a car; its box is then the scenario's."""
+        main = self.world.egos[0]
+        base = main.catalogue_model
+        model = main.vehicle.model
+        if load_ego and isinstance(base, VehicleModel):
+            model = base
+            if definition.kind is EntityKind.VEHICLE:
+                try:
+                    model = scenario_ego_model(definition, base)
+                except UnusableFiguresError as error:
+                    notes.append(
+                        f"the ego {definition.name!r} keeps the figures of {base.name}: "
+                        f"the scenario's {error}"
+                    )
+            main.use_model(model, self.world.command_timeout_s)
         return EntityDefinition(
             definition.name,
             EntityKind.VEHICLE,
@@ -130,7 +158,9 @@ class ScenarioRun:
             state = "stopped"
         else:
             state = "running"
-        return Outcome(state, self.rt.time, self.verdict)
+        return Outcome(
+            state, self.rt.time if self._ended_at is None else self._ended_at, self.verdict
+        )
 
     def entity_ids(self) -> dict[str, int]:
         """The egosim object id of each entity (the ego's is the main ego's)."""
@@ -150,16 +180,56 @@ class ScenarioRun:
         if ego is not None and not ego_driven:
             self._read_ego(ego)
         self._observe(dt)
-        self.storyboard.decide(rt)
-        if self.verdict is None:
-            self.verdict = self.evaluation.decide(rt)
+        self._run_signal_controllers()
+        try:
+            self.storyboard.decide(rt)
+            if self.verdict is None:
+                self.verdict = self.evaluation.decide(rt)
+        except UnknownEntityError as error:
+            # Actions and conditions say so themselves; this is for what starts with one.
+            rt.note_once(f"a storyboard element was left out: it refers to {error}")
+        if self.finished:
+            # A stop trigger or a verdict ends the scenario at the time it fired.
+            self._ended_at = rt.time
         movers = [e for e in rt.entities.values() if e.in_world() and rt.scenario_drives(e)]
         move_all(rt, movers, dt)
+        self._take_out_the_lost(movers)
         self.storyboard.settle(rt)
-        rt.time += dt
+        # Rounded to the nanosecond: summing steps of 0.01 s drifts (300 of them make
+        # 2.99999999999998), which would move a condition on time by a whole step.
+        rt.time = round(rt.time + dt, 9)
         rt.tick += 1
+        if self.finished and self._ended_at is None:
+            self._ended_at = rt.time
         self._publish()
         return self._drain()
+
+    def _take_out_the_lost(self, movers: list[EntityState]) -> None:
+        """An entity whose motion stopped being finite (a speed of 1e308 m/s, say) leaves
+        the world, said once, rather than reach the world's lanes and contacts."""
+        for entity in movers:
+            values = (entity.x, entity.y, entity.z, entity.heading, entity.speed)
+            if not all(map(math.isfinite, values)):
+                entity.present = False
+                self.rt.note_once(
+                    f"entity {entity.name!r} left the world: its motion is not finite"
+                )
+
+    def _run_signal_controllers(self) -> None:
+        """Each controller's phase now; a phase it enters sets its lights."""
+        rt = self.rt
+        for controller in rt.signal_controllers.values():
+            if not controller.phases:
+                continue
+            phase, _ = controller.phase_at(rt.time)
+            if phase == controller.current:
+                continue
+            controller.current = phase
+            for light, aspect in controller.phases[phase].states:
+                try:
+                    rt.world.signals.set_light(light, aspect)
+                except (KeyError, ValueError) as error:
+                    rt.note_once(controller.node.note(f"phase {controller.phase_name!r}: {error}"))
 
     def _drain(self) -> list[str]:
         notes, self.rt.notes = self.rt.notes, []
@@ -279,5 +349,6 @@ class ScenarioRun:
         pose = Pose(x=ego.x, y=ego.y, z=ego.z, yaw=ego.heading)
         main.vehicle.teleport(pose, ego.speed)
         if (initial or driven) and isinstance(main.vehicle, Vehicle):
-            # The ego holds the speed it was given until its stack (or auto mode) commands.
-            main.vehicle.command(ControlCommand(mode=LongitudinalMode.VELOCITY, velocity=ego.speed))
+            # The ego holds the speed it was given until its stack commands it (with no
+            # dead-man timeout before then: the stack has not spoken yet).
+            main.vehicle.hold_speed(ego.speed)

@@ -39,6 +39,20 @@ _OBJECT_TYPES = {
 
 
 @dataclass(frozen=True)
+class VehicleFigures:
+    """A <Vehicle>'s axles and mass, as the scenario gives them (reference point: the
+    rear axle's centre, so positionX is ahead of it), m, rad and kg."""
+
+    front_axle_x: float
+    rear_axle_x: float
+    wheel_diameter: float
+    track_width: float
+    max_steering: float
+    mass: float | None = None
+    """The Vehicle's mass (1.1+); None when the file gives none."""
+
+
+@dataclass(frozen=True)
 class EntityDefinition:
     """A <ScenarioObject>: its kind, model name and bounding box."""
 
@@ -58,6 +72,8 @@ class EntityDefinition:
     external: bool = False
     """Its controller is external (the user's stack drives it)."""
     properties: tuple[tuple[str, str], ...] = ()
+    figures: VehicleFigures | None = None
+    """A vehicle's axles and mass (None: no <Axles>, or not a vehicle)."""
 
 
 @dataclass

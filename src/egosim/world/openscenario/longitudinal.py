@@ -51,6 +51,10 @@ class SpeedRun(MotionRun):
     def begin(self, rt: Runtime, entity: EntityState) -> None:
         super().begin(rt, entity)
         self.start_speed = entity.speed
+        if self.target.entity == entity.name:
+            # Relative to itself: to its speed of now plus the delta (a target that
+            # moved with its own speed could never be reached).
+            self.target = SpeedTarget(self.target.speed(rt))
         change = self.target.speed(rt) - self.start_speed
         if self.shape == "step":
             self.duration = 0.0
@@ -186,8 +190,14 @@ Distance = Callable[[Runtime, EntityState], float | None]
 class SynchronizeRun(MotionRun):
     """SynchronizeAction: the entity reaches its target when the master reaches the
     master's, at the final speed if one is given (held over the steady-state distance or
-    time before the target); the speed is planned afresh every step as the constant
-    acceleration that meets both."""
+    time before the target).
+
+    The speed stays continuous: every step it follows the one speed profile that starts
+    at the speed it has, covers the distance to go in the master's time to go and ends
+    at the final speed, v(t) = v0 + (vf - v0) t/T + k t (T - t) with
+    k = 6 (D - (v0 + vf) T / 2) / T³ (its acceleration changes linearly). Without a
+    final speed it ends at the mean speed D/T. It is planned afresh each step, so it
+    follows a master that changes speed."""
 
     longitudinal = True
 
@@ -218,14 +228,21 @@ class SynchronizeRun(MotionRun):
         to_target = self.own_distance(rt, entity)
         if to_master_target is None or to_target is None:
             return entity.speed
-        if to_master_target <= self.master_tolerance or to_target <= self.tolerance:
+        # A master reversing to its target (Euro NCAP's CPRA) closes in as fast.
+        master_speed = abs(master.speed)
+        # Done in the step the master gets there (the action ends as it arrives).
+        if to_master_target - master_speed * dt <= self.master_tolerance or (
+            to_target <= self.tolerance
+        ):
             self.done = True
             return self.final_speed(rt) if self.final_speed is not None else entity.speed
-        if master.speed <= SPEED_REACHED_MPS:
+        if master_speed <= SPEED_REACHED_MPS:
             return entity.speed if self.final_speed is None else 0.0
-        time_left = to_master_target / master.speed
+        time_left = to_master_target / master_speed
         if self.final_speed is None:
-            return to_target / time_left
+            return _continuous_profile(
+                entity.speed, to_target / time_left, to_target, time_left, dt
+            )
         final = self.final_speed(rt)
         steady = self.steady_distance
         if self.steady_time > 0.0:
@@ -234,5 +251,13 @@ class SynchronizeRun(MotionRun):
         time = time_left - (steady / final if final > 0 else 0.0)
         if distance <= 0.0 or time <= dt:
             return final
-        # Constant acceleration from now to (distance, time) ending at `final`.
-        return max(2.0 * distance / time - final, 0.0)
+        return _continuous_profile(entity.speed, final, distance, time, dt)
+
+
+def _continuous_profile(v0: float, vf: float, distance: float, time: float, dt: float) -> float:
+    """The speed dt s into the profile from v0 to vf that covers `distance` in `time`
+    (never below standstill)."""
+    if time <= dt:
+        return vf
+    k = 6.0 * (distance - (v0 + vf) * time / 2.0) / time**3
+    return max(v0 + (vf - v0) * dt / time + k * dt * (time - dt), 0.0)

@@ -10,10 +10,13 @@ trajectory follows the trajectory; one on no lane goes straight along its headin
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from functools import partial
+from typing import TypeVar
 
 from egosim.world.openscenario.entities import EntityState
 from egosim.world.openscenario.lane_paths import advance
-from egosim.world.openscenario.runtime import Runtime
+from egosim.world.openscenario.runtime import Runtime, UnknownEntityError
 
 STANDSTILL_MPS = 1e-3
 MIN_HEADING_SPEED_MPS = 0.1
@@ -65,8 +68,14 @@ class MotionRun:
 
 def move_all(rt: Runtime, entities: list[EntityState], dt: float) -> None:
     """Advance scenario-driven entities by dt s; those following lanes are placed on
-    them together (one lane-map lookup for all)."""
-    on_lanes = [entity for entity in entities if move(rt, entity, dt)]
+    them together (one lane-map lookup for all). Every speed is worked out before anyone
+    moves, so each action reads the others as they were at the step's start (a
+    synchronised entity does not see its master a step ahead)."""
+    speeds = [_guarded(rt, entity, _speed_after, dt, entity.speed) for entity in entities]
+    on_lanes = []
+    for entity, v1 in zip(entities, speeds, strict=True):
+        if _guarded(rt, entity, partial(move, v1=v1), dt, False):
+            on_lanes.append(entity)
     if not on_lanes:
         return
     poses = rt.lane_map.poses_at([e.lane for e in on_lanes], [e.station for e in on_lanes])
@@ -80,14 +89,38 @@ def move_all(rt: Runtime, entities: list[EntityState], dt: float) -> None:
         entity.odometer += math.hypot(entity.x - x0, entity.y - y0)
 
 
-def move(rt: Runtime, entity: EntityState, dt: float) -> bool:
-    """Advance a scenario-driven entity by dt s; True when it moved along its lane and
-    still needs its pose from there (move_all gives it)."""
-    definition = entity.definition
-    v0 = entity.speed
+T = TypeVar("T")
+
+
+def _guarded(
+    rt: Runtime,
+    entity: EntityState,
+    work: Callable[[Runtime, EntityState, float], T],
+    dt: float,
+    otherwise: T,
+) -> T:
+    """`work` for the entity; `otherwise` (said once) when its action names an entity
+    the running scenario does not have."""
+    try:
+        return work(rt, entity, dt)
+    except UnknownEntityError as error:
+        rt.note_once(f"{entity.name!r} holds its motion: its action refers to {error}")
+        return otherwise
+
+
+def _speed_after(rt: Runtime, entity: EntityState, dt: float) -> float:
+    """The speed its longitudinal action gives it at the end of this step, within its
+    top speed."""
     longitudinal = entity.longitudinal
-    v1 = longitudinal.speed(rt, entity, dt) if isinstance(longitudinal, MotionRun) else v0
-    v1 = min(max(v1, -definition.max_speed), definition.max_speed)
+    v1 = longitudinal.speed(rt, entity, dt) if isinstance(longitudinal, MotionRun) else entity.speed
+    top = entity.definition.max_speed
+    return min(max(v1, -top), top)
+
+
+def move(rt: Runtime, entity: EntityState, dt: float, v1: float) -> bool:
+    """Advance a scenario-driven entity by dt s to speed v1 at the step's end; True when
+    it moved along its lane and still needs its pose from there (move_all gives it)."""
+    v0 = entity.speed
     ds = 0.5 * (v0 + v1) * dt
     entity.acceleration = (v1 - v0) / dt
     entity.speed = v1

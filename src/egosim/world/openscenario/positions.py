@@ -320,14 +320,22 @@ class RoutePosition:
             ref = _referenced(rt, self.entity)
             return Placement(ref.x, ref.y, ref.z, self.orientation.heading(ref.heading))
         lane, station = self.route.lanes(rt).place(rt, self.path_s)
+        place: LanePlace | None = None
         try:
             point = rt.roads.locate(lane, station, 0.0)
             if self.kind == "lane":
                 place = rt.roads.lane_place(point.road, self.lane, point.s, self.lane_offset)
-                return on_lane(rt, place, self.orientation)
-            return _road_placement(rt, point.road, point.s, self.t, self.orientation)
+                x, y, z, heading = lane_pose(rt, place)
+            else:
+                x, y, z, heading = rt.roads.pose(point.road, point.s, self.t)
         except UnknownRoadError as error:
             raise PositionError(str(error)) from None
+        if self.orientation.kind is not None:
+            # An orientation is to the route's direction of travel there, whichever way
+            # the named lane or the road's reference line runs.
+            _, _, _, along_route = rt.lane_map.poses_at([lane], [station])[0]
+            heading = self.orientation.heading(float(along_route))
+        return Placement(float(x), float(y), float(z), float(heading), place)
 
 
 Position = (
@@ -349,21 +357,27 @@ def attach(rt: Runtime, placement: Placement) -> LanePlace | None:
     projects onto (within half that lane's width plus a metre); None off the lanes or
     facing across the lane (a pedestrian on a crossing path)."""
     lane = placement.lane
-    if lane is None:
+    if lane is None or not _follows(rt, lane, placement.heading):
+        # Not named, or named but faced against (a LanePosition offset onto the
+        # oncoming lane, turned round): the lane its point and heading are on.
         projection = rt.lane_map.project(placement.x, placement.y, placement.heading)
         if abs(projection.lateral) > projection.width / 2.0 + 1.0:
             return None
         index = rt.lane_map.lane_index(projection.lane_id)
         lane = LanePlace(index, projection.s, projection.lateral)
-    _, _, _, heading = rt.lane_map.poses_at([lane.lane_index], [lane.station])[0]
-    if math.cos(placement.heading - float(heading)) < FOLLOWS_LANE_COS:
-        return None
-    return lane
+    return lane if _follows(rt, lane, placement.heading) else None
+
+
+def _follows(rt: Runtime, lane: LanePlace, heading: float) -> bool:
+    _, _, _, along = rt.lane_map.poses_at([lane.lane_index], [lane.station])[0]
+    return math.cos(heading - float(along)) >= FOLLOWS_LANE_COS
 
 
 def place(rt: Runtime, entity: EntityState, placement: Placement) -> None:
     """Put an entity where a placement says; from there it moves along the lane it
-    stands on, if any."""
+    stands on, if any. PositionError for a place out of any map (not finite)."""
+    if not all(map(math.isfinite, (placement.x, placement.y, placement.z, placement.heading))):
+        raise PositionError("it works out to no finite place")
     entity.x, entity.y, entity.z = placement.x, placement.y, placement.z
     entity.heading = float(np.remainder(placement.heading + math.pi, math.tau) - math.pi)
     lane = attach(rt, placement)

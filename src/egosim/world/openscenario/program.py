@@ -18,7 +18,7 @@ from egosim.world.openscenario.actions import NoteAction
 from egosim.world.openscenario.catalogs import Catalogs, catalog_directories
 from egosim.world.openscenario.conditions import Trigger
 from egosim.world.openscenario.engine import Evaluation, ScenarioRun
-from egosim.world.openscenario.entities import EntityDefinition, EntityKind
+from egosim.world.openscenario.entities import EntityDefinition, EntityKind, VehicleFigures
 from egosim.world.openscenario.expressions import Value
 from egosim.world.openscenario.parameters import Scope, declare
 from egosim.world.openscenario.read_actions import (
@@ -28,6 +28,8 @@ from egosim.world.openscenario.read_actions import (
 )
 from egosim.world.openscenario.read_conditions import UnsupportedElementError, condition, trigger
 from egosim.world.openscenario.reading import Element
+from egosim.world.openscenario.signal_controllers import Phase, SignalController, start_times
+from egosim.world.openscenario.signal_states import parse_state
 from egosim.world.openscenario.storyboard import (
     ActElement,
     ActionElement,
@@ -148,6 +150,7 @@ class Reader:
         }[kind]
         properties = body.child("Properties")
         inf = float("inf")
+        axles = body.child("Axles") if kind is EntityKind.VEHICLE else None
         return EntityDefinition(
             name=name,
             kind=kind,
@@ -157,14 +160,63 @@ class Reader:
             width=size.number("width"),
             height=size.number("height"),
             centre=(centre.number("x"), centre.number("y"), centre.number("z")),
-            max_speed=performance.number("maxSpeed", inf) if performance else inf,
-            max_acceleration=performance.number("maxAcceleration", inf) if performance else inf,
-            max_deceleration=performance.number("maxDeceleration", inf) if performance else inf,
+            max_speed=performance.number("maxSpeed", inf, finite=False) if performance else inf,
+            max_acceleration=performance.number("maxAcceleration", inf, finite=False)
+            if performance
+            else inf,
+            max_deceleration=performance.number("maxDeceleration", inf, finite=False)
+            if performance
+            else inf,
             external=external,
             properties=tuple(
                 (p.text("name", ""), p.text("value", ""))
                 for p in (properties.children("Property") if properties else [])
             ),
+            figures=None if axles is None else _figures(body, axles),
+        )
+
+    # -- traffic signal controllers ----------------------------------------------------
+
+    def signal_controllers(self, problems: Problems) -> dict[str, SignalController]:
+        """RoadNetwork's TrafficSignalControllers, by name."""
+        found: dict[str, SignalController] = {}
+        network = self.root.child("RoadNetwork")
+        signals = None if network is None else network.child("TrafficSignals")
+        for node in signals.children("TrafficSignalController") if signals is not None else []:
+            with problems.collecting():
+                controller = self._signal_controller(self.element(node))
+                if controller.name in found:
+                    raise node.error(f"a second controller named {controller.name!r}")
+                found[controller.name] = controller
+        self.notes.extend(start_times(found))
+        return found
+
+    def _signal_controller(self, element: Element) -> SignalController:
+        phases = []
+        for phase in element.children("Phase"):
+            duration = phase.number("duration")
+            if duration < 0.0 or duration == float("inf"):
+                raise phase.node.error(f"duration {duration} is not a time")
+            states = []
+            for state in phase.children("TrafficSignalState"):
+                light = state.text("trafficSignalId")
+                aspect = parse_state(state.text("state"))
+                if aspect is None:
+                    self.notes.append(
+                        state.node.note(f"state {state.text('state')!r} is unknown; left out")
+                    )
+                    continue
+                states.append((light, aspect))
+            phases.append(Phase(phase.text("name"), duration, tuple(states)))
+        delay = element.number("delay", 0.0)
+        if delay < 0.0 or delay == float("inf"):
+            raise element.node.error(f"delay {delay} is not a time")
+        return SignalController(
+            element.node,
+            element.text("name"),
+            tuple(phases),
+            delay=delay,
+            reference=element.text("reference", ""),
         )
 
     # -- storyboard ----------------------------------------------------------------
@@ -343,11 +395,13 @@ class OpenScenario:
         reader = Reader(self._root, self._scope, self._catalogs, notes)
         problems = Problems()
         board, evaluation = reader.storyboard(problems)
+        controllers = reader.signal_controllers(problems)
         problems.raise_any()
         return ScenarioRun(
             world,
             board,
             evaluation,
+            controllers,
             list(self.entities),
             self.ego,
             dict(self.parameters),
@@ -356,6 +410,18 @@ class OpenScenario:
             kinds,
             drives_ego,
         )
+
+
+def _figures(vehicle: Element, axles: Element) -> VehicleFigures:
+    front, rear = axles.require("FrontAxle"), axles.require("RearAxle")
+    return VehicleFigures(
+        front_axle_x=front.number("positionX"),
+        rear_axle_x=rear.number("positionX"),
+        wheel_diameter=front.number("wheelDiameter"),
+        track_width=front.number("trackWidth"),
+        max_steering=front.number("maxSteering"),
+        mass=vehicle.optional_number("mass"),
+    )
 
 
 def choose_ego(definitions: list[EntityDefinition]) -> str | None:
@@ -408,6 +474,7 @@ def read_openscenario(
         reference = map_reference(root, scope)
     definitions = reader.entities(problems)
     _, _ = reader.storyboard(problems)
+    reader.signal_controllers(problems)
     problems.raise_any()
     for node in root.walk():
         if node.tag in _UNREAD:
@@ -428,7 +495,6 @@ def read_openscenario(
 
 
 _UNREAD = {
-    "TrafficSignals": "(signal controllers) is not run: the map's own light programs run",
     "SceneGraphFile": "is not loaded: egosim draws the map from its lanes",
 }
 

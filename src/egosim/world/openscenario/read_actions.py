@@ -13,6 +13,7 @@ from egosim.world.openscenario.actions import (
     EntityAction,
     MotionAction,
     NoteAction,
+    SignalPhaseAction,
     SpeedInInit,
     TeleportAction,
     TrafficSignalStateAction,
@@ -135,9 +136,9 @@ def _constraints(element: Element) -> tuple[float, float, float]:
     if limits is None:
         return math.inf, math.inf, math.inf
     return (
-        limits.number("maxAcceleration", math.inf),
-        limits.number("maxDeceleration", math.inf),
-        limits.number("maxSpeed", math.inf),
+        limits.number("maxAcceleration", math.inf, finite=False),
+        limits.number("maxDeceleration", math.inf, finite=False),
+        limits.number("maxSpeed", math.inf, finite=False),
     )
 
 
@@ -269,7 +270,7 @@ def _lateral(element: Element) -> Action:
     if choice.tag == "LaneOffsetAction":
         dynamics = choice.require("LaneOffsetActionDynamics")
         shape = dynamics.choice("dynamicsShape", SHAPES)
-        max_accel = dynamics.number("maxLateralAcc", math.inf)
+        max_accel = dynamics.number("maxLateralAcc", math.inf, finite=False)
         target = choice.require("LaneOffsetTarget").only_child()
         if target is None:
             raise choice.node.error("needs a lane offset target")
@@ -296,7 +297,9 @@ def _lateral(element: Element) -> Action:
         distance = choice.number("distance", 0.0)
         continuous = choice.boolean("continuous", False)
         limits = choice.child("DynamicConstraints")
-        max_speed = math.inf if limits is None else limits.number("maxSpeed", math.inf)
+        max_speed = (
+            math.inf if limits is None else limits.number("maxSpeed", math.inf, finite=False)
+        )
         return MotionAction(
             choice.node, lambda rt, e: LateralDistanceRun(ref, distance, continuous, max_speed)
         )
@@ -349,9 +352,9 @@ def _controller(element: Element, catalogs: CatalogResolver) -> Action:
 
 
 def _path_distance(target: Position) -> Callable[[Runtime, EntityState], float | None]:
-    """Distance from an entity to a target position along the way it goes: along its
-    trajectory (for a TrajectoryPosition of the one it follows), along its lanes, else
-    straight ahead."""
+    """Distance from an entity to a target position along the way it goes (backwards when
+    it reverses): along its trajectory (for a TrajectoryPosition of the one it follows),
+    along its lanes, else straight ahead."""
     cached: dict[str, SampledPath] = {}
 
     def distance(rt: Runtime, entity: EntityState) -> float | None:
@@ -370,6 +373,8 @@ def _path_distance(target: Position) -> Callable[[Runtime, EntityState], float |
             if here is None or getattr(following, "trajectory", None) is not target.trajectory:
                 here = path.project(entity.x, entity.y)
             return target.s - float(here)
+        # An entity reversing goes the other way: its target lies behind it.
+        way = -1.0 if entity.speed < 0.0 else 1.0
         if entity.lane >= 0 and following is None:
             goal = placement.lane or attach(rt, placement)
             if goal is not None:
@@ -377,9 +382,9 @@ def _path_distance(target: Position) -> Callable[[Runtime, EntityState], float |
                     rt.lane_map, entity.lane, entity.station, goal.lane_index, goal.station
                 )
                 if along is not None:
-                    return along
+                    return way * along
         dx, dy = placement.x - entity.x, placement.y - entity.y
-        return dx * math.cos(entity.heading) + dy * math.sin(entity.heading)
+        return way * (dx * math.cos(entity.heading) + dy * math.sin(entity.heading))
 
     return distance
 
@@ -472,6 +477,10 @@ def global_action(element: Element, catalogs: CatalogResolver) -> Action:
             if aspect is None:
                 raise UnsupportedElementError(signal.node, f"state {state!r} is unknown")
             return TrafficSignalStateAction(signal.node, signal.text("name"), aspect)
+        if signal is not None and signal.tag == "TrafficSignalControllerAction":
+            return SignalPhaseAction(
+                signal.node, signal.text("trafficSignalControllerRef"), signal.text("phase")
+            )
         raise UnsupportedElementError(
             signal.node if signal is not None else choice.node, "is not carried out by egosim"
         )

@@ -137,21 +137,23 @@ def _entity_check(choice: Element, catalogs: CatalogResolver) -> EntityCheck:
                 return 0.0
             return e.speed
 
-        return rule_check(_rule(choice), choice.number("value"), speed)
+        return rule_check(_rule(choice), choice.number("value", finite=False), speed)
     if tag == "AccelerationCondition":
-        return rule_check(_rule(choice), choice.number("value"), lambda rt, e: e.acceleration)
+        return rule_check(
+            _rule(choice), choice.number("value", finite=False), lambda rt, e: e.acceleration
+        )
     if tag == "RelativeSpeedCondition":
         other = choice.text("entityRef")
         return rule_check(
             _rule(choice),
-            choice.number("value"),
+            choice.number("value", finite=False),
             lambda rt, e: e.speed - rt.entity(other).speed if other in rt.entities else math.nan,
         )
     if tag == "StandStillCondition":
         duration = choice.number("duration")
         return lambda rt, e: e.standstill_s >= duration - 1e-9
     if tag == "TraveledDistanceCondition":
-        distance = choice.number("value")
+        distance = choice.number("value", finite=False)
         return lambda rt, e: e.odometer >= distance
     if tag == "EndOfRoadCondition":
         duration = choice.number("duration")
@@ -190,13 +192,13 @@ def _entity_check(choice: Element, catalogs: CatalogResolver) -> EntityCheck:
                 return math.nan
             return abs(relative(rt, e, point, distance_type, freespace, system))
 
-        return rule_check(_rule(choice), choice.number("value"), to_position)
+        return rule_check(_rule(choice), choice.number("value", finite=False), to_position)
     if tag == "RelativeDistanceCondition":
         other = choice.text("entityRef")
         distance_type, system, freespace = _coordinates(choice)
         return rule_check(
             _rule(choice),
-            choice.number("value"),
+            choice.number("value", finite=False),
             lambda rt, e: (
                 abs(relative(rt, e, rt.entity(other), distance_type, freespace, system))
                 if _there(rt, other)
@@ -208,7 +210,7 @@ def _entity_check(choice: Element, catalogs: CatalogResolver) -> EntityCheck:
         _, system, freespace = _coordinates(choice)
         return rule_check(
             _rule(choice),
-            choice.number("value"),
+            choice.number("value", finite=False),
             lambda rt, e: (
                 time_headway(rt, e, rt.entity(other), freespace, system)
                 if _there(rt, other)
@@ -225,7 +227,7 @@ def _entity_check(choice: Element, catalogs: CatalogResolver) -> EntityCheck:
             other = ref.text("entityRef")
             return rule_check(
                 _rule(choice),
-                choice.number("value"),
+                choice.number("value", finite=False),
                 lambda rt, e: (
                     time_to_collision(rt, e, rt.entity(other), freespace, distance_type, system)
                     if _there(rt, other)
@@ -240,7 +242,7 @@ def _entity_check(choice: Element, catalogs: CatalogResolver) -> EntityCheck:
                 return math.nan
             return time_to_collision(rt, e, point, freespace, distance_type, system)
 
-        return rule_check(_rule(choice), choice.number("value"), ttc)
+        return rule_check(_rule(choice), choice.number("value", finite=False), ttc)
     if tag == "AngleCondition":
         angle_type = choice.choice("angleType", ("heading", "pitch", "roll"))
         if angle_type != "heading":
@@ -273,7 +275,7 @@ def _by_value(element: Element) -> Check:
         raise element.node.error("is empty")
     tag = choice.tag
     if tag == "SimulationTimeCondition":
-        return value_check(_rule(choice), choice.number("value"), lambda rt: rt.time)
+        return value_check(_rule(choice), choice.number("value", finite=False), lambda rt: rt.time)
     if tag == "ParameterCondition":
         name = choice.text("parameterRef")
         return value_check(_rule(choice), choice.text("value"), lambda rt: rt.parameters.get(name))
@@ -291,7 +293,20 @@ def _by_value(element: Element) -> Check:
         if wanted is None:
             raise UnsupportedElementError(choice.node, f"state {choice.text('state')!r} is unknown")
         return _light_check(light, wanted)
+    if tag == "TrafficSignalControllerCondition":
+        return _phase_check(choice.text("trafficSignalControllerRef"), choice.text("phase"))
     raise UnsupportedElementError(choice.node, "is not evaluated by egosim")
+
+
+def _phase_check(name: str, phase: str) -> Callable[[Runtime], bool]:
+    def check(rt: Runtime) -> bool:
+        controller = rt.signal_controllers.get(name)
+        if controller is None:
+            rt.note_once(f"TrafficSignalControllerCondition: no controller {name!r}")
+            return False
+        return controller.phase_name == phase
+
+    return check
 
 
 def _light_check(light: str, wanted: int) -> Callable[[Runtime], bool]:

@@ -47,7 +47,9 @@ class Element:
         value = self._raw(name)
         return None if value is None else text_of(value)
 
-    def number(self, name: str, default: float | object = _MISSING) -> float:
+    def number(self, name: str, default: float | object = _MISSING, finite: bool = True) -> float:
+        """The attribute as a number; infinity only where `finite` is false (a limit, a
+        condition's value), since a position or a speed of INF is no place to be."""
         value = self._raw(name)
         if value is None:
             if default is _MISSING:
@@ -59,6 +61,8 @@ class Element:
             raise self.node.error(f"{name}: {value!r} is not a number") from None
         if math.isnan(number):
             raise self.node.error(f"{name} is not a number")
+        if finite and math.isinf(number):
+            raise self.node.error(f"{name}: {value!r} is not a finite number")
         return number
 
     def optional_number(self, name: str) -> float | None:

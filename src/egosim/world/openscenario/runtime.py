@@ -12,9 +12,18 @@ from egosim.world.map.lane_roads import road_coordinates_of
 from egosim.world.map.road_coordinates import RoadCoordinates
 from egosim.world.openscenario.entities import EntityState
 from egosim.world.openscenario.expressions import Value
+from egosim.world.openscenario.signal_controllers import SignalController
 
 if TYPE_CHECKING:
     from egosim.world.world import World
+
+
+class UnknownEntityError(LookupError):
+    """An action or condition names an entity the running scenario does not have: never
+    declared, left out, or of a kind the load left out (ScenarioLoad's flags)."""
+
+    def __init__(self, name: str) -> None:
+        super().__init__(f"no entity {name!r} in the running scenario")
 
 
 class ElementState(Protocol):
@@ -41,6 +50,8 @@ class Runtime:
     action."""
     notes: list[str] = field(default_factory=list)
     """Lines to report (each once), oldest first; the caller empties it."""
+    signal_controllers: dict[str, SignalController] = field(default_factory=dict)
+    """RoadNetwork's TrafficSignalControllers, by name."""
     ego_driven: bool = False
     """The scenario drives the ego this step (its control mode is auto)."""
     _noted: set[str] = field(default_factory=set)
@@ -54,7 +65,10 @@ class Runtime:
         return road_coordinates_of(self.world.map)
 
     def entity(self, name: str) -> EntityState:
-        return self.entities[name]
+        try:
+            return self.entities[name]
+        except KeyError:
+            raise UnknownEntityError(name) from None
 
     def note_once(self, text: str) -> None:
         if text not in self._noted:

@@ -221,6 +221,10 @@ class ActElement(Element):
                 self._go(rt, START, RUNNING)
                 for group in self.groups:
                     group.start(rt)
+                # Its events see their triggers in the step it starts (as the story's
+                # acts do): an act adds no step of delay to what it holds.
+                for group in self.groups:
+                    group.decide(rt)
         elif self.state == RUNNING:
             if self.stop_trigger is not None and self.stop_trigger.evaluate(rt):
                 self.stop(rt)

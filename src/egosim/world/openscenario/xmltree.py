@@ -9,12 +9,14 @@ at the line the parser names.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
 
 from lxml import etree
 
 from egosim.world.scenario.errors import ScenarioError
 
+_WHERE_SUFFIX = re.compile(r",? line \d+, column \d+$")
 # Entities and external DTDs are never resolved (a scenario file comes from the user or
 # the network); huge trees are refused by lxml's own limits.
 _PARSER = etree.XMLParser(
@@ -95,5 +97,8 @@ def parse_xml(text: str | bytes, label: str) -> Node:
         root = etree.fromstring(data, _PARSER)
     except etree.XMLSyntaxError as error:
         line = error.lineno if error.lineno else None
-        raise ScenarioError(label, line, "", f"not well-formed XML: {error.msg}") from None
+        # libxml2 may quote the offending text on further lines: the first one says it.
+        lines = (error.msg or "").strip().splitlines() or ["unreadable"]
+        reason = _WHERE_SUFFIX.sub("", lines[0].strip())
+        raise ScenarioError(label, line, "", f"not well-formed XML: {reason}") from None
     return Node(root, label)
