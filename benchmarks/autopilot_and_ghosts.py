@@ -64,7 +64,7 @@ def main() -> None:
 
     world = World(lane_map, load_default_scenario())
     context = simulation_context(world)
-    context.settings_of(world.egos[0].unique_id).ctrl_mode = ControlMode.AUTO
+    context.ego_session(world.egos[0]).set_ctrl_mode(ControlMode.AUTO, by="the benchmark")
     for _ in range(WARMUP_STEPS):
         drive_autopilots(context)
         world.step()

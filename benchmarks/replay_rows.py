@@ -49,14 +49,14 @@ def record_town(bag: Path, seconds: float) -> list[float]:
         tap = recorder.tap()
         for step in range(1, round(seconds / DT) + 1):
             context.world.step(DT)
-            stamp = context.world.sim_time
+            stamp_ns = context.stamp_ns()
             outputs = [("/Ego_topic", EGO, publish_ego_status)] if step % 2 == 0 else []
             if step % 5 == 0:
                 outputs.append(("/Object_topic", OBJECTS, publish_object_list))
             for topic, kind, build in outputs:
                 data = kind.serialize(build(context))
                 start = time.perf_counter()
-                tap(topic, kind, data, stamp)
+                tap(topic, kind, data, stamp_ns)
                 costs.append(time.perf_counter() - start)
     return costs
 

@@ -123,7 +123,7 @@ def main() -> None:
         bridge.open(context)
         built: dict[str, int] = {}
 
-        def count(topic: str, message_type: MessageType, data: bytes, stamp: float) -> None:
+        def count(topic: str, message_type: MessageType, data: bytes, stamp_ns: int) -> None:
             built[topic] = built.get(topic, 0) + 1
 
         bridge.taps.append(count)  # every row is built as if it had a subscriber

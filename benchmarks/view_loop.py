@@ -86,6 +86,7 @@ def measure(clients: int, seconds: float, frame_sizes: list[int]) -> dict[str, f
         prepare=controls.prepare,
         apply=controls.apply,
         capture=stage.capture,
+        history=lambda: encode(stage.history.message()),
         map_json=lambda: encode(map_snapshot(world.map)),
         system_state=lambda: ([], [], []),
         hello={"type": "hello", "clock_mode": "real"},

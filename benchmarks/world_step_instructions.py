@@ -8,16 +8,22 @@ OpenBLAS thread otherwise adds a count that varies from run to run). Worlds:
 
   town     the town with its default scenario (8 NPCs, 6 pedestrians, 4 obstacles)
   crowded  the town with 100 NPCs and 200 pedestrians (benchmarks/world_step.py)
-  replay   the town's default scenario while a replay shows the ego and the
-           pedestrians (the NPCs simulated among them), a new recorded frame per step
+  replay      the town's default scenario while a replay shows the ego and the
+              pedestrians (the NPCs simulated among them), a new recorded frame per step
+  storyboard  benchmarks/storyboard_step.py's 20-entity storyboard on the highway, the
+              scenario driving the ego; each step is the storyboard's, then World.step
+  morai       a MORAI scenario file on the town (benchmarks/morai_scenario.py): 50 NPCs,
+              50 pedestrians, 50 cones, the NPCs and pedestrians waiting for the ego to
+              come within 30 m (most stay dormant: the wake check runs every step)
 
-Usage: .venv/bin/python benchmarks/world_step_instructions.py [--worlds town crowded replay]
-       [--steps 300] [--warmup 200]
+Usage: .venv/bin/python benchmarks/world_step_instructions.py
+       [--worlds town crowded replay storyboard morai] [--steps 300] [--warmup 200]
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import re
 import shutil
@@ -27,24 +33,42 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+from morai_scenario import document
+from storyboard_step import ROOT, benchmark_text
 from world_step import crowded_town
 
+from egosim.maps import load_map
+from egosim.scenario_files import openscenario_scenario
 from egosim.world import World
 from egosim.world.map import build_builtin_map
+from egosim.world.openscenario import read_openscenario
 from egosim.world.recorded_scene import RecordedEgo, RecordedScene
-from egosim.world.scenario import load_default_scenario, parse_scenario
+from egosim.world.scenario import ScenarioLoadOptions, load_default_scenario, parse_scenario
+from egosim.world.scenario.morai import read_morai_scenario
 from egosim.world.traffic import ObjectTable, ObjectType
 from egosim.world.vehicle import Pose
 
-WORLDS = ("town", "crowded", "replay")
+WORLDS = ("town", "crowded", "replay", "storyboard", "morai")
 DT = 0.01
 REPLAYED_PEDESTRIANS = 6
+MORAI_ENTRIES = 50
+MORAI_ACTIVE_DISTANCE_M = 30.0
 
 
 def world_of(name: str) -> World:
+    if name == "storyboard":
+        world = World(load_map(str(ROOT / "examples" / "openscenario" / "highway.xodr")))
+        program = read_openscenario(benchmark_text(), "benchmark.xosc")
+        world.load_scenario(
+            openscenario_scenario(program), ScenarioLoadOptions(scenario_drives_ego=True)
+        )
+        return world
     town = build_builtin_map("town")
     if name == "crowded":
         return World(town, parse_scenario(crowded_town(town, 100, 200), "benchmark"))
+    if name == "morai":
+        text = json.dumps(document(town, MORAI_ENTRIES, MORAI_ACTIVE_DISTANCE_M))
+        return World(town, read_morai_scenario(text, "benchmark.json").scenario)
     return World(town, load_default_scenario())
 
 
@@ -72,9 +96,12 @@ def replay_frame(k: int) -> RecordedScene:
 def step(name: str, warmup: int, steps: int) -> None:
     """What runs under callgrind."""
     world = world_of(name)
+    storyboard = world.storyboard
     for k in range(warmup + steps):
         if name == "replay":
             world.show_recorded(replay_frame(k))
+        if storyboard is not None:
+            storyboard.step(DT, True)
         world.step(DT)
 
 

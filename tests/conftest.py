@@ -4,6 +4,7 @@
 - ``spawn_ros``: start a subprocess in its own process group; killed at teardown.
 - ``rosmaster``: Debian's rosmaster on a free loopback port; yields its URI.
 - ``embedded_master``: egosim's master on a free loopback port; yields it (``.uri``).
+- ``built_msg_packages``: morai_msgs as rospy modules (`egosim msgs --export-python`).
 Tests marked ``ros`` are skipped, with the reason, when Debian's ROS 1 is not installed.
 """
 
@@ -16,6 +17,7 @@ import re
 import signal
 import socket
 import subprocess
+import sys
 import threading
 import time
 import xmlrpc.client
@@ -25,7 +27,7 @@ from pathlib import Path
 import pytest
 
 from egosim.ros1 import Master
-from tests.debian_ros import ROS_PYTHON, missing_ros_reason
+from tests.debian_ros import ROS_PYTHON, missing_ros_reason, require_ros
 
 #: Generous bound on waiting for a peer's event (never a timed assertion).
 EVENT_TIMEOUT_S = 30.0
@@ -188,3 +190,18 @@ def embedded_master() -> Iterator[Master]:
         yield master
     finally:
         master.shutdown()
+
+
+@pytest.fixture(scope="session")
+def built_msg_packages(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """morai_msgs (26.r1) and its dependencies as rospy modules, written by
+    `egosim msgs --export-python` with Debian's genpy; put it on PYTHONPATH."""
+    require_ros()
+    outdir = tmp_path_factory.mktemp("msg_packages")
+    subprocess.run(
+        [sys.executable, "-m", "egosim", "msgs", "--export-python", str(outdir)],
+        check=True,
+        capture_output=True,
+        timeout=300,
+    )
+    return outdir

@@ -23,6 +23,7 @@ LAYERS = (
     "bridge",
     "replay",
     "evaluation",
+    "scenario_files",
     "maps",
     "sensors",
     "world",
@@ -33,7 +34,7 @@ LAYERS = (
     "logthrottle",
 )
 # Below in the order, yet out of reach: the pure core knows no ROS, ROS knows no driving.
-PURE = ("evaluation", "maps", "sensors", "world")
+PURE = ("evaluation", "scenario_files", "maps", "sensors", "world")
 ROS_SIDE = ("ros1", "msgs")
 
 

@@ -57,12 +57,13 @@ def test_loads_by_name_or_path_with_nothing_left_out(name_or_path: str) -> None:
 
 def test_each_approach_stops_at_its_light_before_the_crosswalk() -> None:
     lane_map = read_map("mgeo_sample").lane_map
-    approaches = [lane for lane in lane_map.lanes.values() if lane.traffic_light_id]
+    approaches = [lane for lane in lane_map.lanes.values() if lane.traffic_light_ids]
     assert len(approaches) == 6
     for lane in approaches:
         assert lane.stop_line_s == pytest.approx(lane.length)
         stop = lane.centerline[-1, :2]
-        walk = lane_map.crosswalks[f"CW1_{lane.traffic_light_id[-1]}"]
+        (light,) = lane.traffic_light_ids
+        walk = lane_map.crosswalks[f"CW1_{light[-1]}"]
         middle = np.mean([walk.start, walk.end], axis=0)
         # The line is before the crossing: farther from the junction centre than it.
         assert np.hypot(*stop) > np.hypot(*middle) + walk.width / 2
@@ -118,5 +119,5 @@ def test_a_town_written_as_mgeo_reads_back_as_the_same_network() -> None:
     assert sorted(back.crosswalks) == sorted(town.crosswalks)
     for lane_id, lane in town.lanes.items():
         assert back.lanes[lane_id].successors == lane.successors
-        assert back.lanes[lane_id].traffic_light_id == lane.traffic_light_id
+        assert back.lanes[lane_id].traffic_light_ids == lane.traffic_light_ids
     assert notes == []

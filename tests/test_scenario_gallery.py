@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from egosim.maps import load_map, scenario_map_location
+from egosim.scenario_files import read_scenario_file
 from egosim.world import World
 from egosim.world.scenario import parse_scenario
 from egosim.world.signals import GREEN, RED, YELLOW
@@ -20,9 +21,12 @@ from egosim.world.vehicle.skid_steer_commands import BodyVelocityCommand
 GALLERY = Path(__file__).parents[1] / "examples" / "scenarios"
 
 
-def gallery_world(name: str) -> World:
-    path = GALLERY / f"{name}.yaml"
-    scenario = parse_scenario(path.read_text("utf-8"), str(path))
+def gallery_world(name: str, suffix: str = ".yaml") -> World:
+    path = GALLERY / f"{name}{suffix}"
+    if suffix == ".yaml":
+        scenario = parse_scenario(path.read_text("utf-8"), str(path))
+    else:
+        scenario = read_scenario_file(path)
     return World(load_map(scenario_map_location(scenario.map_reference, GALLERY)), scenario)
 
 
@@ -32,7 +36,7 @@ def hold_speed(world: World, speed: float) -> None:
 
 def test_every_gallery_file_is_tested() -> None:
     tested = {name[len("test_") :] for name in globals() if name.startswith("test_")}
-    assert {p.stem for p in GALLERY.glob("*.yaml")} <= tested
+    assert {p.stem for p in (*GALLERY.glob("*.yaml"), *GALLERY.glob("*.json"))} <= tested
 
 
 def test_every_gallery_file_says_what_it_tests() -> None:
@@ -97,7 +101,7 @@ def test_red_light() -> None:
         assert light is not None
         seen.append((round(world.sim_time, 2), light.aspect))
         assert world.sim_time < 15.0, "the ego never reached the stop line"
-    assert light.light_id == lane.traffic_light_id == "TL1_W"
+    assert (light.light_id,) == lane.traffic_light_ids == ("TL1_W",)
     assert light.aspect == RED
     assert 8.0 < world.sim_time < 10.0
     aspects = dict(seen)
@@ -181,3 +185,35 @@ def test_robot_obstacle_course_blocks_a_straight_run() -> None:
     drive_robot(world, [(15.0, 0.0), (53.0, 0.0)])
     collision = world.ego_collision()
     assert collision is not None and collision.other.name == "Cone"
+
+
+def test_morai_jaywalker() -> None:
+    world = gallery_world("morai_jaywalker", ".json")
+    assert world.ego_lane_state().lane_id == "R1_W_1"
+    assert world.ego_status().pose.x == pytest.approx(120.0 - 0.1 * 100.5)
+    ioniq, niro = (world.npcs.names.index(n) for n in ("2016_Hyundai_Ioniq", "2016_Kia_Niro(HEV)"))
+    # The Niro drives at once, towards 60 % of its lane's limit.
+    assert world.npcs.speed_factor[niro] == pytest.approx(0.6)
+    woke_at = walked_at = None
+    fastest = 0.0
+    while world.sim_time < 16.0:
+        hold_speed(world, 5.0)
+        world.step(0.02)
+        fastest = max(fastest, float(world.npcs.speed[ioniq]))
+        ego_x = world.ego_status().pose.x
+        if woke_at is None and world.npcs.speed[ioniq] > 0.0:
+            woke_at = ego_x
+        if walked_at is None and world.pedestrians.position[0, 1] < 9.0:
+            walked_at = ego_x
+        if world.sim_time == pytest.approx(1.0):
+            assert world.npcs.speed[niro] > 1.0
+    # The Ioniq stood until the ego came within 25 m, then drove off towards 30 km/h.
+    assert woke_at is not None and woke_at - 75.0 == pytest.approx(25.0, abs=0.3)
+    assert 8.0 < fastest <= 30 / 3.6 + 1e-9
+    # The pedestrian set off when the ego came within 20 m of the lane's centre at x = 45,
+    # and crosses southwards at 4 km/h.
+    assert walked_at is not None and walked_at - 45.0 == pytest.approx(20.0, abs=0.3)
+    assert world.pedestrians.velocity[0] == pytest.approx((0.0, -4.0 / 3.6))
+    sizes = sorted(tuple(s) for s in world.obstacles.table().sizes)
+    assert sizes == [pytest.approx((0.4, 0.4, 0.7))] * 2 + [pytest.approx((0.9, 0.9, 1.35))]
+    assert not world.ego_collision_log

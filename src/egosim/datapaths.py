@@ -37,9 +37,12 @@ def resolve_in_roots(name: str, roots: Sequence[Path], *, must_exist: bool = Tru
         if must_exist and not resolved.exists():
             continue
         return resolved
+    listed = [str(r) for r in real_roots]
     if refused is not None:
-        raise PathOutsideRootsError(f"{name!r} resolves outside the data roots ({refused})")
-    raise FileNotFoundError(f"{name!r} not found in the data roots {[str(r) for r in real_roots]}")
+        raise PathOutsideRootsError(
+            f"{name!r} resolves outside the data roots {listed} ({refused})"
+        )
+    raise FileNotFoundError(f"{name!r} not found in the data roots {listed}")
 
 
 class NotARegularFileError(OSError):

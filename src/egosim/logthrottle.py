@@ -12,11 +12,21 @@ from __future__ import annotations
 import logging
 import threading
 import time
+import weakref
 from collections.abc import Callable, Hashable
 
 DEFAULT_WINDOW_S = 10.0
 #: Keys remembered at most (one per peer and reason); the oldest are forgotten first.
 MAX_KEYS = 1024
+
+_throttles: weakref.WeakSet[LogThrottle] = weakref.WeakSet()
+
+
+def forget_every_window() -> None:
+    """Start every throttle of the process afresh, as in a new process (a process that
+    runs one simulation after another does this between them)."""
+    for throttle in list(_throttles):
+        throttle.forget()
 
 
 class LogThrottle:
@@ -32,6 +42,12 @@ class LogThrottle:
         self._lock = threading.Lock()
         # key -> (start of its window, occurrences held back in it)
         self._windows: dict[Hashable, tuple[float, int]] = {}
+        _throttles.add(self)
+
+    def forget(self) -> None:
+        """Forget every window (and what was held back in it)."""
+        with self._lock:
+            self._windows.clear()
 
     def log(
         self,

@@ -5,6 +5,10 @@ that map, the name of a map shipped with egosim (`mgeo_sample`) its folder; a fo
 as MGeo, a `.xodr` file as OpenDRIVE. What a loader reads but
 leaves out is logged (and returned by `read_map`); anything it cannot read raises a
 MapLoadError whose one-line message names the file and the record.
+
+A map read again (the same name, or the same files unchanged since) is the map read
+before: maps are immutable, and a process that runs simulation after simulation (a batch
+worker) builds each map, and what is derived from it, once.
 """
 
 from __future__ import annotations
@@ -12,6 +16,7 @@ from __future__ import annotations
 import json
 import logging
 from dataclasses import dataclass
+from functools import lru_cache
 from pathlib import Path
 
 from egosim.world.map import BUILTIN_MAP_NAMES, LaneMap, MapRecordError, build_builtin_map
@@ -21,6 +26,8 @@ from egosim.world.map.opendrive import build_opendrive_map
 OPENDRIVE_SUFFIX = ".xodr"
 SHIPPED_MAPS_DIR = Path(__file__).parent / "data" / "maps"
 """Map folders shipped with egosim, loadable by their folder's name."""
+MAPS_KEPT = 4
+"""Maps read lately and kept for the next read of the same source."""
 
 log = logging.getLogger(__name__)
 
@@ -64,6 +71,42 @@ def load_map(name_or_path: str) -> LaneMap:
 
 def read_map(name_or_path: str) -> LoadedMap:
     """`load_map` that also returns the notes instead of logging them."""
+    stamp = _source_stamp(name_or_path)
+    if stamp is None:
+        return _read_source(name_or_path)
+    return _read_kept(name_or_path, stamp)
+
+
+FileStamp = tuple[str, int, int]
+"""A file's resolved path, modification time (ns) and size."""
+
+
+def _source_stamp(name_or_path: str) -> tuple[FileStamp, ...] | None:
+    """What tells one version of a map's files from another (nothing for a built-in map;
+    None when the files cannot be looked at)."""
+    if name_or_path in BUILTIN_MAP_NAMES:
+        return ()
+    path = SHIPPED_MAPS_DIR / name_or_path if name_or_path in shipped_map_names() else None
+    path = path or Path(name_or_path)
+    try:
+        files = sorted(path.iterdir()) if path.is_dir() else [path]
+        return tuple((str(f.resolve()), *_stat(f)) for f in files if f.is_file())
+    except OSError:
+        return None
+
+
+def _stat(path: Path) -> tuple[int, int]:
+    stat = path.stat()
+    return stat.st_mtime_ns, stat.st_size
+
+
+@lru_cache(maxsize=MAPS_KEPT)
+def _read_kept(name_or_path: str, stamp: tuple[FileStamp, ...]) -> LoadedMap:
+    """The map at `name_or_path` as its files are at `stamp` (errors are not kept)."""
+    return _read_source(name_or_path)
+
+
+def _read_source(name_or_path: str) -> LoadedMap:
     if name_or_path in BUILTIN_MAP_NAMES:
         return LoadedMap(build_builtin_map(name_or_path), ())
     if name_or_path in shipped_map_names():

@@ -11,9 +11,10 @@ import pytest
 
 from egosim.app.options import RunOptions
 from egosim.app.runner import StartupError, build_world
-from egosim.maps import load_map
+from egosim.maps import SHIPPED_MAPS_DIR, load_map
 from egosim.world import World
 from egosim.world.scenario import parse_scenario
+from tests import morai_scenarios as morai
 from tests.conftest import free_port
 
 JUNCTION_XODR = Path(__file__).parents[1] / "data" / "maps" / "junction.xodr"
@@ -38,6 +39,21 @@ def test_scenario_alone_runs_a_map_path_relative_to_the_file(tmp_path: Path) -> 
     world = build_world(RunOptions(scenario=scenario_file(folder, "../maps/junction.xodr")))
     assert world.map.name == "junction"
     assert len(world.map.intersections) >= 1
+
+
+def test_a_morai_scenario_runs_the_mgeo_folder_its_map_info_names(tmp_path: Path) -> None:
+    # MORAI names maps as R_KR_PG_K-City; the MGeo folder of that name sits beside the file.
+    shutil.copytree(SHIPPED_MAPS_DIR / "mgeo_sample", tmp_path / "R_KR_PG_Sample")
+    document = morai.scenario("R_KR_PG_Sample", morai.ego(morai.on_link("R3_E_1", 0.5)))
+    path = morai.write(tmp_path, "morai_scen.json", document)
+    world = build_world(RunOptions(scenario=path))
+    assert world.map.name == "R_KR_PG_Sample"
+    assert world.ego_lane_state().lane_id == "R3_E_1"
+    with pytest.raises(StartupError) as caught:
+        build_world(RunOptions(map="town", scenario=path))
+    assert str(caught.value).startswith(
+        f"{path}: mapInfo.mapName: the scenario is for map 'R_KR_PG_Sample', --map gives 'town'"
+    )
 
 
 def test_scenario_alone_runs_the_shipped_mgeo_sample(tmp_path: Path) -> None:

@@ -1,5 +1,5 @@
 """The example suite end to end: the pure-pursuit stack (a real rospy node) through six
-cases on the town, locally and as Ray tasks, with the same results."""
+cases on the town, locally and on Ray actors, with the same results."""
 
 from __future__ import annotations
 
@@ -9,13 +9,12 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
-from typing import Any
 
 import pytest
 from rosbags.rosbag1 import Reader
 
 from tests.batch.processes import processes_using
-from tests.e2e.conftest import built_msg_packages  # noqa: F401 (a fixture)
+from tests.batch.results_files import comparable
 
 SUITE = Path(__file__).parents[2] / "examples" / "batch" / "lap_suite.yaml"
 BATCH_TIMEOUT_S = 240
@@ -34,14 +33,6 @@ def run_batch(out: Path, msgs: Path, *options: str) -> subprocess.CompletedProce
         text=True,
         timeout=BATCH_TIMEOUT_S,
     )
-
-
-def comparable(document: dict[str, Any]) -> dict[str, Any]:
-    """results.json without its wall-clock parts."""
-    document = dict(document)
-    document.pop("execution")
-    document["cases"] = [{k: v for k, v in c.items() if k != "timings"} for c in document["cases"]]
-    return document
 
 
 @pytest.fixture(scope="module")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import io
 from pathlib import Path
 
-from egosim.batch.logs import BoundedLog, tail_text
+from egosim.batch.logs import BoundedLog, log_tail
 
 
 def test_a_long_output_keeps_its_head_and_tail_and_says_what_it_dropped(tmp_path: Path) -> None:
@@ -19,7 +19,7 @@ def test_a_long_output_keeps_its_head_and_tail_and_says_what_it_dropped(tmp_path
     assert kept[100] == f"[... {(10_000 - 200) * 11} bytes dropped ...]"
     assert kept[101:] == [f"line {k:05d}" for k in range(9_900, 10_000)]
     assert len(seen) == 10_000  # every line still reaches the watcher
-    assert tail_text(tmp_path / "out.log", 11) == "line 09999"
+    assert log_tail(tmp_path, "out.log", 1) == {"file": "out.log", "lines": ["line 09999"]}
 
 
 def test_a_short_output_is_kept_whole(tmp_path: Path) -> None:

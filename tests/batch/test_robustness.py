@@ -3,11 +3,13 @@ never a stuck batch; every case has its own master; nothing is left running."""
 
 from __future__ import annotations
 
+import html
 import json
 import signal
 import subprocess
 import sys
 import time
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
@@ -17,9 +19,12 @@ from egosim.batch.suite import load_suite
 from egosim.cli import main
 from tests.batch.processes import processes_using
 from tests.batch.suites import write_suite
+from tests.debian_ros import ROS_PYTHON, require_ros
 
-PEER = Path(__file__).parent / "peers" / "listening_stack.py"
-STAND_IN = f"{sys.executable} {PEER}"
+PEERS = Path(__file__).parent / "peers"
+STAND_IN = f"{sys.executable} {PEERS / 'listening_stack.py'}"
+MORAI_NODE = f"{ROS_PYTHON} {PEERS / 'morai_node.py'}"
+MISSING_MODULE = "ModuleNotFoundError: No module named 'morai_msgs'"
 
 
 def case(name: str, command: str, **extra: object) -> dict:
@@ -61,6 +66,9 @@ def test_failing_stacks_are_failed_cases_with_their_reason(tmp_path: Path) -> No
     def outcome(name: str) -> tuple[str, str]:
         return results[name]["status"], results[name]["reason"]
 
+    def tail(name: str) -> dict | None:
+        return results[name]["log_tail"]
+
     assert outcome("fine") == ("passed", "")
     assert outcome("crashes_at_once") == ("error", "stack exited with status 3 before connecting")
     assert outcome("never_connects") == ("error", "stack never connected within 15 s")
@@ -69,6 +77,11 @@ def test_failing_stacks_are_failed_cases_with_their_reason(tmp_path: Path) -> No
         "stack exited with status 4 during the drive",
     )
     assert outcome("ignores_sigint") == ("passed", "")
+    # Beside each verdict, the end of the log that explains it (empty: nothing written).
+    assert tail("crashes_at_once") == {"file": "stack.log", "lines": []}
+    assert tail("never_connects") == {"file": "stack.log", "lines": []}
+    assert tail("crashes_while_driving")["file"] == "stack.log"
+    assert tail("fine") is None and tail("ignores_sigint") is None
 
     # The drive up to the crash is scored and recorded all the same.
     crashed = results["crashes_while_driving"]
@@ -163,3 +176,47 @@ def test_filter_then_rerun_failed_runs_only_what_did_not_pass(tmp_path: Path) ->
     # Only the case that did not pass keeps its bag.
     assert first["cases"][0]["bag"] is None and not (out / "ok" / "drive.bag").exists()
     assert (out / second["cases"][1]["bag"]).exists()
+
+
+def test_a_stack_that_cannot_import_its_messages_shows_its_traceback(tmp_path: Path) -> None:
+    require_ros()
+    # PYTHONPATH empty: no exported morai_msgs reach the node, whatever the caller has.
+    suite = robustness_suite(
+        tmp_path,
+        [case("no_messages", MORAI_NODE)],
+        stack={"command": "{command}", "env": {"PYTHONPATH": ""}},
+    )
+    out = tmp_path / "out"
+    batch = subprocess.run(
+        [sys.executable, "-m", "egosim", "batch", str(suite), "--out", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert batch.returncode == 1, batch.stderr
+    # results.json: the reason as before, the log's last lines beside it.
+    (result,) = json.loads((out / "results.json").read_text())["cases"]
+    assert result["reason"] == "stack exited with status 1 before connecting"
+    tail = result["log_tail"]
+    assert tail["file"] == "stack.log"
+    assert tail["lines"][0] == "Traceback (most recent call last):"
+    assert any("from morai_msgs.msg import CtrlCmd" in line for line in tail["lines"])
+    assert tail["lines"][-1] == MISSING_MODULE
+    # The console: the verdict, then those lines under it.
+    console = batch.stderr.splitlines()
+    verdict = next(k for k, line in enumerate(console) if line.startswith("ERROR"))
+    assert console[verdict].split() == ["ERROR", "no_messages", *result["reason"].split()]
+    shown = console[verdict + 1 : verdict + 2 + len(tail["lines"])]
+    assert shown == [
+        " " * 8 + "stack.log, last lines:",
+        *(" " * 10 + line for line in tail["lines"]),
+    ]
+    # JUnit: the error's text carries the traceback; the HTML report shows it too.
+    error = ET.parse(out / "junit.xml").find("testcase/error")
+    assert error is not None and error.get("message") == result["reason"]
+    assert error.text is not None and MISSING_MODULE in error.text
+    assert "Traceback (most recent call last):" in error.text
+    report = (out / "report.html").read_text()
+    assert html.escape(MISSING_MODULE) in report
+    assert processes_using(out) == []

@@ -66,3 +66,19 @@ def test_a_scenario_network_section_sets_the_dead_man_timeout_live() -> None:
     drive(context, throttle)
     steps(context, 0.6)
     assert context.world.ego_status().brake_pedal == 1.0
+
+
+def test_an_egos_run_time_state_changes_only_through_its_session() -> None:
+    context = simulation_context(World(build_builtin_map("straight")))
+    session = context.ego_session(context.world.egos[0])
+    with pytest.raises(AttributeError):
+        session.ctrl_mode = ControlMode.AUTO  # type: ignore[misc]
+    with pytest.raises(AttributeError):
+        session.lamps.turn_signal = 1  # type: ignore[misc]
+    assert session.ctrl_mode is ControlMode.EXTERNAL
+    assert context.ego_session(context.world.egos[0]) is session
+
+    drive(context, context.profile.message("morai_msgs/CtrlCmd").new(longlCmdType=1, accel=0.5))
+    session.set_ctrl_mode(ControlMode.AUTO, by="the test")
+    steps(context, 0.01)
+    assert context.world.ego_status().accel_pedal == 0.0  # the CtrlCmd was let go of

@@ -10,7 +10,8 @@ from egosim.bridge import HANDLERS, simulation_context
 from egosim.world import World
 from egosim.world.map import build_builtin_map
 from egosim.world.scenario import parse_scenario
-from egosim.world.vehicle import ControlCommand, LongitudinalMode
+from egosim.world.traffic.ghosts import GhostPlacement, TurnSignal
+from egosim.world.vehicle import ControlCommand, LongitudinalMode, vehicle_model
 
 STRAIGHT = build_builtin_map("straight")
 EGO_ALONE = """\
@@ -85,3 +86,19 @@ def test_an_npc_reports_its_lane_and_the_distances_to_its_boundaries() -> None:
         (math.sin(heading / 2), math.cos(heading / 2))
     )
     assert npc.object_yaw_rate == 0.0
+
+
+def test_an_npc_ghost_reports_the_turn_signal_it_was_placed_with() -> None:
+    world = World(STRAIGHT, parse_scenario(EGO_ALONE))
+    x, y, z, heading = STRAIGHT.pose_at("R1_E_1", 40.0)
+    model = vehicle_model("2019_Hyundai_Sonata")
+    placements = [
+        GhostPlacement(900, model, (x, y, z), heading, turn_signal=TurnSignal.LEFT),
+        GhostPlacement(901, model, (x + 20.0, y, z), heading, turn_signal=TurnSignal.HAZARD),
+    ]
+    assert world.place_npc_ghosts(placements) == []
+    context = simulation_context(world)
+    context.tick(0.01)
+    message = published(context, "object_status_extended")
+    signals = {npc.unique_id: npc.turn_signal for npc in message.npc_list}
+    assert signals == {900: int(TurnSignal.LEFT), 901: int(TurnSignal.HAZARD)}

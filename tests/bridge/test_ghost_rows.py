@@ -111,7 +111,7 @@ def test_a_bad_ghost_message_leaves_the_ego_where_it_is(velocity: float) -> None
 
 def test_ghost_message_is_ignored_unless_the_ego_is_external() -> None:
     context = _context()
-    context.settings_of(context.world.egos[0].unique_id).ctrl_mode = ControlMode.KEYBOARD
+    context.ego_session(context.world.egos[0]).set_ctrl_mode(ControlMode.KEYBOARD, by="the test")
     before = context.world.ego_status().pose
     message = PROFILE.message("morai_msgs/GhostMessage").new(
         position=_vector(50.0, 0.0, 0.0), rotation=_vector()
@@ -181,19 +181,19 @@ def test_multi_ego_setting_adds_and_configures_egos() -> None:
     assert third.vehicle.status().velocity[0] == pytest.approx(10.0)
     assert third.vehicle.gear is Gear.REVERSE
     assert second.vehicle.gear is Gear.DRIVE
-    assert context.settings_of(third.unique_id).ctrl_mode == ControlMode.AUTO
-    assert context.settings_of(second.unique_id).ctrl_mode == ControlMode.KEYBOARD
-    lamps = context.settings_of(third.unique_id).lamps
+    assert context.ego_session(third).ctrl_mode == ControlMode.AUTO
+    assert context.ego_session(second).ctrl_mode == ControlMode.KEYBOARD
+    lamps = context.ego_session(third).lamps
     assert (lamps.turn_signal, lamps.emergency) == (0, 1)
-    lamps = context.settings_of(second.unique_id).lamps
+    lamps = context.ego_session(second).lamps
     assert (lamps.turn_signal, lamps.emergency) == (1, 0)
 
     drive_autopilots(context)
-    assert list(context.session.autopilots) == [third.unique_id]
+    assert list(context.session.egos.autopilots) == [third.unique_id]
     on_multi_ego_setting(context, context.row("multi_ego_setting"), _multi_ego(1))
     drive_autopilots(context)
     assert len(world.egos) == 1
-    assert context.session.autopilots == {}
+    assert context.session.egos.autopilots == {}
 
 
 @pytest.mark.parametrize(
@@ -218,7 +218,7 @@ def test_a_bad_multi_ego_setting_changes_nothing(message) -> None:
     on_multi_ego_setting(context, context.row("multi_ego_setting"), message)
     assert len(context.world.egos) == 1
     assert context.session.camera_index == 0
-    assert context.settings_of(context.world.egos[0].unique_id).ctrl_mode == ControlMode.EXTERNAL
+    assert context.ego_session(context.world.egos[0]).ctrl_mode == ControlMode.EXTERNAL
 
 
 def test_a_ghost_npc_has_the_vehicle_spec_of_its_model() -> None:

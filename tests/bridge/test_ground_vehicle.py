@@ -123,7 +123,7 @@ def test_non_finite_targets_are_rejected_once_and_the_robot_keeps_its_command(ca
 
 def test_ground_commands_wait_for_external_control_mode() -> None:
     context = context_with("WeBOT_Indoor_Robot")
-    context.settings_of(context.world.egos[0].unique_id).ctrl_mode = ControlMode.KEYBOARD
+    context.ego_session(context.world.egos[0]).set_ctrl_mode(ControlMode.KEYBOARD, by="the test")
     run(context, "webot_cmd", twist(1.0, 0.0), seconds=1.0)
     assert context.world.ego_status().speed == 0.0
 

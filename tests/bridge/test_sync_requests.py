@@ -1,6 +1,10 @@
-"""Requests tagged with a later frame: kept in order, bounded, run in their tick."""
+"""Requests tagged with a later frame: kept in order, bounded, run in their tick; those
+tagged with the current or an earlier frame act on the next tick, and a WaitForTick for
+such a frame ticks once (as MORAI's clients send them)."""
 
 from __future__ import annotations
+
+from typing import Any
 
 from egosim.bridge import BridgeContext, simulation_context
 from egosim.bridge.sync_mode import MAX_PENDING_ACTIONS, at_frame, serve_wait_for_tick
@@ -19,13 +23,15 @@ def sync_context() -> BridgeContext:
     return context
 
 
-def tick_to(context: BridgeContext, frame: int) -> None:
+def tick_to(context: BridgeContext, frame: int) -> Any:
     service = context.profile.service("morai_msgs/MoraiWaitForTickSrv")
     request = service.request.new(
         request=context.profile.message("morai_msgs/WaitForTick").new(user_id="client", frame=frame)
     )
     row = context.row("sync_mode_wait_for_tick")
-    assert serve_wait_for_tick(context, row, request).response.tick_status
+    reply = serve_wait_for_tick(context, row, request).response
+    assert reply.tick_status
+    return reply
 
 
 def recorder(log: list[tuple[int, str]], frame: int, name: str):
@@ -62,3 +68,21 @@ def test_waiting_requests_are_bounded_and_free_their_places_when_run() -> None:
     tick_to(context, 2)  # frame 2's share runs and leaves
     assert len(ran) == MAX_PENDING_ACTIONS // 50
     assert at_frame(context, REQUESTS, 60, recorder(ran, 60, "accepted"))
+
+
+def test_a_tick_for_the_current_or_an_earlier_frame_steps_once() -> None:
+    context = sync_context()
+    tick_to(context, 3)
+    for frame, expected in [(3, 4), (3, 5), (0, 6), (1, 7)]:
+        reply = tick_to(context, frame)
+        assert (reply.frame, reply.time) == (expected, f"{expected * 0.01:.6f}")
+    assert tick_to(context, 9).frame == 9  # a later frame: up to it
+
+
+def test_requests_for_the_current_or_an_earlier_frame_act_on_the_next_tick() -> None:
+    context = sync_context()
+    tick_to(context, 4)
+    ran: list[tuple[int, str]] = []
+    for frame, name in [(4, "current"), (2, "earlier"), (0, "zero"), (5, "next")]:
+        assert at_frame(context, REQUESTS, frame, recorder(ran, frame, name))
+    assert [name for _, name in ran] == ["current", "earlier", "zero", "next"]

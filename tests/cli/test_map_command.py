@@ -74,6 +74,31 @@ def test_town_facts_and_georeference(capsys: pytest.CaptureFixture[str]) -> None
     assert lat == pytest.approx(37.58, abs=0.01) and lon == pytest.approx(126.88, abs=0.01)
 
 
+NO_GEOREFERENCE_XODR = """<OpenDRIVE><header revMajor="1" revMinor="6"/>
+  <road id="1" length="50" junction="-1">
+    <planView><geometry s="0" x="0" y="0" hdg="0" length="50"><line/></geometry></planView>
+    <lanes><laneSection s="0"><right><lane id="-1" type="driving">
+      <width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right></laneSection></lanes>
+  </road></OpenDRIVE>"""
+
+
+def test_a_map_naming_no_georeference_is_said_to_be_placed_by_assumption(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    path = tmp_path / "nowhere.xodr"
+    path.write_text(NO_GEOREFERENCE_XODR)
+    out = run_map(capsys, str(path))
+    facts = summary(out)
+    assert facts["georeference"].startswith(
+        "assumed, the map names none: UTM zone 52N, local origin at easting 313000.000"
+    )
+    assert facts["georeference"].endswith("GPS latitudes and longitudes are invented")
+    assert "note: header has no geoReference" in out
+    # A map that names its own place is not said to be assumed.
+    placed = summary(run_map(capsys, str(DATA_MAPS / "junction.xodr")))["georeference"]
+    assert not placed.startswith("assumed")
+
+
 def test_lanes_are_listed_with_their_start_poses(capsys: pytest.CaptureFixture[str]) -> None:
     lane_map = load_map("town")
     rows = table(run_map(capsys, "town", "--lanes"), "lane")
@@ -85,7 +110,7 @@ def test_lanes_are_listed_with_their_start_poses(capsys: pytest.CaptureFixture[s
         assert float(row["y"]) == pytest.approx(y, abs=0.005)
         assert float(row["heading_deg"]) == pytest.approx(math.degrees(heading), abs=0.05)
         assert float(row["length_m"]) == pytest.approx(lane.length, abs=0.005)
-        assert row["light"] == (lane.traffic_light_id or "-")
+        assert row["light"] == (",".join(lane.traffic_light_ids) or "-")
         assert row["successors"] == ",".join(lane.successors)
 
 

@@ -8,6 +8,9 @@ line before the block changes that:
     <!-- doc-test: simulator -->       starts the simulator: it runs in the background
                                        until the next such block or the end of the file,
                                        and the blocks after it run against it
+    <!-- doc-test: prints -->          an output block: what the command block before it
+                                       prints (each of its lines must be a line of that
+                                       block's output)
 """
 
 from __future__ import annotations
@@ -34,7 +37,7 @@ class Block:
     language: str
     text: str
     action: str
-    """'run', 'simulator', 'skip' (marked), or 'none' (not a command)."""
+    """'run', 'simulator', 'skip', 'prints' (marked), or 'none' (not a command)."""
     reason: str = ""
 
     @property
@@ -56,7 +59,7 @@ def parse_blocks(path: Path) -> list[Block]:
         line = lines[index]
         if match := MARKER.match(line.strip()):
             kind, reason = match["kind"], match["reason"] or ""
-            if kind not in ("skip", "simulator") or (kind == "skip") != bool(reason):
+            if kind not in ("skip", "simulator", "prints") or (kind == "skip") != bool(reason):
                 raise MarkerError(f"{path.name}:{index + 1}: bad marker {line.strip()!r}")
             pending = (index + 1, kind, reason)
             index += 1

@@ -70,3 +70,10 @@ def test_a_marker_before_prose_is_refused(tmp_path: Path) -> None:
     path.write_text("<!-- doc-test: skip: slow -->\nSome prose.\n```sh\ntrue\n```\n")
     with pytest.raises(MarkerError, match="not followed by a block"):
         parse_blocks(path)
+
+
+def test_an_output_block_marked_prints(tmp_path: Path) -> None:
+    path = tmp_path / "doc.md"
+    path.write_text("```sh\necho hi\n```\n\n<!-- doc-test: prints -->\n```\nhi\n```\n")
+    run, printed = parse_blocks(path)
+    assert (run.action, printed.action, printed.text) == ("run", "prints", "hi\n")

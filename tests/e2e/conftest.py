@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import subprocess
 import sys
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
@@ -59,18 +58,3 @@ def rospy_client(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Callable[.
     finally:
         for driver in drivers:
             driver.close()
-
-
-@pytest.fixture(scope="session")
-def built_msg_packages(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """morai_msgs (26.r1) and its dependencies as rospy modules, written by
-    `egosim msgs --export-python` with Debian's genpy; put it on PYTHONPATH."""
-    require_ros()
-    outdir = tmp_path_factory.mktemp("msg_packages")
-    subprocess.run(
-        [sys.executable, "-m", "egosim", "msgs", "--export-python", str(outdir)],
-        check=True,
-        capture_output=True,
-        timeout=300,
-    )
-    return outdir

@@ -131,3 +131,23 @@ def test_invalid_scenario_names_file_line_and_field(tmp_path: Path) -> None:
 def test_duration_stops_by_itself(egosim) -> None:
     simulator = egosim("--clock", "sim", "--rtf", "0", "--duration", "5")
     assert simulator.process.wait(timeout=60) == 0
+
+
+def test_an_openscenario_run_ends_with_its_storyboard(egosim) -> None:
+    gallery = Path(__file__).parents[2] / "examples" / "openscenario"
+    simulator = egosim(
+        "--scenario",
+        str(gallery / "braking_target.xosc"),
+        "--ctrl-mode",
+        "auto",
+        "--clock",
+        "sim",
+        "--rtf",
+        "0",
+        "--no-view",
+    )
+    # The scenario drives the ego into the braking target: the evaluation fails, the
+    # storyboard ends, and so does the run (well before its 20 s time-out).
+    assert simulator.process.wait(timeout=60) == 0
+    log = simulator.process.stderr_text()
+    assert "scenario ended at t=" in log and "evaluation failure" in log

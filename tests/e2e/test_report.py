@@ -7,6 +7,8 @@ from __future__ import annotations
 import base64
 import io
 import re
+import subprocess
+import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -22,7 +24,7 @@ from egosim.plots import FigureBlock, TableBlock
 from egosim.report import drive_report_blocks, read_drive
 from egosim.world.map import build_builtin_map
 from tests.e2e.driver import RospyDriver
-from tests.e2e.scenarios import write
+from tests.e2e.scenarios import OBSTACLE_AHEAD, write
 
 pytestmark = pytest.mark.ros
 
@@ -134,3 +136,87 @@ def test_report_of_a_recorded_drive(
         Image.open(io.BytesIO(png)).verify()
     assert "red lights run: 1" in text
     assert f"collisions: {kinds.count('collision')}" in text
+
+
+def test_a_recording_begun_after_a_collision_holds_none_of_it(
+    egosim: Callable[..., Any],
+    rospy_client: Callable[..., RospyDriver],
+    ros_env: dict[str, str],
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """Issue 29: `egosim record` started a while after the ego hit a barrier (nobody
+    listened to /CollisionData then) must not find that collision in its first message;
+    and while the ego rests against the barrier, the report tells that contact apart."""
+    scenario = write(tmp_path, "obstacle.yaml", OBSTACLE_AHEAD)
+    simulator = egosim(
+        "--map", "straight", "--scenario", str(scenario), "--no-view",
+        "--clock", "sim", "--rtf", "4",
+    )  # fmt: skip
+    driver = rospy_client(simulator)
+    driver.subscribe(*EGO)
+    driver.stream(*CTRL, {"longlCmdType": 1, "accel": 0.5}, rate=20)
+    top = speed = 0.0
+    seen = 0
+    while not (top > 2.0 and speed < top / 2):  # the speed the barrier took away
+        received = driver.messages(EGO[0], since=seen, count=1, timeout=30)
+        assert received, "no /Ego_topic"
+        seen += len(received)
+        speed = received[-1]["velocity"]["x"]
+        top = max(top, speed)
+    driver.stream(*CTRL, {"longlCmdType": VELOCITY_MODE, "velocity": 0.0}, rate=20)
+    settled_at_rest(driver)
+
+    def record_and_report(name: str) -> str:
+        bag = tmp_path / f"{name}.bag"
+        topics = ["/Ego_topic", "/CollisionData"]
+        subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "egosim",
+                "record",
+                str(bag),
+                "--duration",
+                "2",
+                "--topics",
+                *topics,
+            ],
+            env={**ros_env, "ROS_MASTER_URI": simulator.master_uri, "ROS_IP": "127.0.0.1"},
+            check=True,
+            capture_output=True,
+            timeout=120,
+        )
+        page = tmp_path / f"{name}.html"
+        assert main(["report", str(bag), "-o", str(page), "--map", "straight"]) == 0
+        capsys.readouterr()
+        first = bag_messages(bag, "/CollisionData")[0][1]
+        return f"first listing: {[o.name for o in first.collision_object]}\n{page.read_text()}"
+
+    apart = record_and_report("apart")
+    assert "first listing: []" in apart  # the old collision is not brought back
+    assert re.search(r"collisions: 0\s", apart)
+    assert "already under way" not in apart
+
+    # Pushed against the barrier again: the contact lasts, and every message lists it.
+    driver.stream(*CTRL, {"longlCmdType": 1, "accel": 0.5}, rate=20)
+    settled_at_rest(driver)
+    resting = record_and_report("resting")
+    assert "first listing: ['Barrier']" in resting
+    assert "collisions: 0 (1 more already under way when the recording began" in resting
+
+
+def settled_at_rest(driver: RospyDriver) -> None:
+    """Wait until the ego has stood still for a second of simulation."""
+    still_since = None
+    deadline = driver.now() + 60.0
+    while driver.now() < deadline:
+        message = driver.next_message(EGO[0])
+        now = message["header"]["stamp"]
+        if abs(message["velocity"]["x"]) > 0.02:
+            still_since = None
+        elif still_since is None:
+            still_since = now
+        elif now - still_since >= 1.0:
+            return
+    raise AssertionError("the ego never came to rest")

@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+import itertools
+import struct
 import time
 from pathlib import Path
 
 import pytest
+
+from tests import waiting
 
 pytestmark = pytest.mark.ros
 
@@ -75,14 +79,14 @@ def test_a_tick_to_a_later_frame_steps_once_per_frame(egosim, rospy_client, netw
     assert len(client.messages(EGO[0], count=5)) == 5
 
 
-def test_the_current_or_a_past_frame_does_not_tick(egosim, rospy_client) -> None:
+def test_the_current_or_a_past_frame_ticks_once(egosim, rospy_client) -> None:
     client = rospy_client(egosim("--map", "straight", "--clock", "sync"))
     first = start_sync_mode(client)
     tick(client, first + 3)
-    for frame in (first + 3, first + 1):
+    for k, frame in enumerate((first + 3, first + 1, 0), start=4):
         reply = tick(client, frame)
-        assert reply["tick_status"] is False
-        assert (reply["frame"], reply["time"]) == (first + 3, "0.030000")
+        assert reply["tick_status"] is True
+        assert (reply["frame"], reply["time"]) == (first + k, f"{0.01 * k:.6f}")
 
 
 def test_only_the_user_who_started_it_ticks(egosim, rospy_client) -> None:
@@ -140,8 +144,11 @@ def test_a_command_takes_effect_at_its_frame(egosim, rospy_client) -> None:
     moving = tick(client, first + 20)["vehicle_status"]
     assert moving["velocity"]["x"] > 0.0
     assert moving["accel"] == pytest.approx(1.0)
-    assert ctrl(client, first + 20, 0.0) is False  # that tick is over
-    assert ctrl(client, first + 2, 0.0) is False
+    # a frame already ticked: the command drives the next tick
+    assert ctrl(client, first + 20, 0.0) is True
+    assert tick(client, first + 21)["vehicle_status"]["accel"] == 0.0
+    assert ctrl(client, first + 2, 0.5) is True
+    assert tick(client, first + 22)["vehicle_status"]["accel"] == pytest.approx(0.5)
 
 
 def test_set_gear_at_a_frame(egosim, rospy_client) -> None:
@@ -228,3 +235,116 @@ def test_scenario_load_at_a_frame(egosim, rospy_client, network_file) -> None:
     assert [o["name"] for o in obstacles_after_tick(client, first + 1)] == ["Barrier"]
     missing = {**load, "frame": first + 2, "file_name": "no_such_scenario"}
     assert client.call(*LOAD, {"request": missing})["response"]["result"] is False
+
+
+# MORAI's own clients, as they call the services (morai_example's 2021.08
+# synchronous_mode.py and its later frame-0 variant, MORAI-EDU's RL chapter): a frame
+# that never advances, and one tick per call.
+EVENT = ("/Service_MoraiEventCmd", "morai_msgs/MoraiEventCmdSrv")
+THROTTLE = {"longlCmdType": 1, "accel": 0.6, "brake": 0.0}
+NEUTRAL, DRIVE = 3, 4
+
+
+def speeds_and_frames(replies: list[dict]) -> tuple[list[float], list[int]]:
+    return (
+        [r["vehicle_status"]["velocity"]["x"] for r in replies],
+        [r["frame"] for r in replies],
+    )
+
+
+def test_the_2021_08_example_loop_ticks_once_per_call(egosim, rospy_client) -> None:
+    """SyncModeCmd without a time_step (20 ms), then WaitForTick with the start's frame
+    every time, the ego's CtrlCmd inside it."""
+    client = rospy_client(egosim("--map", "straight"), profile="2021.08")
+    start = {"user_id": "sync_master", "start_sync_mode": True}
+    started = client.call(*SYNC_CMD, {"request": start})["response"]
+    assert started["result"] is True
+    request = {"user_id": started["user_id"], "frame": started["frame"], "command": THROTTLE}
+    replies = [client.call(*TICK, {"request": request})["response"] for _ in range(50)]
+    speeds, frames = speeds_and_frames(replies)
+    assert all(r["tick_status"] for r in replies)
+    assert frames == [started["frame"] + k for k in range(1, 51)]
+    assert replies[0]["vehicle_status"]["accel"] == pytest.approx(0.6)  # in that very tick
+    assert speeds == sorted(speeds) and speeds[-1] > 1.0
+    stamps = [r["vehicle_status"]["header"]["stamp"] for r in replies]
+    assert [b - a for a, b in itertools.pairwise(stamps)] == [pytest.approx(0.02, abs=1e-6)] * 49
+
+
+def test_the_frame_0_variant_ticks_once_per_call(egosim, rospy_client) -> None:
+    """SyncModeCtrlCmd for the frame the client counts, WaitForTick(frame = 0)."""
+    client = rospy_client(egosim("--map", "straight"))
+    next_frame = start_sync_mode(client, time_step_ms=20) + 1
+    assert tick(client, next_frame)["frame"] == next_frame
+    replies = []
+    for _ in range(50):
+        next_frame += 1
+        assert ctrl(client, next_frame, THROTTLE["accel"]) is True
+        replies.append(tick(client, 0))
+    speeds, frames = speeds_and_frames(replies)
+    assert frames == list(range(next_frame - 49, next_frame + 1))
+    times = [float(r["time"]) for r in replies]
+    assert [b - a for a, b in itertools.pairwise(times)] == [pytest.approx(0.02, abs=1e-9)] * 49
+    assert speeds == sorted(speeds) and speeds[-1] > 1.0
+
+
+def test_the_rl_chapter_loop_drives_with_the_frames_it_is_answered(egosim, rospy_client) -> None:
+    """SetGear and WaitForTick for the start's frame, then per step: WaitForTick, a
+    SyncModeCtrlCmd for the frame it answered, WaitForTick again; reset by stop and
+    start."""
+    client = rospy_client(egosim("--map", "straight"))
+    neutral = {"request": {"option": 2, "ctrl_mode": 3, "gear": NEUTRAL}}
+    assert client.call(*EVENT, neutral)["response"]["gear"] == NEUTRAL
+    for episode in range(2):
+        frame = start_sync_mode(client, time_step_ms=20)
+        gear = {"request": {"gear": DRIVE, "frame": frame}}
+        assert client.call(*GEAR, gear)["response"]["result"] is True
+        assert tick(client, frame)["frame"] == frame + 1
+        replies = []
+        for _ in range(20):
+            answered = tick(client, frame)["frame"]
+            assert ctrl(client, answered, THROTTLE["accel"]) is True
+            replies.append(tick(client, frame))
+        speeds, frames = speeds_and_frames(replies)
+        assert frames == [frame + 1 + 2 * k for k in range(1, 21)], episode
+        assert speeds == sorted(speeds) and speeds[-1] > 0.5, episode
+        stop_sync_mode(client)
+
+
+EGO_EVERY_TICK = "rows:\n  ego_status: {rate_hz: 50}\n"  # one status per 20 ms tick
+
+
+def raw_stamp_ns(message: dict) -> int:
+    """header.stamp of a serialized EgoVehicleStatus (seq, then secs and nsecs)."""
+    secs, nsecs = struct.unpack_from("<II", bytes.fromhex(message["hex"]), 4)
+    return secs * 1_000_000_000 + nsecs
+
+
+def test_a_real_time_run_stamps_sync_ticks_with_the_world_time(
+    egosim, rospy_client, tmp_path: Path
+) -> None:
+    network = tmp_path / "ego_every_tick.yaml"
+    network.write_text(EGO_EVERY_TICK)
+    client = rospy_client(egosim("--map", "straight", "--network", str(network)))
+    client.subscribe(*EGO, raw=True)
+    client.wait_connected(EGO[0])
+    first = start_sync_mode(client, time_step_ms=20)
+    replies = [tick(client, first + k) for k in range(1, 6)]
+    replied = [r["vehicle_status"]["header"]["stamp"] for r in replies]
+
+    def sync_stamps() -> list[int] | None:
+        stamps = [raw_stamp_ns(m) for m in client.messages(EGO[0], count=0, timeout=0)]
+        ticked = [s for s in stamps if any(abs(s / 1e9 - r) < 1e-6 for r in replied)]
+        return ticked if len(ticked) == 5 else None
+
+    ticked = waiting.until(sync_stamps, "the five ticks' /Ego_topic messages")
+    assert [b - a for a, b in itertools.pairwise(ticked)] == [20_000_000] * 4
+
+    # 2 s of the world in one call, ahead of the wall clock; after the stop real time
+    # goes on from there
+    tick(client, first + 105)
+    stop_sync_mode(client)
+    seen = len(client.messages(EGO[0], count=0, timeout=0))
+    client.messages(EGO[0], since=seen, count=20)
+    stamps = [raw_stamp_ns(m) for m in client.messages(EGO[0], count=0, timeout=0)]
+    assert stamps == sorted(stamps)
+    assert stamps[-1] > ticked[-1] + 2_000_000_000

@@ -19,9 +19,32 @@ pytestmark = pytest.mark.ros
 
 EGO = ("/Ego_topic", "morai_msgs/EgoVehicleStatus")
 SET_LIGHT = ("/SetTrafficLight", "morai_msgs/SetTrafficLight")
+EVENT = ("/Service_MoraiEventCmd", "morai_msgs/MoraiEventCmdSrv")
 RED = 1
+OPTION_CTRL_MODE, AUTO = 1, 4
 EGO_COLOUR = (0x3A, 0xA0, 0xFF)
 RED_COLOUR = "#ff3b30"
+SPEED_PLOT_COLOUR = (0x4A, 0xA8, 0xFF)
+DRIVEN_S = 5.0
+# Test-side network delay: the page's socket holds every message it receives until the
+# test calls egosimTestRelease() (installed before the page's own scripts run).
+HOLD_SOCKET_MESSAGES = """
+window.egosimTestHeld = [];
+class HeldSocket extends WebSocket {
+  set onmessage(handler) {
+    super.onmessage = (event) => {
+      if (window.egosimTestHeld) window.egosimTestHeld.push(() => handler(event));
+      else handler(event);
+    };
+  }
+}
+window.WebSocket = HeldSocket;
+window.egosimTestRelease = () => {
+  const held = window.egosimTestHeld;
+  window.egosimTestHeld = null;
+  held.forEach((deliver) => deliver());
+};
+"""
 
 
 @pytest.fixture
@@ -84,7 +107,7 @@ def look_at(browser: Any, x: float, y: float, scale: float) -> None:
 
 
 def test_page_loads_without_console_errors_and_shows_the_town(viewed) -> None:
-    _, browser = viewed()
+    simulator, browser = viewed("--log-level", "DEBUG")
     assert page(browser, "s.map.name") == "town"
     assert page(browser, "s.map.lanes.length") > 100
     assert page(browser, "s.frame.objects.id.length") > 0
@@ -101,6 +124,11 @@ def test_page_loads_without_console_errors_and_shows_the_town(viewed) -> None:
     browser.save_screenshot(str(ARTIFACTS / "view_ego.png"))
     assert severe_console_entries(browser) == []
     assert page(browser, "s.errors") == []
+    # Leaving the page, as closing its tab does, is routine: a DEBUG line, nothing above.
+    browser.get("about:blank")
+    wait_for(lambda: "view: a browser left" in simulator.process.stderr_text(), "the departure")
+    logged = simulator.process.stderr_text().splitlines()
+    assert [line for line in logged if "browser" in line and " DEBUG " not in line] == []
 
 
 def test_the_ego_is_drawn_where_ego_topic_says(viewed, rospy_client) -> None:
@@ -200,3 +228,160 @@ def test_a_taken_view_port_leaves_the_simulator_running(egosim) -> None:
         simulator = egosim("--view-port", str(port))
     assert any(line.startswith("egosim: no view") for line in simulator.process.output)
     assert simulator.process.popen.poll() is None
+
+
+def loading_items(browser: Any) -> dict[str, tuple[str, str]]:
+    """The loading overlay's steps: id -> (state, text)."""
+    items = browser.find_elements("css selector", "#loading li")
+    return {item.get_attribute("id"): (item.get_attribute("class"), item.text) for item in items}
+
+
+def test_the_page_shows_what_it_waits_for_until_the_first_frame(egosim, browser) -> None:
+    port = free_port()
+    egosim("--view-port", str(port))
+    browser.execute_cdp_cmd("Network.enable", {})
+    browser.execute_cdp_cmd("Network.setBlockedURLs", {"urls": ["*/map.json"]})
+    browser.execute_cdp_cmd(
+        "Page.addScriptToEvaluateOnNewDocument", {"source": HOLD_SOCKET_MESSAGES}
+    )
+    browser.get(f"http://127.0.0.1:{port}/")
+    overlay = browser.find_element("id", "loading")
+    # Connected, the map refused: the overlay says so and that it retries.
+    wait_for(lambda: page(browser, "s.connected && s.mapError !== null"), "a failed map fetch")
+    assert overlay.is_displayed()
+    steps = loading_items(browser)
+    assert steps["loading-connection"] == ("done", "connected to the simulator")
+    assert steps["loading-map"][0] == "failed" and "retrying" in steps["loading-map"][1]
+    assert steps["loading-frame"] == ("waiting", "waiting for the first frame…")
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    browser.save_screenshot(str(ARTIFACTS / "view_loading_map_refused.png"))
+    # The map comes on the next try; no frame has been handed to the page yet.
+    browser.execute_cdp_cmd("Network.setBlockedURLs", {"urls": []})
+    wait_for(lambda: page(browser, "s.map !== null"), "the map on a retry")
+    assert page(browser, "s.frame === null && s.loading") == "waiting for the first frame…"
+    assert overlay.is_displayed()
+    assert loading_items(browser)["loading-map"] == ("done", "map loaded")
+    plot_text = page(browser, "document.getElementById('plot-speed').toDataURL()")
+    browser.save_screenshot(str(ARTIFACTS / "view_waiting_for_the_first_frame.png"))
+    # The first frame ends the loading state.
+    page(browser, "window.egosimTestRelease()")
+    wait_for(lambda: page(browser, "s.frame !== null"), "the first frame")
+    wait_for(lambda: not overlay.is_displayed(), "the overlay to go")
+    assert page(browser, "s.loading") is None
+    wait_for(
+        lambda: page(browser, "document.getElementById('plot-speed').toDataURL()") != plot_text,
+        "the speed plot to draw its data",
+    )
+    assert severe_console_entries(browser) == []
+    assert page(browser, "s.errors") == []
+
+
+def columns_drawn_in(browser: Any, canvas_id: str, colour: tuple[int, int, int]) -> list[int]:
+    """[canvas width, first column, last column] holding `colour` (device pixels)."""
+    r, g, b = colour
+    return page(
+        browser,
+        f"""(() => {{
+          const c = document.getElementById('{canvas_id}');
+          const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+          const near = (k) => Math.abs(d[k] - {r}) < 24 && Math.abs(d[k + 1] - {g}) < 24
+            && Math.abs(d[k + 2] - {b}) < 24;
+          let lo = Infinity, hi = -Infinity;
+          for (let x = 0; x < c.width; x++) {{
+            for (let y = 0; y < c.height; y++) {{
+              if (near(4 * (y * c.width + x))) {{ lo = Math.min(lo, x); hi = Math.max(hi, x); }}
+            }}
+          }}
+          return [c.width, lo, hi];
+        }})()""",
+    )
+
+
+def drive_on_autopilot(client: Any, seconds: float) -> None:
+    """Put the main ego on autopilot and wait until it has driven `seconds` of sim time."""
+    client.subscribe(*EGO)
+    request = {"request": {"option": OPTION_CTRL_MODE, "ctrl_mode": AUTO, "gear": -1}}
+    client.call(*EVENT, request)
+    start = client.next_message(EGO[0])["header"]["stamp"]
+
+    def driven() -> bool:
+        status = client.next_message(EGO[0])
+        return status["header"]["stamp"] - start >= seconds and status["velocity"]["x"] > 1.0
+
+    wait_for(driven, f"{seconds} s of driving", timeout=60.0)
+
+
+def test_a_page_opened_after_driving_shows_the_minute_before_it(
+    egosim, browser, rospy_client
+) -> None:
+    port = free_port()
+    simulator = egosim("--view-port", str(port))
+    drive_on_autopilot(rospy_client(simulator), DRIVEN_S)
+    browser.get(f"http://127.0.0.1:{port}/")
+    wait_for(lambda: page(browser, "s.map && s.frame"), "map and a frame")
+    opened = page(browser, "s.firstFrameTime")
+    ego_id = page(browser, "s.frame.egos[0].id")
+    samples = page(browser, f"s.samples.get({ego_id})")
+    before = [k for k, t in enumerate(samples["t"]) if t < opened]
+    # Samples every 0.1 s from before the page existed, the drive among them.
+    assert samples["t"][0] <= opened - DRIVEN_S
+    assert len(before) >= DRIVEN_S / 0.1 - 1
+    assert max(samples["speed"][k] for k in before) > 1.0
+    assert len(samples["x"]) == len(samples["t"])  # the trail too
+    # The speed plot draws them: its line reaches back at least 5 s of its 60 s.
+    width, drawn_from, drawn_to = columns_drawn_in(browser, "plot-speed", SPEED_PLOT_COLOUR)
+    ratio = page(browser, "window.devicePixelRatio || 1")
+    five_seconds_px = DRIVEN_S / 60.0 * (width - 38 * ratio)
+    assert drawn_to - drawn_from >= five_seconds_px, (width, drawn_from, drawn_to)
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    browser.save_screenshot(str(ARTIFACTS / "view_opened_after_driving.png"))
+
+
+def test_the_tooltip_follows_the_frames_under_a_still_mouse(egosim, browser, rospy_client) -> None:
+    from selenium.webdriver.common.action_chains import ActionChains  # noqa: PLC0415
+
+    port = free_port()
+    simulator = egosim("--view-port", str(port))
+    browser.get(f"http://127.0.0.1:{port}/")
+    wait_for(lambda: page(browser, "s.map && s.frame && s.connected"), "map and a frame")
+    page(browser, "s.view.scale = 12")
+    moves = "window.egosimTestMoves"
+    page(
+        browser,
+        f"({moves} = 0, document.getElementById('world').addEventListener("
+        f"'mousemove', () => {{ {moves} += 1; }}))",
+    )
+    # The pointer onto the ego (followed: the view keeps it centred), then left alone.
+    canvas = browser.find_element("id", "world")
+    ego = page(browser, "s.frame.egos[0]")
+    centre = page(
+        browser,
+        "s.worldToScreen(s.frame.egos[0].x + Math.cos(s.frame.egos[0].yaw) * "
+        "s.frame.egos[0].centre_offset, s.frame.egos[0].y + Math.sin(s.frame.egos[0].yaw) * "
+        "s.frame.egos[0].centre_offset)",
+    )
+    size = canvas.size
+    ActionChains(browser).move_to_element_with_offset(
+        canvas, round(centre[0] - size["width"] / 2), round(centre[1] - size["height"] / 2)
+    ).perform()
+    tooltip = browser.find_element("id", "tooltip")
+    first = wait_for(lambda: page(browser, "s.tooltip"), "a tooltip on the ego")
+    assert first.startswith(f"ego {ego['id']} · 0.0 km/h")
+    moved = page(browser, moves)
+    drive_on_autopilot(rospy_client(simulator), 1.0)
+    # Its speed changes in the tooltip with the frames, the mouse still.
+    wait_for(
+        lambda: (
+            (text := page(browser, "s.tooltip"))
+            and text.startswith(f"ego {ego['id']}")
+            and text != first
+            and tooltip.text == text
+        ),
+        "the tooltip to show the ego's new speed",
+    )
+    browser.save_screenshot(str(ARTIFACTS / "view_tooltip_on_a_moving_ego.png"))
+    # No longer followed, the ego drives out from under the pointer: the tooltip goes.
+    page(browser, "s.follow = false")
+    wait_for(lambda: page(browser, "s.tooltip") is None, "the tooltip to go with the ego")
+    assert not tooltip.is_displayed()
+    assert page(browser, moves) == moved  # all of it without a mouse move

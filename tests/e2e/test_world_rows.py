@@ -56,6 +56,26 @@ def test_object_list_counts_everything_and_orders_closest_first(egosim, rospy_cl
         )
 
 
+def test_object_lists_are_ordered_by_distance_from_the_position_ego_topic_reports(
+    egosim, rospy_client, tmp_path
+) -> None:
+    data_root = tmp_path / "data"
+    data_root.mkdir(exist_ok=True)
+    scenario = scenarios.write(data_root, "fore_and_aft.yaml", scenarios.OBJECTS_FORE_AND_AFT)
+    client = rospy_client(egosim("--scenario", str(scenario)))
+    client.subscribe(*OBJECTS)
+    client.subscribe(*EGO)
+    ego = client.next_message(EGO[0])
+    objects = client.next_message(OBJECTS[0])
+    # The scene alternates objects a little behind and a little ahead of the rear axle,
+    # so only this origin orders them as listed (tests/e2e/scenarios.py).
+    for kind, count in (("npc_list", 2), ("obstacle_list", 4)):
+        listed = objects[kind]
+        ranges = [distance(o["position"], ego["position"]) for o in listed]
+        assert len(listed) == count
+        assert ranges == sorted(ranges)
+
+
 def test_driving_into_an_obstacle_reports_one_collision(egosim, rospy_client) -> None:
     simulator = egosim("--map", "straight")
     scenario = scenarios.write(simulator.data_root, "obstacle.yaml", scenarios.OBSTACLE_AHEAD)
@@ -95,6 +115,7 @@ def test_driving_into_an_obstacle_reports_one_collision(egosim, rospy_client) ->
 
 def test_red_override_stops_an_npc_before_its_stop_line(egosim, rospy_client) -> None:
     lane = build_builtin_map("town").lane("R2_E_1")
+    (light,) = lane.traffic_light_ids
     stop_line_x = lane.centerline[0][0] + lane.stop_line_s
     probe = egosim("--map", "straight")
     scenario = scenarios.write(probe.data_root, "red.yaml", scenarios.RED_LIGHT_TOWN)
@@ -103,7 +124,7 @@ def test_red_override_stops_an_npc_before_its_stop_line(egosim, rospy_client) ->
     client.publish(
         "/SetTrafficLight",
         "morai_msgs/SetTrafficLight",
-        {"trafficLightIndex": lane.traffic_light_id, "trafficLightStatus": 1},
+        {"trafficLightIndex": light, "trafficLightStatus": 1},
     )
     npc = client.next_message(OBJECTS[0])["npc_list"][0]
     deadline_stamp = None
@@ -122,9 +143,7 @@ def test_red_override_stops_an_npc_before_its_stop_line(egosim, rospy_client) ->
     npc = until(stopped_npc, "the NPC to stop at the red light", timeout_s=60.0)
     front = npc["position"]["x"] + npc["size"]["x"] / 2
     assert front <= stop_line_x + 0.01
-    status = client.call(
-        "/Morai_TLSrv", "morai_msgs/MoraiTLInfoSrv", {"request": {"idx": lane.traffic_light_id}}
-    )
+    status = client.call("/Morai_TLSrv", "morai_msgs/MoraiTLInfoSrv", {"request": {"idx": light}})
     assert status["response"]["status"] == 1
 
 

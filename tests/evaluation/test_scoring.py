@@ -22,7 +22,7 @@ from egosim.world.map import LaneMap, build_builtin_map
 from egosim.world.scenario import parse_scenario
 from egosim.world.signals import GREEN, RED
 from egosim.world.vehicle import DEFAULT_EGO_MODEL, ego_model
-from tests.evaluation.drives import DT, along_lane, drive, straight
+from tests.evaluation.drives import DT, along_lane, drive, sample_exactly, straight
 
 EGO = ego_model(DEFAULT_EGO_MODEL)
 LANE_Y = -1.75  # the straight map's R1_E_1 centreline, heading east
@@ -66,6 +66,7 @@ def test_collision_with_a_static_object_at_the_time_it_must_happen() -> None:
     assert collision.kind is InfractionKind.COLLISION_STATIC
     assert collision.time_s == pytest.approx(expected_t, abs=DT + 1e-9)
     assert (collision.x, collision.y) == pytest.approx((obstacle_x, LANE_Y))
+    assert collision.magnitude == pytest.approx(speed, rel=0.01)  # the speed it hit at
     assert score.metrics["collisions"] == 1
     assert score.metrics["driving_score"] == pytest.approx(0.65)
     assert score.metrics["min_ttc_s"] == pytest.approx(0.0, abs=speed * DT)
@@ -91,9 +92,10 @@ def test_time_to_collision_and_headway_to_the_object_ahead() -> None:
 def test_running_a_red_light_at_its_stop_line(aspect: int, expected: list) -> None:
     town = build_builtin_map("town")
     lane = town.lanes["R1_E_1"]
-    assert lane.traffic_light_id is not None and lane.stop_line_s is not None
+    (light,) = lane.traffic_light_ids
+    assert lane.stop_line_s is not None
     world = World(town)
-    world.signals.set_light(lane.traffic_light_id, aspect)
+    world.signals.set_light(light, aspect)
     evaluator = DriveEvaluator(world)
     s0, speed = lane.stop_line_s - 20.0, 10.0
     drive(world, evaluator, along_lane(world, lane.id, s0, speed), 3.0)
@@ -199,6 +201,17 @@ def test_a_completed_route_finishes_the_drive_and_scores_full() -> None:
     assert score.metrics["route_completion"] == 1.0
     assert score.metrics["driving_score"] == 1.0
     assert score.infractions == ()
+
+
+@pytest.mark.parametrize("period", [0.01, 0.5, 1.0])
+def test_a_route_is_followed_at_any_sample_rate(period: float) -> None:
+    # At 40 m/s a 1 s sync tick moves the ego 40 m between samples.
+    world = straight_world()
+    evaluator = DriveEvaluator(world, Route([(float(x), LANE_Y) for x in range(201)]))
+    sample_exactly(world, evaluator, straight(0.0, LANE_Y, 40.0), 4.0, period)
+    assert evaluator.score().metrics["route_completion"] == pytest.approx(0.8)
+    sample_exactly(world, evaluator, straight(0.0, LANE_Y, 40.0), 1.0, period)
+    assert evaluator.finish_reason == "route_completed"
 
 
 def test_standing_still_too_long_is_blocked_and_ends_the_drive() -> None:

@@ -195,6 +195,19 @@ def test_bad_bag_fails_to_load_and_session_stays_usable(
     assert session.status().current_mode is Mode.REPLAY
 
 
+@pytest.mark.parametrize("name", ["net.bag", "../outside.bag"])
+def test_a_bag_outside_the_data_roots_is_logged_with_the_roots_and_the_way_out(
+    session: ReplaySession, data_root: Path, name: str, caplog: pytest.LogCaptureFixture
+) -> None:
+    """The README's replay of a bag recorded elsewhere: the client sees result false and
+    command_result 0x20; the log says where the simulator looked and how to change it."""
+    (data_root.parent / "outside.bag").write_bytes((data_root / "drive.bag").read_bytes())
+    assert play(session, rosbag_file_name=name) is CommandResult.BAG_LOAD_FAILED
+    (record,) = [r for r in caplog.records if "cannot load rosbag" in r.getMessage()]
+    assert str(data_root) in record.getMessage()
+    assert "egosim run --data-root DIR" in record.getMessage()
+
+
 def test_failed_load_keeps_the_bag_playing(playing: ReplaySession) -> None:
     advance(playing, 1.0)
     assert play(playing, rosbag_file_name="absent.bag") is CommandResult.BAG_LOAD_FAILED

@@ -20,6 +20,7 @@ from egosim.world.map import BUILTIN_MAP_NAMES, build_builtin_map
 P26, P2021 = get_profile("26.r1"), get_profile("2021.08")
 START_NS = 1_800_000_000 * 10**9
 EGO_HZ = 50
+LIGHT_HZ = 10
 SPEED_MPS = 10.0
 OFFSET_M = 0.3  # left of R1_E_1's centre line (the lane runs east along y = -271.75)
 HEADING_RAD = 0.02
@@ -39,11 +40,15 @@ def _header(profile: Any, type_name: str, t: float) -> Any:
     return header
 
 
-def ego_x(t: float) -> float:
-    return START_X + SPEED_MPS * t
+def ego_x(t: float, speed: float = SPEED_MPS) -> float:
+    return START_X + speed * t
 
 
-def write_drive(path: Path, light_aspect: int) -> Path:
+def write_drive(
+    path: Path, light_aspect: int, ego_hz: int = EGO_HZ, speed: float = SPEED_MPS
+) -> Path:
+    """The drive east along R1_E_1 through TL2_W's stop line, /Ego_topic at `ego_hz`, the
+    light's status at 10 Hz, /CollisionData at half the ego's rate (a cone hit at 11 s)."""
     ego = P26.message("morai_msgs/EgoVehicleStatus")
     light = P26.message("morai_msgs/GetTrafficLightStatus")
     with BagRecorder(path) as recorder:
@@ -59,29 +64,30 @@ def write_drive(path: Path, light_aspect: int) -> Path:
                 ("/CollisionData", P2021, P2021.message("morai_msgs/CollisionData")),
             )
         }
-        for k in range(int(DURATION_S * EGO_HZ) + 1):
-            t = k / EGO_HZ
-            stamp = START_NS + round(t * 1e9)
+        messages = []
+        for k in range(int(DURATION_S * LIGHT_HZ) + 1):
+            t = k / LIGHT_HZ
+            status = light.new(
+                header=_header(P26, light.name, t),
+                trafficLightIndex="TL2_W",
+                trafficLightType=2,
+                trafficLightStatus=light_aspect,
+            )
+            messages.append(
+                (t, handles["/GetTrafficLightStatus", "26.r1"], light.serialize(status))
+            )
+        for k in range(int(DURATION_S * ego_hz) + 1):
+            t = k / ego_hz
             message = ego.new(
                 header=_header(P26, ego.name, t),
-                position=_vector(P26, ego_x(t), -271.75 + OFFSET_M),
-                velocity=_vector(P26, SPEED_MPS, 0.0),
+                position=_vector(P26, ego_x(t, speed), -271.75 + OFFSET_M),
+                velocity=_vector(P26, speed, 0.0),
                 heading=math.degrees(HEADING_RAD),
                 accel=0.25,
                 brake=0.0,
                 front_steer_angle=1.5,
             )
-            recorder.write(handles["/Ego_topic", "26.r1"], stamp, ego.serialize(message))
-            if k % 5 == 0:
-                status = light.new(
-                    header=_header(P26, light.name, t),
-                    trafficLightIndex="TL2_W",
-                    trafficLightType=2,
-                    trafficLightStatus=light_aspect,
-                )
-                recorder.write(
-                    handles["/GetTrafficLightStatus", "26.r1"], stamp, light.serialize(status)
-                )
+            messages.append((t, handles["/Ego_topic", "26.r1"], ego.serialize(message)))
             if k % 2 == 0:
                 for profile in (P26, P2021):
                     kind = profile.message("morai_msgs/CollisionData")
@@ -91,16 +97,17 @@ def write_drive(path: Path, light_aspect: int) -> Path:
                             unique_id=7,
                             type=2,
                             name="Cone",
-                            position=_vector(profile, ego_x(t) + 2.0, -271.75),
+                            position=_vector(profile, ego_x(t, speed) + 2.0, -271.75),
                         )
                     ]
                     collision = kind.new(
                         header=_header(profile, kind.name, t),
                         collision_object=objects if hit else [],
                     )
-                    recorder.write(
-                        handles["/CollisionData", profile.name], stamp, kind.serialize(collision)
-                    )
+                    handle = handles["/CollisionData", profile.name]
+                    messages.append((t, handle, kind.serialize(collision)))
+        for t, handle, data in sorted(messages, key=lambda m: m[0]):
+            recorder.write(handle, START_NS + round(t * 1e9), data)
     return path
 
 
@@ -139,6 +146,15 @@ def test_a_red_light_run_once_at_the_stop_line(town, red_drive) -> None:
     assert run.time_s == pytest.approx(crossing_s, abs=1.0 / EGO_HZ)
     assert (run.x, run.y) == pytest.approx((STOP_LINE_X, -271.75))
     assert "TL2_W" in run.detail
+
+
+def test_a_red_light_run_between_sparse_samples(town, tmp_path: Path) -> None:
+    # At 45 m/s and 1 Hz: 0.5 m before the line, then 44.5 m past it, beyond the junction.
+    speed = 45.0
+    drive = read_drive(write_drive(tmp_path / "sparse.bag", 1, ego_hz=1, speed=speed))
+    (run,) = red_lights_run(town, drive, lane_errors(town, drive))
+    assert run.time_s == pytest.approx((STOP_LINE_X - START_X) / speed, abs=1e-6)
+    assert (run.x, run.y) == pytest.approx((STOP_LINE_X, -271.75))
 
 
 def test_green_is_no_violation(town, tmp_path: Path) -> None:

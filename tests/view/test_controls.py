@@ -14,6 +14,7 @@ from egosim.view.hub import FrameHub
 from egosim.view.stage import ViewStage
 from egosim.world.scenario import load_default_scenario
 from egosim.world.vehicle import Gear
+from tests import morai_scenarios as morai
 from tests.e2e import scenarios
 
 DT = 0.01
@@ -97,6 +98,22 @@ def test_scenarios_load_from_the_data_roots_only(town: BridgeContext, tmp_path: 
     assert len(town.world.npcs.unique_ids) == 2
 
 
+def test_morai_scenarios_are_listed_and_load_but_other_json_is_not_offered(
+    town: BridgeContext, tmp_path: Path
+) -> None:
+    controls, _ = controls_of(town)
+    document = morai.scenario(
+        "town", vehicles=(morai.npc(morai.on_link("R5_E_1", 0.5), 1, data_id=30100010),)
+    )
+    morai.write(tmp_path, "morai_scen.json", document)
+    (tmp_path / "maps").mkdir()
+    (tmp_path / "maps" / "link_set.json").write_text('[{"idx": "L1", "points": []}]')
+    (tmp_path / "results.json").write_text('{"cases": []}')
+    assert controls.apply({"op": "scenarios"})["scenarios"] == ["morai_scen.json"]
+    assert controls.apply({"op": "load", "name": "morai_scen"})["ok"]
+    assert town.world.npcs.names == ["2016_Hyundai_Ioniq"]
+
+
 def test_reload_puts_the_scenario_back(town: BridgeContext) -> None:
     controls, _ = controls_of(town)
     start = town.world.ego_status(0).pose
@@ -111,7 +128,7 @@ def test_keys_need_keyboard_control_mode(straight: BridgeContext) -> None:
     assert not reply["ok"]
     assert "keyboard control mode" in reply["error"]
     assert controls.apply({"op": "ctrl_mode", "mode": 1})["ok"]
-    assert straight.settings_of(straight.world.egos[0].unique_id).ctrl_mode == ControlMode.KEYBOARD
+    assert straight.ego_session(straight.world.egos[0]).ctrl_mode == ControlMode.KEYBOARD
     assert controls.apply({"op": "keys", "throttle": True})["ok"]
     assert controls.apply({"op": "ctrl_mode", "mode": 3})["ok"]
 
@@ -166,6 +183,21 @@ def test_a_silent_page_brakes_the_ego_to_a_stop(straight: BridgeContext) -> None
     status = straight.world.ego_status(0)
     assert status.speed < 0.05
     assert status.brake_pedal == 1.0
+
+
+def test_leaving_keyboard_mode_releases_the_keyboard_command(straight: BridgeContext) -> None:
+    """The page's switch keyboard -> external goes through the ego's session: no throttle is
+    kept, the ego brakes until a /ctrl_cmd comes."""
+    controls, stage = controls_of(straight)
+    controls.apply({"op": "ctrl_mode", "mode": 1})
+    drive(straight, controls, 1.5, throttle=True)
+    moving = straight.world.ego_status(0)
+    assert moving.accel_pedal > 0 and moving.speed > 1.0
+    assert controls.apply({"op": "ctrl_mode", "mode": 3})["ok"]
+    run(straight, stage, 3.0)  # no /ctrl_cmd
+    status = straight.world.ego_status(0)
+    assert (status.accel_pedal, status.brake_pedal) == (0.0, 1.0)
+    assert status.speed < moving.speed
 
 
 def test_prepared_loads_read_their_file_before_the_loop_applies_them(

@@ -50,6 +50,7 @@ def serve(context: BridgeContext, readonly: bool = False, port: int = 0) -> Iter
         prepare=controls.prepare,
         apply=controls.apply,
         capture=stage.capture,
+        history=lambda: encode(stage.history.message()),
         map_json=lambda: encode(map_snapshot(context.world.map)),
         system_state=lambda: ([["/Ego_topic", ["/egosim"]]], [], []),
         hello={"type": "hello", "clock_mode": "real"},
@@ -188,3 +189,28 @@ def test_a_taken_port_is_a_clear_error(town: BridgeContext) -> None:
             serve(town, port=taken.getsockname()[1]),
         ):
             pass
+
+
+def test_a_late_browser_gets_the_last_minute_before_its_first_frame(running: Running) -> None:
+    world = running.context.world
+    deadline = time.monotonic() + WAIT_S
+    while world.sim_time < 1.0:  # the loop runs in real time, with nobody watching
+        assert time.monotonic() < deadline, "the simulation did not run 1 s"
+        time.sleep(0.05)
+
+    async def browse() -> list[dict]:
+        async with aiohttp.ClientSession() as session, session.ws_connect(running.ws_url) as ws:
+            messages: list[dict] = []
+            while not messages or messages[-1]["type"] != "frame":
+                messages.append(json.loads((await asyncio.wait_for(ws.receive(), WAIT_S)).data))
+            return messages
+
+    messages = asyncio.run(browse())
+    kinds = [m["type"] for m in messages]
+    assert kinds.index("hello") < kinds.index("history") < kinds.index("frame")
+    history, frame = messages[kinds.index("history")], messages[-1]
+    (ego,) = history["egos"]
+    assert ego["id"] == world.egos[0].unique_id
+    assert ego["t"][0] < 0.2 and len(ego["t"]) >= 10  # from the start, not from the connect
+    # The first frame is taken for this browser: never older than the history.
+    assert frame["sim_time"] >= ego["t"][-1] >= 0.9

@@ -51,7 +51,9 @@ def test_object_list_holds_the_closest_objects_split_by_kind() -> None:
     assert (listing.num_npcs, listing.num_pedestrians, listing.num_obstacles) == (10, 8, 7)
     objects = world.objects()
     others = objects.object_types != ObjectType.EGO
-    ego_centre = objects.positions[~others][0, :2]
+    # Measured from the ego's reported position (/Ego_topic), as a client measures it.
+    pose = world.ego_status().pose
+    ego_centre = np.array([pose.x, pose.y])
     distance = np.hypot(*(objects.positions[others, :2] - ego_centre).T)
     nearest = set(objects.unique_ids[others][np.argsort(distance)[:12]].tolist())
     listed = [*listing.npcs, *listing.pedestrians, *listing.obstacles]

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from tests import morai_scenarios as morai
 from tests.world.traffic.scenes import EGO_OUT_OF_THE_WAY, run, world_from
 
 from egosim.world import World
@@ -18,6 +19,7 @@ from egosim.world.collision import EgoCollision
 from egosim.world.map import build_builtin_map
 from egosim.world.recorded_scene import RecordedEgo, RecordedScene
 from egosim.world.scenario import load_default_scenario
+from egosim.world.scenario.morai import read_morai_scenario
 from egosim.world.traffic import ObjectTable, ObjectType
 from egosim.world.vehicle import ControlCommand, LongitudinalMode, Pose
 
@@ -86,6 +88,37 @@ def test_simulated_npcs_stop_for_recorded_obstacles_and_pass_the_hidden_simulate
     assert 200.0 < front < 250.0  # past the barrier that is not shown, short of the cone
     assert world.shown_tables()[2].unique_ids.tolist() == [80]
     assert world.vehicle_collisions == []
+
+
+def test_dormant_npcs_wait_frozen_under_a_replay_and_wake_for_an_ego_that_came_near() -> None:
+    # MORAI active distances: the first NPC sets off once an ego has been within 40 m of
+    # it (while a replay stands in for the NPCs), the second never sees the ego that near.
+    document = morai.scenario(
+        "straight",
+        morai.ego(morai.at_pose(100.0, -1.75, 0.0)),
+        vehicles=(
+            morai.npc(morai.at_pose(200.0, -1.75, 0.0), 7, kmh=20.0, active_distance=40.0),
+            morai.npc(morai.at_pose(400.0, -1.75, 0.0), 8, kmh=20.0, active_distance=40.0),
+        ),
+    )
+    world = World(build_builtin_map("straight"), read_morai_scenario(morai.text(document)).scenario)
+    start = world.npcs.pose[:, 0].copy()
+    world.show_recorded(RecordedScene(npcs=ObjectTable.empty()))
+    ego = world.egos[0].vehicle
+    # The ego drives through the first one's place (hidden: no contact) and beyond reach.
+    while world.ego_status().pose.x < 250.0:
+        ego.command(ControlCommand(mode=LongitudinalMode.VELOCITY, velocity=10.0))
+        world.step(0.02)
+        assert world.sim_time < 30.0, "the ego should have driven 150 m"
+    run(world, 4.0, ego_speed_mps=0.0)
+    assert 200.0 + 40.0 < world.ego_status().pose.x < 400.0 - 40.0
+    assert world.ego_collision_log == []
+    assert world.npcs.pose[:, 0].tolist() == start.tolist()  # frozen under the replay
+    world.show_recorded(RecordedScene())
+    run(world, 2.0)
+    moved = world.npcs.pose[:, 0] - start
+    assert moved[0] > 1.0 and world.npcs.speed[0] > 0.0
+    assert moved[1] == 0.0 and world.npcs.speed[1] == 0.0
 
 
 # -- contacts with recorded agents -----------------------------------------------------

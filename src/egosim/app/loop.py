@@ -27,7 +27,8 @@ IDLE_POLL_S = 0.05
 class SimulationLoop:
     """Calls `step` every `dt` of simulated time at `rtf` times real time (0: flat out),
     except while `held` says a client owns time (sync mode), when it only runs the work
-    handed over (the client's calls step the world)."""
+    handed over (the client's calls step the world). It ends when stopped, after
+    `max_steps`, or once `done` says the run is over (a scenario's end)."""
 
     def __init__(
         self,
@@ -39,9 +40,11 @@ class SimulationLoop:
         max_steps: int | None = None,
         monotonic: Callable[[], float] = time.monotonic,
         held: Callable[[], bool] = lambda: False,
+        done: Callable[[], bool] | None = None,
     ) -> None:
         self._step = step
         self._held = held
+        self._done = done
         self._inbox = inbox
         self._dt = dt
         self._rtf = rtf
@@ -56,6 +59,8 @@ class SimulationLoop:
         next_wall = self._monotonic()
         while not self._stop.is_set():
             if self._max_steps is not None and self.steps >= self._max_steps:
+                return
+            if self._done is not None and self._done():
                 return
             if self._held():
                 self._inbox.wait(IDLE_POLL_S)

@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..bridge.clock import ClockMode
+from ..bridge.codes import ControlMode
 
 
 @dataclass(frozen=True)
@@ -23,6 +24,12 @@ class RunOptions:
     physics_rate_hz: float = 100.0
     data_roots: tuple[Path, ...] = field(default_factory=tuple)
     ros_argv: tuple[str, ...] = ()  # __name:=, __ns:=, from:=to ...
+    ctrl_mode: ControlMode = ControlMode.EXTERNAL
+    """The main ego's control mode at start: external (its stack drives) or auto."""
+    scenario_parameters: tuple[tuple[str, str], ...] = ()
+    """--param NAME=VALUE: values of an OpenSCENARIO file's declared parameters."""
+    keep_running: bool = False
+    """Keep running after the OpenSCENARIO scenario's storyboard has ended."""
 
     @property
     def physics_dt(self) -> float:

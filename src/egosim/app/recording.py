@@ -17,6 +17,7 @@ from pathlib import Path
 from ..bridge.core import Tap
 from ..replay import BagRecorder, ConnectionHandle, RecorderError, RecorderStats
 from ..ros1 import ANY_TYPE, MessageCallback, MessageTypeInfo, Node, TopicType
+from .signals import StopControl
 
 log = logging.getLogger(__name__)
 
@@ -46,6 +47,7 @@ class TopicRecorder:
         self._lock = threading.Lock()
         self._connections: dict[tuple[str, str], ConnectionHandle] = {}
         self._closed = False
+        self._reported = False
 
     def record(
         self,
@@ -77,8 +79,8 @@ class TopicRecorder:
     def tap(self) -> Tap:
         """A bridge tap recording every message egosim sends or receives at its header time."""
 
-        def record(topic: str, message_type: MessageTypeInfo, data: bytes, stamp: float) -> None:
-            self.record(topic, message_type, data, round(stamp * 1e9))
+        def record(topic: str, message_type: MessageTypeInfo, data: bytes, stamp_ns: int) -> None:
+            self.record(topic, message_type, data, stamp_ns)
 
         return record
 
@@ -88,43 +90,55 @@ class TopicRecorder:
     def __exit__(self, *exc_info: object) -> None:
         self.close()
 
-    def close(self) -> RecorderStats:
-        with self._lock:
-            self._closed = True
-        stats = self.recorder.close()
-        log.info(
-            "bag %s closed: %d messages on %d connections, %d dropped",
-            self.recorder.path,
-            stats.written,
-            len(self._connections),
-            stats.dropped,
-        )
+    def close(self, timeout: float | None = None) -> RecorderStats:
+        """Close the bag (see BagRecorder.close); from any thread, also more than once."""
+        # A forced exit closes from another thread while the main thread may hold the
+        # lock, even be stuck holding it: the lock is waited for only so long.
+        held = self._lock.acquire(timeout=-1 if timeout is None else timeout)
+        self._closed = True
+        if held:
+            self._lock.release()
+        stats = self.recorder.close(timeout)
+        if not self._reported:
+            self._reported = True
+            log.info(
+                "bag %s closed: %d messages on %d connections, %d dropped",
+                self.recorder.path,
+                stats.written,
+                len(self._connections),
+                stats.dropped,
+            )
         return stats
 
 
 def record_from_network(
     recorder: TopicRecorder,
     topics: Sequence[str],
-    stop: threading.Event,
+    control: StopControl,
     duration: float | None = None,
     ros_argv: Sequence[str] = (),
 ) -> None:
     """Subscribe to `topics` (any type) on the running ROS graph and record what arrives,
-    stamped with the wall clock at reception as `rosbag record` does, until `stop` is set
-    or `duration` s have passed. Raises the transport's errors when there is no master."""
+    stamped with the wall clock at reception as `rosbag record` does, until a stop is
+    asked for (a signal, `rosnode kill`) or `duration` s have passed. Raises the
+    transport's errors when there is no master."""
     node = Node(
         f"{RECORDER_NODE_NAME}_{time.time_ns()}",
         list(ros_argv),
         embedded_master="never",
         rosout_logger=None,
     )
+    node.on_shutdown_request(control.request)
     try:
         for topic in topics:
             node.subscribe(topic, ANY_TYPE, _recording_callback(recorder, node.resolve_name(topic)))
         log.info("recording %d topics into %s", len(topics), recorder.recorder.path)
-        stop.wait(duration)
+        if not control.stop.wait(duration):
+            control.request(f"--duration {duration:g} s recorded")
+        control.stopping()
+        log.info("stopping: %s", control.reason)
     finally:
-        node.shutdown("recording finished")
+        node.shutdown(control.reason or "recording finished")
 
 
 def _recording_callback(recorder: TopicRecorder, topic: str) -> MessageCallback:

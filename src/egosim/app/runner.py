@@ -10,21 +10,25 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from ..bridge import HANDLERS, Bridge, ClockMode, simulation_context
+from ..bridge.codes import ControlMode
 from ..bridge.network import load_network_settings
 from ..maps import MapLoadError, load_map, scenario_map_location
 from ..render import open_renderer
 from ..replay import RecorderError
 from ..ros1 import Node, Ros1Error
+from ..scenario_files import read_scenario_file
+from ..sensors.camera_render import CameraRenderer
 from ..world import World
-from ..world.scenario import Scenario, ScenarioError, load_default_scenario, parse_scenario
+from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, load_default_scenario
 from ..yamltext import YamlFileError
 from .attachments import Attach, Attachment, RunningSimulator
+from .drive_log import drive_log_stage
 from .exit_codes import EXIT_BAD_INPUT, EXIT_OK, EXIT_ROS_FAILED
 from .inbox import Inbox
 from .loop import SimulationLoop
 from .options import RunOptions
 from .recording import TopicRecorder, open_recorder
-from .signals import stop_on_signals
+from .signals import StopControl, stop_on_signals
 from .summary import ready_summary
 
 log = logging.getLogger("egosim")
@@ -41,16 +45,11 @@ class StartupError(Exception):
         self.exit_code = exit_code
 
 
-def read_scenario_file(path: Path) -> Scenario:
-    """The scenario in the file at `path` (OSError, UnicodeDecodeError, ScenarioError)."""
-    return parse_scenario(path.read_text(encoding="utf-8"), str(path))
-
-
 def startup_scenario(options: RunOptions, map_name: str) -> Callable[[], Scenario] | None:
     """What reads the scenario a run starts with: --scenario, else the town's default."""
     path = options.scenario
     if path is not None:
-        return lambda: read_scenario_file(path)
+        return lambda: read_scenario_file(path, dict(options.scenario_parameters) or None)
     if map_name == DEFAULT_MAP:
         return load_default_scenario
     return None
@@ -59,7 +58,7 @@ def startup_scenario(options: RunOptions, map_name: str) -> Callable[[], Scenari
 def build_world(options: RunOptions) -> World:
     """The world of `options`: the scenario's own map unless --map names one (which must
     then be the map the scenario is for); no scenario: --map (default town)."""
-    scenario = _read_scenario(options.scenario) if options.scenario is not None else None
+    scenario = _read_scenario(options) if options.scenario is not None else None
     if options.map is not None:
         source = options.map
     elif scenario is not None and options.scenario is not None:
@@ -83,36 +82,79 @@ def build_world(options: RunOptions) -> World:
             )
         )
     try:
-        return World(lane_map, scenario, physics_step_s=options.physics_dt)
+        world = World(lane_map, physics_step_s=options.physics_dt)
+        if scenario is not None:
+            drives = options.ctrl_mode is ControlMode.AUTO
+            report = world.load_scenario(scenario, ScenarioLoadOptions(scenario_drives_ego=drives))
+            for note in report.notes:
+                log.warning("%s", note)
+        return world
     except ScenarioError as error:
         raise StartupError(str(error)) from error
 
 
-def _read_scenario(path: Path) -> Scenario:
+def _read_scenario(options: RunOptions) -> Scenario:
+    path = options.scenario
+    assert path is not None
     try:
-        return read_scenario_file(path)
+        return read_scenario_file(path, dict(options.scenario_parameters) or None)
     except (OSError, UnicodeDecodeError) as error:
         raise StartupError(f"cannot read scenario {path}: {error}") from error
     except ScenarioError as error:
         raise StartupError(str(error)) from error
 
 
+def _scenario_ended(world: World) -> bool:
+    """The OpenSCENARIO storyboard the run started with has ended."""
+    return world.storyboard is not None and world.storyboard.finished
+
+
+def _report_scenario_end(world: World) -> None:
+    storyboard = world.storyboard
+    if storyboard is not None and storyboard.finished:
+        outcome = storyboard.outcome()
+        verdict = "" if outcome.verdict is None else f", evaluation {outcome.verdict}"
+        log.info("scenario ended at t=%.2f s: %s%s", outcome.time, outcome.state, verdict)
+
+
 def run(
-    options: RunOptions, attach: Sequence[Attach] = (), stop: threading.Event | None = None
+    options: RunOptions,
+    attach: Sequence[Attach] = (),
+    stop: threading.Event | None = None,
+    *,
+    handle_signals: bool = True,
+    renderer: Callable[[], CameraRenderer] = open_renderer,
+    stop_deadline_s: float | None = None,
 ) -> int:
     """Run the simulator until stopped; the process exit status.
 
     `attach` builds what rides on the loop (the live view, a batch case's drive) once the
-    simulator is up; setting `stop` ends the run as Ctrl-C does.
+    simulator is up; setting `stop` ends the run as Ctrl-C does. SIGINT, SIGTERM and
+    `rosnode kill` stop it cleanly; a second signal ends the process at once with the bag
+    closed, and so does a clean stop that overruns `stop_deadline_s` (see app/signals.py).
+    Without `handle_signals` no signal is handled: a caller that runs one simulation after
+    another in a process handles them itself. `renderer` opens the cameras' engine (a
+    process that runs many simulations opens one and shares it).
     """
-    try:
-        return _run(options, attach, stop or threading.Event())
-    except StartupError as error:
-        print(f"egosim: {error}", file=sys.stderr)
-        return error.exit_code
+    # Signals are handled from the start, before any bag exists: none ends the process
+    # with a bag left open.
+    control_scope = stop_on_signals(
+        stop or threading.Event(), stop_deadline_s, signals=handle_signals
+    )
+    with control_scope as control:
+        try:
+            return _run(options, attach, control, renderer)
+        except StartupError as error:
+            print(f"egosim: {error}", file=sys.stderr)
+            return error.exit_code
 
 
-def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -> int:
+def _run(
+    options: RunOptions,
+    attach: Sequence[Attach],
+    control: StopControl,
+    renderer: Callable[[], CameraRenderer],
+) -> int:
     world = build_world(options)
     try:
         settings = load_network_settings(
@@ -120,6 +162,9 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
         )
     except (OSError, YamlFileError) as error:
         raise StartupError(f"network settings: {error}") from error
+    if control.stop.is_set():  # asked to stop while the map loaded: nothing to undo yet
+        log.info("stopping: %s (during start-up)", control.reason)
+        return EXIT_OK
 
     recorder = None
     if options.record is not None:
@@ -127,15 +172,19 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
             recorder = TopicRecorder(open_recorder(options.record))
         except RecorderError as error:
             raise StartupError(f"--record: {error}") from error
+        control.close_when_forced(recorder.close)
 
     # The bag is closed (index and header written) however the run ends.
-    with stop_on_signals(stop), recorder or contextlib.nullcontext():
+    with recorder or contextlib.nullcontext():
         try:
             node = Node(NODE_NAME, list(options.ros_argv))
         except (OSError, Ros1Error) as error:
             reason = f"cannot join or start the ROS master: {error}"
             raise StartupError(reason, EXIT_ROS_FAILED) from error
-        node.on_shutdown(lambda reason: stop.set())
+        # `rosnode kill` stops the loop first; the node shuts down after it, below.
+        node.on_shutdown_request(control.request)
+        if _stopped_during_startup(control, node):
+            return EXIT_OK
         inbox = Inbox()
         # Messages are built in the newest release; peers of others get them converted.
         bridge = Bridge(node, settings, HANDLERS, inbox, options.protocol)
@@ -146,10 +195,12 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
             data_roots=options.data_roots or (Path.cwd(),),
             bridge=bridge,
             hold_output=node.holding_output,
-            open_renderer=open_renderer,
+            open_renderer=renderer,
         )
         if recorder is not None:
             bridge.taps.append(recorder.tap())
+        if (drive_log := drive_log_stage()) is not None:
+            context.pipeline = context.pipeline.with_stage(drive_log, after="world")
         try:
             bridge.open(context)
             if options.clock is not ClockMode.REAL:
@@ -158,6 +209,9 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
             node.shutdown("startup failed")
             reason = f"cannot register with the ROS master: {error}"
             raise StartupError(reason, EXIT_ROS_FAILED) from error
+        if _stopped_during_startup(control, node):
+            return EXIT_OK
+        context.ego_session(world.egos[0]).set_ctrl_mode(options.ctrl_mode, by="--ctrl-mode")
         running = RunningSimulator(
             options, context, inbox, node, startup_scenario(options, world.map.name)
         )
@@ -180,15 +234,40 @@ def _run(options: RunOptions, attach: Sequence[Attach], stop: threading.Event) -
             inbox,
             options.physics_dt,
             options.rtf,
-            stop,
+            control.stop,
             max_steps,
             held=lambda: context.sync.holds_time,
+            done=None if options.keep_running else lambda: _scenario_ended(world),
         )
         try:
             loop.run()
+            if control.reason is None:
+                finished = max_steps is not None and loop.steps >= max_steps
+                if finished:
+                    reason = f"--duration {options.duration:g} s simulated"
+                elif _scenario_ended(world):
+                    reason = "the scenario ended"
+                else:
+                    reason = "stop requested"
+                control.request(reason)
+            _report_scenario_end(world)
         finally:
+            control.stopping()
+            log.info("stopping: %s", control.reason or "the loop failed")
+            # Closed first: whoever still waits on the loop (a service call, a page's
+            # request) gets its answer now, not at its timeout.
+            inbox.close()
             for attachment in attachments:
                 attachment.close()
-            inbox.close()
-            node.shutdown("egosim stopping")
+            node.shutdown(control.reason or "egosim stopping")
     return EXIT_OK
+
+
+def _stopped_during_startup(control: StopControl, node: Node) -> bool:
+    """A stop asked for while the run was starting ends it before its next (long) step:
+    registering every row, then building what rides on it. True if it did."""
+    if not control.stop.is_set():
+        return False
+    log.info("stopping: %s (during start-up)", control.reason)
+    node.shutdown(control.reason or "stop requested")
+    return True

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from ..bridge.units import heading_deg
 from ..world import World
+from ..world.traffic import ObjectType
 from .options import ClockMode, RunOptions
 
 CLOCK_TEXT = {
@@ -35,6 +36,10 @@ def ready_summary(world: World, options: RunOptions) -> str:
     ego = world.ego_status().pose
     heading = heading_deg(ego.yaw)
     lane = world.ego_lane_state().lane_id
+    scripted = world.scripted
+    npcs = len(world.npcs) + len(scripted.table(ObjectType.NPC_VEHICLE))
+    walkers = len(world.pedestrians) + len(scripted.table(ObjectType.PEDESTRIAN))
+    things = len(world.obstacles) + len(scripted.table(ObjectType.OBSTACLE))
     rate = f" at {options.rtf:g}x" if options.clock is ClockMode.SIM and options.rtf else ""
     if options.clock is ClockMode.SIM and not options.rtf:
         rate = " as fast as possible"
@@ -43,9 +48,9 @@ def ready_summary(world: World, options: RunOptions) -> str:
             f"egosim: map {world.map.name}, scenario {scenario_text(options, world)}, "
             f"clock {CLOCK_TEXT[options.clock]}{rate}",
             f"egosim: ego at x={ego.x:.1f} y={ego.y:.1f} m, heading {heading:.1f} deg, "
-            f"lane {lane or '-'}; {plural(len(world.npcs), 'NPC')}, "
-            f"{plural(len(world.pedestrians), 'pedestrian')}, "
-            f"{plural(len(world.obstacles), 'obstacle')}, "
+            f"lane {lane or '-'}; {plural(npcs, 'NPC')}, "
+            f"{plural(walkers, 'pedestrian')}, "
+            f"{plural(things, 'obstacle')}, "
             f"{plural(len(world.signals.light_ids), 'traffic light')}",
             "egosim: try `egosim msgs --export-python DIR` (messages for rospy), then "
             f"`{TRY_NEXT[options.clock]}`",

@@ -38,6 +38,10 @@ class CaseSpec:
     scoring: dict[str, Any] = field(default_factory=dict)
     bags: str = "all"
     """Which cases keep their bag: "all", "failed" (those that did not pass), "none"."""
+    openscenario: str = ""
+    """An OpenSCENARIO case's .xosc file (then `scenario` is empty)."""
+    scenario_parameters: dict[str, str] = field(default_factory=dict)
+    """Values of the OpenSCENARIO file's parameters for this case."""
 
     def as_dict(self) -> dict[str, Any]:
         return asdict(self)

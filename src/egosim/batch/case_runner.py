@@ -1,25 +1,25 @@
-"""Run one case: its simulator and its stack in their own process groups, supervised
-against deadlines; the case's result as plain data. The same function serves the local
-pool and Ray tasks."""
+"""Run one case: its stack in its own process group and its simulator in a warm worker
+(warm_simulator), supervised against deadlines; the case's result as plain data. The same
+function serves the local pool and Ray actors."""
 
 from __future__ import annotations
 
 import json
 import os
-import queue
 import re
 import shutil
 import signal
-import sys
-import threading
 import time
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from egosim.batch.case import CaseSpec
 from egosim.batch.files import BAG_FILE, CASE_FILE, SCORE_FILE, SIMULATOR_LOG, STACK_LOG
-from egosim.batch.logs import tail_text
-from egosim.batch.processes import GroupProcess
+from egosim.batch.interrupt import Interrupt
+from egosim.batch.logs import log_tail
+from egosim.batch.processes import GRACE_S, GroupProcess
+from egosim.batch.warm_simulator import WarmSimulator
+from egosim.batch.worker_protocol import ENDED, MASTER, MASTER_LINE, PREFIX, RUNNING
 from egosim.evaluation import METRIC_NAMES, parse_criterion
 
 # The simulator's last acts are closing the bag and writing the score; a loaded node may
@@ -28,13 +28,21 @@ SIMULATOR_GRACE_S = 30.0
 
 SIMULATOR_START_S = 60.0
 POLL_S = 0.05
-MASTER_LINE = re.compile(r"^egosim-batch: master (\S+)$")
-RUNNING_LINE = "egosim-batch: running"
-ENDED_PREFIX = "egosim-batch: ended"
 
 PASSED, FAILED, ERROR = "passed", "failed", "error"
 """A case passes its criteria, fails them, or could not be scored as asked (the stack
 crashed, hung or never connected; the simulator failed)."""
+
+
+class Problem(NamedTuple):
+    """Why a case could not be scored as asked, and the log that tells more (None: no log
+    does, e.g. the batch was interrupted)."""
+
+    reason: str
+    log: str | None = None
+
+
+INTERRUPTED = Problem("interrupted")
 
 
 def case_folder_name(name: str) -> str:
@@ -42,82 +50,74 @@ def case_folder_name(name: str) -> str:
     return re.sub(r"[^A-Za-z0-9_.,=\[\]-]", "_", name)
 
 
-class _Lines:
-    """Marker lines of the simulator's output, handed from its log thread."""
-
-    def __init__(self) -> None:
-        self.queue: queue.Queue[str] = queue.Queue()
-
-    def __call__(self, line: str) -> None:
-        if line.startswith("egosim-batch: "):
-            self.queue.put(line)
-
-    def take(self) -> str | None:
-        try:
-            return self.queue.get_nowait()
-        except queue.Empty:
-            return None
+class _BatchStoppingError(Exception):
+    """The batch is stopping: end the case now."""
 
 
-def run_case(case: CaseSpec, out_dir: str, cancel: threading.Event | None = None) -> dict[str, Any]:
-    """Run `case` with its folder under `out_dir`; its result (see results.py)."""
+def run_case(
+    case: CaseSpec,
+    out_dir: str,
+    simulator: WarmSimulator,
+    interrupt: Interrupt | None = None,
+) -> dict[str, Any]:
+    """Run `case` with its folder under `out_dir` on `simulator`; its result (see
+    results.py)."""
     started = time.monotonic()
     folder = Path(out_dir) / case_folder_name(case.name)
     if folder.exists():
         shutil.rmtree(folder)
     folder.mkdir(parents=True)
     (folder / CASE_FILE).write_text(json.dumps(case.as_dict(), indent=1), encoding="utf-8")
-    supervisor = _Supervisor(case, folder, cancel or threading.Event())
+    supervisor = _Supervisor(case, folder, simulator, interrupt or Interrupt())
     try:
         problem = supervisor.run()
-    except KeyboardInterrupt:  # a Ray task cancelled
-        problem = "interrupted"
+    except _BatchStoppingError:
+        problem = INTERRUPTED
     finally:
         supervisor.stop_all()
     result = _result(case, folder, problem)
     if case.bags == "failed" and result["status"] == PASSED and result["bag"] is not None:
         (folder / BAG_FILE).unlink()
         result["bag"] = None
+    stack_cpu_s = None if supervisor.stack is None else supervisor.stack.cpu_s
     result["timings"] = {
         "case_wall_s": round(time.monotonic() - started, 3),
         "drive_wall_s": result.pop("drive_wall_s", None),
+        "simulator_cpu_s": result.pop("simulator_cpu_s", None),
+        "stack_cpu_s": None if stack_cpu_s is None else round(stack_cpu_s, 3),
     }
     return result
 
 
 class _Supervisor:
-    def __init__(self, case: CaseSpec, folder: Path, cancel: threading.Event) -> None:
+    def __init__(
+        self, case: CaseSpec, folder: Path, simulator: WarmSimulator, interrupt: Interrupt
+    ) -> None:
         self.case = case
         self.folder = folder
-        self.cancel = cancel
-        self.lines = _Lines()
-        self.simulator: GroupProcess | None = None
+        self.simulator = simulator
+        self.interrupt = interrupt
         self.stack: GroupProcess | None = None
         self.stack_status: int | None = None
         self.drive_ended = False
 
-    def run(self) -> str | None:
-        """Drive the case to its end; the reason it could not be scored, if any."""
+    def run(self) -> Problem | None:
+        """Drive the case to its end; why it could not be scored, if it could not."""
         case = self.case
-        self.simulator = GroupProcess(
-            [sys.executable, "-m", "egosim.batch.simulate", str(self.folder)],
-            self.folder / SIMULATOR_LOG,
-            env=_simulator_env(),
-            cwd=self.folder,
-            on_line=self.lines,
-        )
-        master = self._wait_for("master", SIMULATOR_START_S)
+        self._check_interrupt()
+        self.simulator.begin(self.folder)
+        master = self._wait_for(MASTER, SIMULATOR_START_S)
         if master is None:
             return self._simulator_failure("did not start its ROS master")
         uri = MASTER_LINE.match(master).group(1)  # type: ignore[union-attr]
         self.stack = self._start_stack(uri)
-        running = self._wait_for("running", case.stack.connect_timeout_s, watch_stack=True)
+        running = self._wait_for(RUNNING, case.stack.connect_timeout_s, watch_stack=True)
         if running is None:
             if self.stack_status is not None:
-                return f"stack exited with status {self.stack_status} before connecting"
-            if self.simulator.poll() is not None:
+                return _stack_problem(f"exited with status {self.stack_status} before connecting")
+            if self.simulator.finished:
                 return self._simulator_failure("stopped before the drive began")
-            return f"stack never connected within {case.stack.connect_timeout_s:g} s"
+            return _stack_problem(f"never connected within {case.stack.connect_timeout_s:g} s")
         return self._drive(started=time.monotonic())
 
     def _start_stack(self, master_uri: str) -> GroupProcess:
@@ -145,20 +145,18 @@ class _Supervisor:
 
     def _wait_for(self, what: str, timeout_s: float, watch_stack: bool = False) -> str | None:
         """The simulator's `egosim-batch: <what>` line, None if it did not come in time
-        (or the simulator, or with `watch_stack` the stack, ended first)."""
-        assert self.simulator is not None
+        (or the simulator's case, or with `watch_stack` the stack, ended first)."""
         deadline = time.monotonic() + timeout_s
         while time.monotonic() < deadline:
-            self._check_cancel()
-            line = self.lines.take()
-            if line is not None and line.startswith(f"egosim-batch: {what}"):
+            self._check_interrupt()
+            line = self.simulator.take(POLL_S)
+            if line is not None and line.startswith(f"{PREFIX}{what}"):
                 return line
             if line is None:
-                if self.simulator.poll() is not None and self.lines.queue.empty():
+                if self.simulator.finished:
                     return None
                 if watch_stack and self._stack_ended():
                     return None
-                time.sleep(POLL_S)
         return None
 
     def _stack_ended(self) -> bool:
@@ -166,57 +164,54 @@ class _Supervisor:
             self.stack_status = self.stack.poll()
         return self.stack_status is not None
 
-    def _drive(self, started: float) -> str | None:
-        assert self.simulator is not None
+    def _drive(self, started: float) -> Problem | None:
         deadline = started + self.case.wall_limit_s
-        while self.simulator.poll() is None:
-            self._check_cancel()
+        while not self.simulator.finished:
+            self._check_interrupt()
             if time.monotonic() > deadline:
-                return f"case exceeded its wall-clock limit of {self.case.wall_limit_s:g} s"
-            line = self.lines.take()
-            self.drive_ended |= line is not None and line.startswith(ENDED_PREFIX)
-            if self.drive_ended:
-                # A stack may fail once its simulator has gone: not the stack's fault.
-                time.sleep(POLL_S)
+                # A hung stack is the usual cause; its log says what it last did.
+                reason = f"case exceeded its wall-clock limit of {self.case.wall_limit_s:g} s"
+                return Problem(reason, STACK_LOG)
+            line = self.simulator.take(POLL_S)
+            self.drive_ended |= line is not None and line.startswith(f"{PREFIX}{ENDED}")
+            if line is not None:
                 continue
-            if self._stack_ended():
+            if not self.drive_ended and self._stack_ended():
                 # The drive ends with the stack; the simulator writes the score so far.
-                self.simulator.stop(signal.SIGINT, SIMULATOR_GRACE_S)
+                # (A stack may fail once the drive is over: not the stack's fault.)
+                self.simulator.stop_case(SIMULATOR_GRACE_S, self.interrupt.hurry)
                 if self.stack_status != 0:
-                    return f"stack exited with status {self.stack_status} during the drive"
+                    return _stack_problem(
+                        f"exited with status {self.stack_status} during the drive"
+                    )
                 return None
-            time.sleep(POLL_S)
-        if self.simulator.poll() != 0:
-            return self._simulator_failure(f"exited with status {self.simulator.poll()}")
+        if self.simulator.status != 0:
+            return self._simulator_failure(f"exited with status {self.simulator.status}")
         return None
 
-    def _check_cancel(self) -> None:
-        if self.cancel.is_set():
-            raise KeyboardInterrupt
+    def _check_interrupt(self) -> None:
+        if self.interrupt.stop.is_set():
+            raise _BatchStoppingError
 
-    def _simulator_failure(self, what: str) -> str:
-        tail = tail_text(self.folder / SIMULATOR_LOG, 600)
-        return f"simulator {what}" + (f": {tail}" if tail else "")
+    def _simulator_failure(self, what: str) -> Problem:
+        return Problem(f"simulator {what}", SIMULATOR_LOG)
 
     def stop_all(self) -> None:
-        """Stop the stack first (the simulator then writes what it saw), then the simulator."""
+        """Stop the stack first (the simulator then writes what it saw), then the
+        simulator's case."""
+        hurry = self.interrupt.hurry
         if self.stack is not None:
-            status = self.stack.stop(signal.SIGINT)
+            status = self.stack.stop(signal.SIGINT, GRACE_S, hurry)
             if self.stack_status is None:
                 self.stack_status = status
-        if self.simulator is not None and self.simulator.poll() is None:
-            self.simulator.stop(signal.SIGINT, SIMULATOR_GRACE_S)
-        elif self.simulator is not None:
-            self.simulator.log.join(5.0)
+        self.simulator.stop_case(SIMULATOR_GRACE_S, hurry)
 
 
-def _simulator_env() -> dict[str, str]:
-    env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
-    env["PYTHONUNBUFFERED"] = "1"
-    return env
+def _stack_problem(what: str) -> Problem:
+    return Problem(f"stack {what}", STACK_LOG)
 
 
-def _result(case: CaseSpec, folder: Path, problem: str | None) -> dict[str, Any]:
+def _result(case: CaseSpec, folder: Path, problem: Problem | None) -> dict[str, Any]:
     score_path = folder / SCORE_FILE
     try:
         drive = json.loads(score_path.read_text(encoding="utf-8"))
@@ -232,26 +227,33 @@ def _result(case: CaseSpec, folder: Path, problem: str | None) -> dict[str, Any]
         "end": None if drive is None else drive["end"],
         "sim_time_s": None if drive is None else round(drive["sim_time_s"], 6),
         "drive_wall_s": None if drive is None else round(drive["drive_wall_s"], 3),
+        "simulator_cpu_s": None if drive is None else round(drive["cpu_s"], 3),
         "metrics": None if score is None else _rounded(score["metrics"]),
         "infractions": None if score is None else score["infractions"],
         "criteria": [],
     }
+    outcome = None if drive is None else drive.get("scenario")
+    if outcome is not None:
+        result["scenario_outcome"] = outcome
     if problem is None and drive is not None and drive["end"].startswith("bad route"):
-        problem = drive["end"]
+        problem = Problem(drive["end"])
     if problem is None and score is None:
-        problem = "the drive was not scored (the simulator wrote no score)"
+        problem = Problem("the drive was not scored (the simulator wrote no score)", SIMULATOR_LOG)
     if score is not None:
         checks = [parse_criterion(c, METRIC_NAMES).check(score["metrics"]) for c in case.criteria]
         result["criteria"] = [c.as_dict() for c in checks]
         failed = [c.text + (f" ({c.reason})" if c.reason else "") for c in checks if not c.passed]
     else:
         failed = []
+    if outcome is not None and outcome.get("verdict") == "failure":
+        failed.append("the scenario's evaluation failed")
     if problem is not None:
-        result.update(status=ERROR, reason=problem)
+        tail = None if problem.log is None else log_tail(folder, problem.log)
+        result.update(status=ERROR, reason=problem.reason, log_tail=tail)
     elif failed:
-        result.update(status=FAILED, reason="; ".join(failed))
+        result.update(status=FAILED, reason="; ".join(failed), log_tail=None)
     else:
-        result.update(status=PASSED, reason="")
+        result.update(status=PASSED, reason="", log_tail=None)
     return result
 
 

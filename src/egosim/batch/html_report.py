@@ -12,6 +12,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from egosim.batch.files import CASE_FILE, SCORE_FILE
+from egosim.batch.logs import tail_report
 from egosim.maps import MapLoadError, load_map
 from egosim.plots import (
     Block,
@@ -62,6 +63,12 @@ def summary_table(cases: list[dict[str, Any]]) -> TableBlock:
     return TableBlock("Cases", columns, rows)
 
 
+def verdict_block(case: dict[str, Any]) -> TextBlock:
+    """A case's status and reason, with the end of the log that explains it."""
+    lines = [case.get("reason") or "", *tail_report(case.get("log_tail"))]
+    return TextBlock(f"{case['name']}: {case['status']}", "\n".join(lines))
+
+
 def score_histogram(cases: list[dict[str, Any]]) -> Figure:
     scores = [c["metrics"]["driving_score"] for c in cases if c.get("metrics") is not None]
     figure = Figure(figsize=(6.0, 2.6), dpi=110)
@@ -99,7 +106,7 @@ def _case_figures(
         for i in infractions
     ]
     return [
-        TextBlock(f"{case['name']}: {case['status']}", case.get("reason") or ""),
+        verdict_block(case),
         FigureBlock("Trajectory over the map", figure, f"{key}_map"),
         FigureBlock("Infraction timeline", timeline, f"{key}_timeline"),
         TableBlock("Infractions", ("t (s)", "kind", "where (m)", "detail"), rows),
@@ -118,7 +125,7 @@ def write_html_report(out_dir: Path, title: str, document: dict[str, Any]) -> Pa
     for k, case in enumerate(failing[:MAX_DETAILED_CASES]):
         drive = _drive(out_dir / case["folder"])
         if drive is None or drive.get("score") is None:
-            blocks.append(TextBlock(f"{case['name']}: {case['status']}", case["reason"]))
+            blocks.append(verdict_block(case))
             continue
         map_name = _map_name(out_dir / case["folder"])
         if map_name not in maps:
@@ -128,7 +135,9 @@ def write_html_report(out_dir: Path, title: str, document: dict[str, Any]) -> Pa
                 maps[map_name] = None
         lane_map = maps[map_name]
         if lane_map is None:
-            blocks.append(TextBlock(case["name"], f"map {map_name} not found"))
+            blocks.extend(
+                (verdict_block(case), TextBlock(case["name"], f"map {map_name} not found"))
+            )
             continue
         blocks.extend(_case_figures(case, drive, lane_map, f"case{k}"))
     if len(failing) > MAX_DETAILED_CASES:

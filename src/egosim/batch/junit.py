@@ -7,6 +7,8 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import Any
 
+from egosim.batch.logs import tail_report
+
 JUNIT_FILE = "junit.xml"
 
 
@@ -51,6 +53,7 @@ def _details(case: dict[str, Any]) -> str:
             f"{infraction['time_s']:.2f} s  {infraction['kind']}  at "
             f"({infraction['x']:.1f}, {infraction['y']:.1f})  {infraction['detail']}"
         )
+    lines.extend(tail_report(case.get("log_tail")))
     return "\n".join(lines)
 
 

@@ -1,27 +1,34 @@
-"""Running many cases: a local pool of N cases at a time, or one Ray task per case.
+"""Running many cases: a local pool of N worker slots, or one Ray actor per slot.
 
-Each case is its own processes (simulator and stack, see case_runner), so the local pool
-only supervises: N threads, each waiting on one case. Ctrl-C stops every running case's
-processes (their scores so far are kept) and the cases not started are reported not run.
+A slot runs one case at a time and keeps a warm simulator worker (warm_simulator) from
+one case to the next; a case's stack is its own process. The local pool only supervises:
+N threads, each waiting on its slot's case. When the batch is interrupted, every running
+case's processes are stopped (their scores so far are kept) and the cases not started are
+reported not run, in the local pool and on Ray alike.
 """
 
 from __future__ import annotations
 
 import importlib
 import os
+import queue
 import threading
+from collections import deque
 from collections.abc import Callable, Sequence
-from concurrent.futures import FIRST_COMPLETED, Future, ThreadPoolExecutor, wait
 from typing import Any
 
 from egosim.batch.case import CaseSpec
 from egosim.batch.case_runner import ERROR, PASSED, run_case
+from egosim.batch.interrupt import Interrupt
+from egosim.batch.warm_simulator import WarmSimulator
 
 Result = dict[str, Any]
 OnResult = Callable[[Result, int], None]
 """Called with each finished case's result and the number of cases still running."""
 
-RAY_POLL_S = 0.5
+POLL_S = 0.2
+RAY_CLOSE_S = 60.0
+"""Time for every actor to end its simulator worker when a Ray batch ends."""
 
 
 def default_workers() -> int:
@@ -34,31 +41,51 @@ def run_local(
     workers: int,
     on_result: OnResult,
     results: dict[str, Result] | None = None,
+    interrupt: Interrupt | None = None,
 ) -> dict[str, Result]:
     """Run `cases`, `workers` at a time; their results by name, also put in `results` as
-    they come (so an interrupted run, which raises KeyboardInterrupt, leaves them there)."""
-    cancel = threading.Event()
+    they come. Once `interrupt` stops the batch, the running cases end (their results
+    kept) and no other starts."""
+    interrupt = interrupt or Interrupt()
     results = {} if results is None else results
-    executor = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="case")
-    pending: set[Future[Result]] = {executor.submit(run_case, c, out_dir, cancel) for c in cases}
-    try:
-        while pending:
-            done, pending = wait(pending, timeout=0.5, return_when=FIRST_COMPLETED)
-            for future in done:
-                result = future.result()
-                results[result["name"]] = result
-                on_result(result, sum(f.running() for f in pending))
-    except KeyboardInterrupt:
-        cancel.set()
-        for future in pending:
-            future.cancel()
-        for future in pending:
-            if not future.cancelled():
-                result = future.result()
-                results[result["name"]] = result
-        raise
-    finally:
-        executor.shutdown(wait=True, cancel_futures=True)
+    todo: deque[CaseSpec] = deque(cases)
+    finished: queue.Queue[Result] = queue.Queue()
+    running = [0]
+    lock = threading.Lock()
+
+    def next_case() -> CaseSpec | None:
+        with lock:
+            if interrupt.stop.is_set() or not todo:
+                return None
+            running[0] += 1
+            return todo.popleft()
+
+    def slot() -> None:
+        simulator = WarmSimulator()
+        try:
+            while (case := next_case()) is not None:
+                result = run_case(case, out_dir, simulator, interrupt)
+                with lock:
+                    running[0] -= 1
+                finished.put(result)
+        finally:
+            simulator.close(interrupt.hurry)
+
+    threads = [
+        threading.Thread(target=slot, name=f"case slot {k}")
+        for k in range(min(workers, len(cases)))
+    ]
+    for thread in threads:
+        thread.start()
+    while any(thread.is_alive() for thread in threads) or not finished.empty():
+        try:
+            result = finished.get(timeout=POLL_S)
+        except queue.Empty:
+            continue
+        results[result["name"]] = result
+        on_result(result, running[0])
+    for thread in threads:
+        thread.join()
     return results
 
 
@@ -68,46 +95,106 @@ def run_ray(
     address: str | None,
     on_result: OnResult,
     results: dict[str, Result] | None = None,
+    interrupt: Interrupt | None = None,
+    on_connected: Callable[[], None] | None = None,
 ) -> dict[str, Result]:
-    """One Ray task per case on the cluster at `address` (None: the one `ray start`
-    left running on this machine, else a new local one); results as run_local's. The
+    """The cases on the Ray cluster at `address` (None: the one `ray start` left running
+    on this machine, else a new local one), one actor per CPU of the cluster (one case at
+    a time each, its simulator worker kept warm); results and `interrupt` as run_local's.
+    `on_connected` runs once Ray is up (ray.init installs signal handlers of its own). The
     output folder must be on storage every node writes to."""
     ray = importlib.import_module("ray")  # an optional extra: pip install egosim[ray]
+    interrupt = interrupt or Interrupt()
+    results = {} if results is None else results
     ray.init(address=address, include_dashboard=False, log_to_driver=False)
+    if on_connected is not None:
+        on_connected()
+    actors: list[Any] = []
     try:
-        remote = ray.remote(num_cpus=1, max_retries=0)(run_case)
-        refs = {remote.remote(case, out_dir): case for case in cases}
-        results = {} if results is None else results
-        pending = list(refs)
-        try:
-            while pending:
-                done, pending = ray.wait(pending, num_returns=1, timeout=RAY_POLL_S)
-                for ref in done:
-                    result = _ray_result(ray, ref, refs[ref])
-                    results[result["name"]] = result
-                    on_result(result, len(pending))
-        except KeyboardInterrupt:
-            for ref in pending:
-                ray.cancel(ref)
-            for ref in pending:
-                result = _ray_result(ray, ref, refs[ref])
-                results[result["name"]] = result
-            raise
+        slots = min(len(cases), max(int(ray.cluster_resources().get("CPU", 1)), 1))
+        # Three at once: a case, and the driver's calls to stop or hurry it.
+        remote = ray.remote(num_cpus=1, max_concurrency=3, max_restarts=-1)(CaseSlot)
+        actors = [remote.remote() for _ in range(slots)]
+        _dispatch(ray, actors, cases, out_dir, on_result, results, interrupt)
         return results
     finally:
+        if actors:
+            closing = [actor.close.remote(interrupt.hurry.is_set()) for actor in actors]
+            ray.wait(closing, num_returns=len(closing), timeout=RAY_CLOSE_S)
+            for actor in actors:
+                ray.kill(actor)
         ray.shutdown()
 
 
-def _ray_result(ray: Any, ref: Any, case: CaseSpec) -> Result:
+def _dispatch(
+    ray: Any,
+    actors: list[Any],
+    cases: Sequence[CaseSpec],
+    out_dir: str,
+    on_result: OnResult,
+    results: dict[str, Result],
+    interrupt: Interrupt,
+) -> None:
+    """Hand each idle actor the next case until every case has run or the batch stops."""
+    todo = deque(cases)
+    idle = list(actors)
+    running: dict[Any, tuple[Any, CaseSpec]] = {}
+    told = set[str]()
+    while running or (todo and not interrupt.stop.is_set()):
+        while idle and todo and not interrupt.stop.is_set():
+            actor, case = idle.pop(), todo.popleft()
+            running[actor.run.remote(case, out_dir)] = (actor, case)
+        for event, method in ((interrupt.stop, "stop"), (interrupt.hurry, "hurry")):
+            if event.is_set() and method not in told:
+                told.add(method)
+                for actor, _ in running.values():
+                    getattr(actor, method).remote()
+        done, _ = ray.wait(list(running), num_returns=1, timeout=POLL_S)
+        for ref in done:
+            actor, case = running.pop(ref)
+            idle.append(actor)
+            result = _ray_result(ray, ref, case)
+            if result is not None:
+                results[result["name"]] = result
+                on_result(result, len(running))
+
+
+class CaseSlot:
+    """A Ray actor: one case at a time on a warm simulator worker of its own, as a slot of
+    the local pool runs them. `stop` and `hurry` come from the driver while a case runs
+    (Ray does not interrupt a running actor call)."""
+
+    def __init__(self) -> None:
+        self.simulator = WarmSimulator()
+        self.interrupt = Interrupt()
+
+    def run(self, case: CaseSpec, out_dir: str) -> Result | None:
+        """The case's result; None when the batch was stopped before it began."""
+        if self.interrupt.stop.is_set():
+            return None
+        return run_case(case, out_dir, self.simulator, self.interrupt)
+
+    def stop(self) -> None:
+        self.interrupt.stop.set()
+
+    def hurry(self) -> None:
+        self.interrupt.stop.set()
+        self.interrupt.hurry.set()
+
+    def close(self, hurry: bool) -> None:
+        if hurry:
+            self.hurry()
+        self.simulator.close(self.interrupt.hurry)
+
+
+def _ray_result(ray: Any, ref: Any, case: CaseSpec) -> Result | None:
+    """An actor call's result; None for a case the batch stopped before it began."""
     try:
-        return ray.get(ref)
-    except (ray.exceptions.TaskCancelledError, ray.exceptions.RayError) as error:
-        reason = (
-            "interrupted"
-            if isinstance(error, ray.exceptions.TaskCancelledError)
-            else (f"Ray task failed: {error}")
-        )
+        result: Result | None = ray.get(ref)
+    except ray.exceptions.RayError as error:
+        reason = f"Ray task failed: {error}"
         return {"name": case.name, "parameters": case.parameters, "status": ERROR, "reason": reason}
+    return result
 
 
 def failed(result: Result) -> bool:

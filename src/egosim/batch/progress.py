@@ -35,8 +35,9 @@ class BatchProgress:
         self._task = self._progress.add_task("cases", total=total, failed=0, running=0)
 
     def log(self, text: str) -> None:
-        """A line above the bar (on stderr)."""
-        self._progress.console.print(text, highlight=False, markup=False)
+        """A line above the bar (on stderr), never cut into several: a log line copied
+        from it must read as it was written."""
+        self._progress.console.print(text, highlight=False, markup=False, soft_wrap=True)
 
     def update(self, done: int, failed: int, running: int) -> None:
         self._progress.update(self._task, completed=done, failed=failed, running=running)

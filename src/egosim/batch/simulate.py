@@ -1,23 +1,21 @@
-"""The simulator of one case: `python -m egosim.batch.simulate CASE_DIR`.
+"""The simulator of one case, as a simulator worker (egosim.batch.worker) runs it.
 
-Reads CASE_DIR/case.json, starts its own ROS master on a port the system picks (so two
-cases never share one), runs `egosim run` with the case's scenario and a drive observer
-on the tick pipeline, and writes CASE_DIR/score.json however the drive ends (route done,
-blocked, time limit, or SIGINT/SIGTERM from the case's supervisor).
-
-Lines on stdout tell the supervisor how far it got:
-    egosim-batch: master URI     the master is up (the stack may be started)
-    egosim-batch: running        the stack is connected and the drive has begun
-    egosim-batch: ended REASON   the drive is over (the simulator then stops)
+Reads CASE_DIR/case.json, starts a ROS master of its own on a port the system picks (so
+two cases never share one, and each begins with an empty graph and parameter server),
+runs `egosim run` with the case's scenario and a drive observer on the tick pipeline,
+and writes CASE_DIR/score.json however the drive ends (route done, blocked, time limit,
+or stopped by its supervisor). Its `master`, `running` and `ended` lines on stdout
+(worker_protocol) tell the supervisor how far it got.
 """
 
 from __future__ import annotations
 
 import json
 import os
-import sys
+import resource
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 import yaml
@@ -26,14 +24,17 @@ from egosim.app.attachments import RunningSimulator
 from egosim.app.options import RunOptions
 from egosim.app.runner import run
 from egosim.batch.case import CaseSpec
-from egosim.batch.files import BAG_FILE, CASE_FILE, SCENARIO_FILE, SCORE_FILE
+from egosim.batch.files import BAG_FILE, CASE_FILE, MORAI_SCENARIO_FILE, SCENARIO_FILE, SCORE_FILE
 from egosim.batch.ros_graph import stack_connected
+from egosim.batch.worker_protocol import ENDED, MASTER, PREFIX, RUNNING
 from egosim.bridge import ClockMode
 from egosim.bridge.context import BridgeContext
 from egosim.bridge.pipeline import Stage, Tick
 from egosim.evaluation import DriveEvaluator, EvaluationSettings, InfractionKind, Route
 from egosim.evaluation.route import RouteError
 from egosim.ros1 import Master
+from egosim.scenario_files import is_morai_scenario
+from egosim.sensors.camera_render import CameraRenderer
 from egosim.world import World
 from egosim.world.map import LaneMap
 
@@ -97,7 +98,7 @@ class CaseDrive:
         self.world = context.world
         self.over = self._observe(context.world)
         if self.over:
-            print(f"egosim-batch: ended {self.end}", flush=True)
+            print(f"{PREFIX}{ENDED} {self.end}", flush=True)
             self.stop.set()
 
     def _observe(self, world: World) -> bool:
@@ -106,6 +107,10 @@ class CaseDrive:
                 return False
             return self._start(world)
         self.evaluator.observe(world)
+        storyboard = world.storyboard
+        if storyboard is not None and storyboard.finished:
+            self.end = f"scenario {storyboard.outcome().state}"
+            return True
         if (reason := self.evaluator.finish_reason) is not None:
             self.end = reason
             return True
@@ -136,7 +141,7 @@ class CaseDrive:
         self.start_sim_s = world.sim_time
         self.started_wall = time.monotonic()
         self.evaluator = DriveEvaluator(world, route, evaluation_settings(self.case.scoring))
-        print("egosim-batch: running", flush=True)
+        print(f"{PREFIX}{RUNNING}", flush=True)
         return False
 
     def result(self) -> dict:
@@ -145,21 +150,46 @@ class CaseDrive:
         if self.evaluator is not None:
             score = self.evaluator.score(timed_out=self.end == "time_limit").as_dict()
         sim_time = 0.0 if self.world is None else self.world.sim_time - self.start_sim_s
-        return {"end": self.end, "sim_time_s": sim_time, "drive_wall_s": wall, "score": score}
+        result = {"end": self.end, "sim_time_s": sim_time, "drive_wall_s": wall, "score": score}
+        storyboard = None if self.world is None else self.world.storyboard
+        if storyboard is not None:
+            outcome = storyboard.outcome()
+            result["scenario"] = {
+                "state": outcome.state,
+                "time_s": outcome.time,
+                "verdict": outcome.verdict,
+            }
+        return result
 
 
-def main(case_dir: Path) -> int:
+def _cpu_s() -> float:
+    """User + system CPU time of this process so far."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+def simulate_case(
+    case_dir: Path, stop: threading.Event, renderer: Callable[[], CameraRenderer]
+) -> int:
+    """Drive the case in `case_dir` until its drive ends or `stop` is set; the run's exit
+    status. The process's ROS_MASTER_URI and ROS_IP are the case's afterwards (the worker
+    puts its environment back)."""
+    cpu_before = _cpu_s()
     case = CaseSpec.from_dict(json.loads((case_dir / CASE_FILE).read_text(encoding="utf-8")))
-    scenario_path = case_dir / SCENARIO_FILE
-    scenario_path.write_text(yaml.safe_dump(case.scenario, sort_keys=False), encoding="utf-8")
+    if case.openscenario:
+        scenario_path = Path(case.openscenario)
+    elif is_morai_scenario(Path(case.scenario_file)):
+        scenario_path = case_dir / MORAI_SCENARIO_FILE
+        scenario_path.write_text(json.dumps(case.scenario, indent=1), encoding="utf-8")
+    else:
+        scenario_path = case_dir / SCENARIO_FILE
+        scenario_path.write_text(yaml.safe_dump(case.scenario, sort_keys=False), encoding="utf-8")
     master = Master("http://127.0.0.1:0/").start()
     try:
         os.environ["ROS_MASTER_URI"] = master.uri
         os.environ.setdefault("ROS_IP", "127.0.0.1")
-        print(f"egosim-batch: master {master.uri}", flush=True)
-        stop = threading.Event()
+        print(f"{PREFIX}{MASTER} {master.uri}", flush=True)
         drive = CaseDrive(case, master.uri, stop)
-
         options = RunOptions(
             map=case.map,
             scenario=scenario_path,
@@ -169,14 +199,13 @@ def main(case_dir: Path) -> int:
             log_level="WARNING",
             physics_rate_hz=PHYSICS_RATE_HZ,
             data_roots=(case_dir,),
+            scenario_parameters=tuple(case.scenario_parameters.items()),
+            # The drive stage ends the run, with the scenario's end among its reasons.
+            keep_running=True,
         )
-        status = run(options, [drive.attach], stop)
-        result = {"exit_status": status, **drive.result()}
+        status = run(options, [drive.attach], stop, handle_signals=False, renderer=renderer)
+        result = {"exit_status": status, **drive.result(), "cpu_s": _cpu_s() - cpu_before}
         (case_dir / SCORE_FILE).write_text(json.dumps(result), encoding="utf-8")
         return status
     finally:
         master.shutdown()
-
-
-if __name__ == "__main__":
-    sys.exit(main(Path(sys.argv[1])))

@@ -6,7 +6,8 @@ import copy
 import csv
 import json
 import string
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from functools import cache
 from importlib import resources
 from pathlib import Path
@@ -16,18 +17,42 @@ import jsonschema
 
 from egosim.batch.case import CaseSpec, StackSpec
 from egosim.batch.errors import SuiteError
-from egosim.batch.sweep import Value, case_name, parameter_sets
+from egosim.batch.sweep import Value, case_name, format_value, parameter_sets
 from egosim.evaluation import METRIC_NAMES, CriterionError, InfractionKind, parse_criterion
+from egosim.maps import scenario_map_location
+from egosim.scenario_files import is_morai_scenario, is_openscenario, read_openscenario_file
 from egosim.world.map import BUILTIN_MAP_NAMES
+from egosim.world.openscenario.distributions import is_distribution, read_distribution
+from egosim.world.openscenario.program import root_of
 from egosim.world.scenario import ScenarioError, parse_scenario
+from egosim.world.scenario.morai import morai_document, read_morai_scenario
 from egosim.yamltext import FieldPath, YamlDocument, YamlFileError, parse_yaml
 
 DEFAULT_TIME_LIMIT_S = 60.0
 DEFAULT_CRITERIA = ("no_collision",)
-COUNTED_LISTS = {"npc_count": "npcs", "pedestrian_count": "pedestrians"}
-"""Parameters that keep the first N entries of a scenario list."""
-SCENARIO_FIELDS = {"seed": "seed"}
-"""Parameters that set a scenario field directly."""
+
+
+@dataclass(frozen=True)
+class ScenarioLayout:
+    """Where a scenario format keeps what parameters set, and how a case's scenario is
+    checked."""
+
+    counted_lists: Mapping[str, str]
+    """Parameters that keep the first N entries of a scenario list."""
+    fields: Mapping[str, str]
+    """Parameters that set a scenario field directly."""
+    check: Callable[[dict[str, Any], str], object]
+    """Raises ScenarioError for a scenario (data, label) that cannot be used."""
+
+
+YAML_LAYOUT = ScenarioLayout(
+    {"npc_count": "npcs", "pedestrian_count": "pedestrians"}, {"seed": "seed"}, parse_scenario
+)
+MORAI_LAYOUT = ScenarioLayout(
+    {"npc_count": "vehicleList", "pedestrian_count": "pedestrianList"},
+    {},
+    lambda data, label: read_morai_scenario(json.dumps(data), label),
+)
 
 
 @cache
@@ -43,9 +68,24 @@ def load_suite(path: Path) -> list[CaseSpec]:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as error:
         raise SuiteError(str(path), None, "", f"cannot read: {error}") from None
-    source = parse_yaml(text, str(path), SuiteError)
+    return _cases(parse_yaml(text, str(path), SuiteError), path.resolve().parent)
+
+
+def scenario_suite(path: Path, stack: str, time_limit_s: float, clock: str) -> list[CaseSpec]:
+    """The cases of one OpenSCENARIO file, ParameterValueDistribution file or MORAI
+    scenario file run with the stack command `stack` (`egosim batch FILE.xosc --stack
+    COMMAND`)."""
+    data = {
+        "stack": {"command": stack},
+        "clock": clock,
+        "time_limit_s": time_limit_s,
+        "cases": [{"name": path.stem, "scenario": path.name}],
+    }
+    return _cases(YamlDocument(str(path), data, error_type=SuiteError), path.resolve().parent)
+
+
+def _cases(source: YamlDocument, suite_dir: Path) -> list[CaseSpec]:
     _validate(source)
-    suite_dir = path.resolve().parent
     data = source.data
     cases: list[CaseSpec] = []
     for k, entry in enumerate(data["cases"]):
@@ -91,9 +131,17 @@ def _expand(
 ) -> list[CaseSpec]:
     data = source.data
     scenario_path = suite_dir / entry["scenario"]
+    if is_openscenario(scenario_path):
+        return _openscenario_cases(source, path, entry, scenario_path, suite_dir)
+    morai = is_morai_scenario(scenario_path)
+    layout = MORAI_LAYOUT if morai else YAML_LAYOUT
     try:
         scenario_text = scenario_path.read_text(encoding="utf-8")
-        scenario_data = parse_yaml(scenario_text, str(scenario_path), ScenarioError).data
+        scenario_data = (
+            morai_document(scenario_text, str(scenario_path))
+            if morai
+            else parse_yaml(scenario_text, str(scenario_path), ScenarioError).data
+        )
     except (OSError, UnicodeDecodeError) as error:
         raise source.error((*path, "scenario"), f"cannot read: {error}") from None
     except YamlFileError as error:
@@ -102,48 +150,164 @@ def _expand(
         sets = parameter_sets(entry.get("sweep"), entry.get("combinations"))
     except ValueError as error:
         raise source.error((*path, "sweep"), str(error)) from None
-    stack = data["stack"]
-    stack_spec = StackSpec(
-        command=stack["command"],
-        env={k: str(v) for k, v in stack.get("env", {}).items()},
-        connect_timeout_s=float(stack.get("connect_timeout_s", 30.0)),
-    )
-    clock = data.get("clock", "sim")
-    mode, rtf = (clock, 0.0) if isinstance(clock, str) else (clock["mode"], clock.get("rtf", 0.0))
-    time_limit = float(entry.get("time_limit_s", data.get("time_limit_s", DEFAULT_TIME_LIMIT_S)))
+    stack_spec = _stack(data)
     route = _route(source, path, entry.get("route"), suite_dir)
-    map_name = entry.get(
-        "map", scenario_data.get("map") if isinstance(scenario_data, dict) else None
-    )
-    if map_name is not None and map_name not in BUILTIN_MAP_NAMES and "map" in entry:
-        map_name = str(suite_dir / map_name)
+    if morai:
+        map_name = _morai_map(entry, scenario_data, scenario_path, suite_dir)
+    else:
+        map_name = entry.get(
+            "map", scenario_data.get("map") if isinstance(scenario_data, dict) else None
+        )
+        if map_name is not None and map_name not in BUILTIN_MAP_NAMES and "map" in entry:
+            map_name = str(suite_dir / map_name)
     cases = []
     defaults = {**data.get("parameters", {}), **entry.get("parameters", {})}
     for swept in sets:
         name = case_name(entry["name"], swept)
         where = (*path, "sweep") if swept else path
         parameters = {**defaults, **swept}
-        scenario = _apply(source, where, name, scenario_data, parameters, stack_spec)
+        scenario = _apply(source, where, name, scenario_data, parameters, stack_spec, layout)
         cases.append(
-            CaseSpec(
-                name=name,
-                scenario=scenario,
-                scenario_file=str(scenario_path),
-                parameters=parameters,
-                stack=stack_spec,
-                suite_dir=str(suite_dir),
-                map=str(map_name),
-                route=route,
-                clock=mode,
-                rtf=float(rtf),
-                time_limit_s=time_limit,
-                wall_limit_s=float(data.get("wall_limit_s", 120.0 + 10.0 * time_limit)),
-                criteria=tuple(entry.get("criteria", data.get("criteria", DEFAULT_CRITERIA))),
-                scoring=dict(data.get("scoring", {})),
-                bags=data.get("bags", "all"),
-            )
+            _case(data, entry, name, scenario_path, parameters, suite_dir, str(map_name), route)
+            | {"scenario": scenario}
         )
+    return [CaseSpec(**case) for case in cases]
+
+
+def _morai_map(
+    entry: dict[str, Any], data: dict[str, Any], scenario_path: Path, suite_dir: Path
+) -> str | None:
+    """The map a MORAI case runs: the entry's `map`, else the file's mapInfo.mapName (a
+    map name, or a map folder beside the file)."""
+    if "map" in entry:
+        given = str(entry["map"])
+        return given if given in BUILTIN_MAP_NAMES else str(suite_dir / given)
+    info = data.get("mapInfo")
+    name = info.get("mapName") if isinstance(info, dict) else None
+    if not isinstance(name, str) or not name:
+        return None
+    return scenario_map_location(name, scenario_path.parent)
+
+
+def _stack(data: dict[str, Any]) -> StackSpec:
+    stack = data["stack"]
+    return StackSpec(
+        command=stack["command"],
+        env={k: str(v) for k, v in stack.get("env", {}).items()},
+        connect_timeout_s=float(stack.get("connect_timeout_s", 30.0)),
+    )
+
+
+def _case(
+    data: dict[str, Any],
+    entry: dict[str, Any],
+    name: str,
+    scenario_path: Path,
+    parameters: dict[str, Value],
+    suite_dir: Path,
+    map_name: str,
+    route: dict[str, Any] | None,
+) -> dict[str, Any]:
+    """A case's fields that do not depend on the scenario's format."""
+    clock = data.get("clock", "sim")
+    mode, rtf = (clock, 0.0) if isinstance(clock, str) else (clock["mode"], clock.get("rtf", 0.0))
+    time_limit = float(entry.get("time_limit_s", data.get("time_limit_s", DEFAULT_TIME_LIMIT_S)))
+    return {
+        "name": name,
+        "scenario": {},
+        "scenario_file": str(scenario_path),
+        "parameters": parameters,
+        "stack": _stack(data),
+        "suite_dir": str(suite_dir),
+        "map": map_name,
+        "route": route,
+        "clock": mode,
+        "rtf": float(rtf),
+        "time_limit_s": time_limit,
+        "wall_limit_s": float(data.get("wall_limit_s", 120.0 + 10.0 * time_limit)),
+        "criteria": tuple(entry.get("criteria", data.get("criteria", DEFAULT_CRITERIA))),
+        "scoring": dict(data.get("scoring", {})),
+        "bags": data.get("bags", "all"),
+    }
+
+
+def _openscenario_cases(
+    source: YamlDocument,
+    path: FieldPath,
+    entry: dict[str, Any],
+    file: Path,
+    suite_dir: Path,
+) -> list[CaseSpec]:
+    """The cases of an OpenSCENARIO file (the suite's sweep sets its declared
+    parameters), or of a ParameterValueDistribution file: one case per concrete
+    parameter set, named by the values the distribution gives."""
+    data = source.data
+    where = (*path, "scenario")
+    try:
+        text = file.read_bytes()
+        distribution = (
+            read_distribution(text, str(file))
+            if is_distribution(root_of(text, str(file)))
+            else None
+        )
+    except OSError as error:
+        raise source.error(where, f"cannot read: {error}") from None
+    except ScenarioError as error:
+        raise source.error(where, str(error)) from None
+    if distribution is not None:
+        scenario_file = (file.parent / distribution.scenario_file).resolve()
+        variants: list[dict[str, Value]] = [dict(case) for case in distribution.cases]
+        named = _varying(variants)
+        if "sweep" in entry or "combinations" in entry:
+            raise source.error((*path, "sweep"), "a ParameterValueDistribution is its own sweep")
+    else:
+        scenario_file = file
+        try:
+            variants = parameter_sets(entry.get("sweep"), entry.get("combinations"))
+        except ValueError as error:
+            raise source.error((*path, "sweep"), str(error)) from None
+        named = None
+    stack = _stack(data)
+    route = _route(source, path, entry.get("route"), suite_dir)
+    defaults = {**data.get("parameters", {}), **entry.get("parameters", {})}
+    cases = []
+    declared: set[str] | None = None
+    for variant in variants:
+        shown = variant if named is None else {k: v for k, v in variant.items() if k in named}
+        name = case_name(entry["name"], shown)
+        parameters = {**defaults, **variant}
+        declared = declared if declared is not None else _declared(source, where, scenario_file)
+        unused = [k for k in parameters if k not in declared and k not in _stack_fields(stack)]
+        if unused:
+            message = f"case {name}: parameter {unused[0]!r} is used by neither scenario nor stack"
+            raise source.error(path, message)
+        values = {k: format_value(v) for k, v in parameters.items() if k in declared}
+        try:
+            scenario = read_openscenario_file(scenario_file, parameters=values, log_notes=False)
+        except (OSError, ScenarioError) as error:
+            raise source.error(where, f"case {name}: {error}") from None
+        map_name = entry.get("map")
+        location = (
+            str(suite_dir / map_name)
+            if map_name is not None and map_name not in BUILTIN_MAP_NAMES
+            else map_name or scenario_map_location(scenario.map_reference, scenario_file.parent)
+        )
+        case = _case(data, entry, name, file, parameters, suite_dir, location, route)
+        cases.append(CaseSpec(**case, openscenario=str(scenario_file), scenario_parameters=values))
     return cases
+
+
+def _varying(variants: list[dict[str, Value]]) -> set[str]:
+    """The parameters whose value differs between the cases (what names each one)."""
+    keys = {key for variant in variants for key in variant}
+    return {key for key in keys if len({str(v.get(key)) for v in variants}) > 1}
+
+
+def _declared(source: YamlDocument, where: FieldPath, file: Path) -> set[str]:
+    try:
+        return set(read_openscenario_file(file, log_notes=False).parameters)
+    except (OSError, ScenarioError) as error:
+        raise source.error(where, str(error)) from None
 
 
 def _route(
@@ -170,9 +334,11 @@ def _apply(
     scenario: dict[str, Any],
     parameters: Mapping[str, Value],
     stack: StackSpec,
+    layout: ScenarioLayout,
 ) -> dict[str, Any]:
-    """The scenario with `$parameter` values replaced, the seed set and lists cut to
-    their counts; every parameter must be used somewhere (scenario or stack)."""
+    """The scenario with `$parameter` values replaced, its fields set and lists cut to
+    their counts (as `layout` says); every parameter must be used somewhere (scenario or
+    stack)."""
     used: set[str] = set()
 
     def substitute(value: Any) -> Any:
@@ -190,15 +356,15 @@ def _apply(
 
     result = substitute(copy.deepcopy(scenario))
     for key, value in parameters.items():
-        if key in SCENARIO_FIELDS:
-            result[SCENARIO_FIELDS[key]] = value
+        if key in layout.fields:
+            result[layout.fields[key]] = value
             used.add(key)
-        elif key in COUNTED_LISTS:
-            entries = result.get(COUNTED_LISTS[key], [])
+        elif key in layout.counted_lists:
+            entries = result.get(layout.counted_lists[key], [])
             if not isinstance(value, int) or not 0 <= value <= len(entries):
                 message = f"case {name}: {key} must be 0..{len(entries)} (the scenario's list)"
                 raise source.error(path, message)
-            result[COUNTED_LISTS[key]] = entries[:value]
+            result[layout.counted_lists[key]] = entries[:value]
             used.add(key)
     used |= _stack_fields(stack) & set(parameters)
     unused = [key for key in parameters if key not in used]
@@ -206,7 +372,7 @@ def _apply(
         message = f"case {name}: parameter {unused[0]!r} is used by neither scenario nor stack"
         raise source.error(path, message)
     try:
-        parse_scenario(result, f"{name} ({source.label})")
+        layout.check(result, f"{name} ({source.label})")
     except ScenarioError as error:
         raise source.error(path, str(error)) from None
     return result

@@ -85,4 +85,8 @@ HANDLERS = Handlers(
         "sync_mode_scenario_load": scenarios.prepare_scenario_service,
     },
     latched={"markers": markers.build_map_markers},
+    unheard={
+        "collision": objects.pass_collisions,
+        "vehicle_collision": objects.pass_vehicle_collisions,
+    },
 )

@@ -1,6 +1,8 @@
 """The main ego's cameras at run time: the renderer, the map's scene, one image per camera.
 
-The static scene is built once per map (again after a scenario load changes the map).
+The static scene is built once per map (again after a scenario load changes the map),
+and kept for the next rig on the same map (maps are immutable, and egosim.maps hands out
+the map it read before for the same source: a batch worker builds each scene once).
 A camera's mount comes from the SensorRig (SensorPosControl moves it there).
 """
 
@@ -9,6 +11,7 @@ from __future__ import annotations
 import logging
 from collections.abc import Callable
 from dataclasses import replace
+from functools import lru_cache
 
 from ..sensors import RendererUnavailableError
 from ..sensors.camera_capture import Image, capture
@@ -20,18 +23,17 @@ from .sensor_rig import MAIN_EGO, SensorRig
 
 log = logging.getLogger(__name__)
 
+SCENES_KEPT = 4
+static_scene = lru_cache(maxsize=SCENES_KEPT)(build_static_scene)
+"""The static scene of a map, built once per map object."""
+
 
 class CameraRig:
     def __init__(self, renderer: CameraRenderer) -> None:
         self.renderer = renderer
-        self._map: LaneMap | None = None
-        self._scene: StaticScene | None = None
 
     def scene(self, lane_map: LaneMap) -> StaticScene:
-        if self._scene is None or self._map is not lane_map:
-            self._scene = build_static_scene(lane_map)
-            self._map = lane_map
-        return self._scene
+        return static_scene(lane_map)
 
     def image(self, sensors: SensorRig, world: World, k: int) -> Image:
         """Camera k's image of the world as it is now; the main ego does not see itself."""

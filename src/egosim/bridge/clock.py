@@ -16,10 +16,15 @@ class ClockMode(Enum):
 
 
 class HeaderClock:
-    """Header stamps (s): wall time in real mode, simulation time in sim and sync modes.
+    """Header stamps, in whole nanoseconds: wall time in real mode, simulation time in
+    sim and sync modes, and the world's time while synchronous mode holds time.
 
-    The wall time is read once per tick (`tick`), so every message of one tick
-    carries the same stamp.
+    The wall time is read once per tick (`tick`), so every message of one tick carries
+    the same stamp. While a client holds time (`hold`), each tick advances the stamp by
+    exactly its step from the stamp synchronous mode started at, so 20 ms ticks are
+    stamped 20 ms apart whatever the wall clock does. When it lets go (`release`), the
+    run's own clock goes on from the last stamp (shifted by a fixed offset from then on),
+    so stamps never go back.
     """
 
     def __init__(
@@ -28,17 +33,44 @@ class HeaderClock:
         self.mode = mode
         self._world = world
         self._wall = wall
-        self._wall_now = wall()
+        self._offset_ns = 0
+        self._held = False
+        self._now_ns = self._source_ns()
 
     @property
     def publishes_clock(self) -> bool:
         """Headers carry simulation time, so /clock is published (sim and sync modes)."""
         return self.mode is not ClockMode.REAL
 
-    def tick(self) -> None:
-        self._wall_now = self._wall()
+    def _source_ns(self) -> int:
+        """The run's own clock (wall or simulation time), with the offset of past holds."""
+        seconds = self._wall() if self.mode is ClockMode.REAL else self._world.sim_time
+        return round(seconds * 1e9) + self._offset_ns
+
+    def hold(self) -> None:
+        """Synchronous mode starts (or changes hands): ticks stamp the world's time."""
+        if not self._held:
+            self._now_ns = self.now_ns()
+            self._held = True
+
+    def release(self) -> None:
+        """Synchronous mode stops: the run's clock goes on from the last stamp."""
+        if self._held:
+            self._held = False
+            self._offset_ns += self._now_ns - self._source_ns()
+
+    def tick(self, dt: float) -> None:
+        """A tick of `dt` s is done: its stamp."""
+        if self._held:
+            self._now_ns += round(dt * 1e9)
+        elif self.mode is ClockMode.REAL:
+            self._now_ns = self._source_ns()
+
+    def now_ns(self) -> int:
+        if self._held or self.mode is ClockMode.REAL:
+            return self._now_ns
+        return self._source_ns()
 
     def __call__(self) -> float:
-        if self.mode is ClockMode.REAL:
-            return self._wall_now
-        return self._world.sim_time
+        """The stamp, s."""
+        return self.now_ns() / 1e9

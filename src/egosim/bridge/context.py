@@ -1,6 +1,7 @@
 """What every row handler sees: the world and the simulator's dependencies (message
 profile, clock, tick pipeline, sensors, replay, sync mode), given at construction, and
-the session state the protocol adds to the world (control modes, lamps, ...).
+the session state the protocol adds to the world (each ego's session: control mode,
+lamps, autopilot, opened rows; the ego /Ego_topic reports, ...).
 
 Build one with `egosim.bridge.simulation_context`.
 """
@@ -20,7 +21,7 @@ from ..replay import ReplaySession
 from ..world import World
 from .angle_rates import AngleRates
 from .clock import HeaderClock
-from .codes import ControlMode
+from .ego_session import EgoSession, EgoSessions
 from .messages import header
 from .network import NetworkSettings
 from .pipeline import Tick, TickPipeline
@@ -29,7 +30,7 @@ from .sync_session import SyncSession
 from .table import Row
 
 if TYPE_CHECKING:
-    from ..world.traffic.autopilot import LaneAutopilot
+    from ..world import Ego
     from .camera_rig import CameraRig
 
 log = logging.getLogger(__name__)
@@ -53,35 +54,16 @@ class RowBinder(Protocol):
 
 
 @dataclass
-class Lamps:
-    """morai_msgs/Lamps state of one ego: 0 none / 1 left / 2 right; emergency 0 / 1."""
-
-    turn_signal: int = 0
-    emergency: int = 0
-
-
-@dataclass
-class EgoSettings:
-    """Per-ego settings set through the protocol rather than by physics."""
-
-    ctrl_mode: ControlMode = ControlMode.EXTERNAL
-    lamps: Lamps = field(default_factory=Lamps)
-
-
-@dataclass
 class SessionState:
     """What the protocol has set during this run, beside the world's own state."""
 
     camera_index: int = 0
     """The ego /Ego_topic reports (MultiEgoSetting.camera_index)."""
-    ego_settings: dict[int, EgoSettings] = field(default_factory=dict)
-    """Control mode and lamps of each ego, by unique id."""
+    egos: EgoSessions = field(default_factory=EgoSessions)
+    """Each ego's session (control mode, lamps, autopilot, opened rows): the one
+    owner of that state (bridge/ego_session.py)."""
     reported: dict[str, int] = field(default_factory=dict)
     """How many entries of each world log a publisher has already reported."""
-    autopilots: dict[int, LaneAutopilot] = field(default_factory=dict)
-    """The autopilot of each ego in control mode auto, by unique id."""
-    ego_rows: dict[int, list[Callable[[], None]]] = field(default_factory=dict)
-    """What closes the namespaced topics of each additional ego, by unique id."""
     angle_rates: AngleRates = field(default_factory=AngleRates)
     """The last reading of each angle whose rate a row reports (extended status rows)."""
 
@@ -126,16 +108,21 @@ class BridgeContext:
         """The header stamp of this tick, s."""
         return self.clock()
 
+    def stamp_ns(self) -> int:
+        """The header stamp of this tick, ns."""
+        return self.clock.now_ns()
+
     def header(self, frame_id: str = MAP_FRAME) -> Any:
-        return header(self.profile, self.stamp(), frame_id)
+        return header(self.profile, self.stamp_ns(), frame_id)
 
     def warn_throttled(self, key: str, text: str) -> None:
         """Log `text` when `key` comes up, at most once per window with a count of the
         rest, so a 50 Hz stream of the same bad input does not flood the log."""
         throttle.log(logging.WARNING, key, "%s", text)
 
-    def settings_of(self, unique_id: int) -> EgoSettings:
-        return self.session.ego_settings.setdefault(unique_id, EgoSettings())
+    def ego_session(self, ego: Ego) -> EgoSession:
+        """The session of `ego`, the one owner of its run-time state."""
+        return self.session.egos.of(ego)
 
     def unreported(self, log_name: str, entries: list[Any]) -> list[Any]:
         """Entries of a growing world log not yet published (all of them after a reset)."""

@@ -51,8 +51,8 @@ T = TypeVar("T")
 # (context, row) -> a message, several, or None when there is nothing to say
 Builder = Callable[[BridgeContext, Row], Any | Sequence[Any] | None]
 MessageHandler = Callable[[BridgeContext, Row, Any], None]  # (context, row, message)
-# (topic, message type, serialized bytes, stamp s): sees every message sent or received
-Tap = Callable[[str, MessageType, bytes, float], None]
+# (topic, message type, serialized bytes, stamp ns): sees every message sent or received
+Tap = Callable[[str, MessageType, bytes, int], None]
 RequestHandler = Callable[[BridgeContext, Row, Any], Any]  # (context, row, request) -> response
 # (context, row, request as the client sent it): applies a request field only one
 # release has, before the row's handler answers
@@ -60,6 +60,9 @@ ReleaseAdapter = Callable[[BridgeContext, Row, Any], None]
 # (context, row, message or request) -> what the row's handler gets instead: work done on
 # the transport's thread, such as reading a user's file, so the loop never waits on it
 Preparer = Callable[[BridgeContext, Row, Any], Any]
+# (context, row): what a publishing row due with no subscriber and no tap does instead of
+# being built
+Unheard = Callable[[BridgeContext, Row], None]
 # (bridge, row): advertises the topics a row stands for (Bridge.advertise); returns what
 # withdraws them
 Opener = Callable[["Bridge", Row], Callable[[], None]]
@@ -88,6 +91,10 @@ class Handlers:
     # publisher row key -> the row's static part: built once, before the row's first
     # message, and latched (every subscriber gets it first; later messages never replace it)
     latched: dict[str, Builder] = field(default_factory=dict)
+    # publisher row key -> what a due message nobody listens to still does (it is not
+    # built): a row that reports the events since its previous message marks them
+    # reported, or the next subscriber's first message would bring events long past
+    unheard: dict[str, Unheard] = field(default_factory=dict)
 
     def __contains__(self, key: str) -> bool:
         return (
@@ -232,6 +239,9 @@ class Bridge:
 
     def publish(self, outlet: Outlet) -> None:
         if outlet.publisher.num_subscribers == 0 and not self.taps:
+            unheard = self.handlers.unheard.get(outlet.row.key)
+            if unheard is not None:
+                unheard(self.context, outlet.row)
             return
         if outlet.static is not None:
             static, outlet.static = outlet.static(self.context, outlet.row), None
@@ -261,7 +271,7 @@ class Bridge:
 
     def _tap(self, topic: str, message_type: MessageType, data: bytes) -> None:
         for tap in self.taps:
-            tap(topic, message_type, data, self.context.stamp())
+            tap(topic, message_type, data, self.context.stamp_ns())
 
     def _advertise(self, row: Row, build: Builder) -> Outlet:
         releases = releases_of(row.type_name, self.default_release)

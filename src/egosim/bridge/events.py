@@ -10,12 +10,13 @@ claims 16.
 from __future__ import annotations
 
 import logging
+from dataclasses import replace
 from typing import Any
 
 from ..world.vehicle import Gear
 from .codes import ControlMode
-from .context import BridgeContext, Lamps
-from .control_modes import switch_ctrl_mode
+from .context import BridgeContext
+from .ego_session import Lamps
 from .table import Row
 
 log = logging.getLogger(__name__)
@@ -27,30 +28,33 @@ OPTION_SET_PAUSE = 0x08
 GEAR_NO_CHANGE = -1
 
 
-def apply_lamps(lamps: Lamps, message: Any, source: str) -> None:
-    """Set `lamps` from a morai_msgs/Lamps received on `source` (a row's name)."""
+def lamps_from(lamps: Lamps, message: Any, source: str) -> Lamps:
+    """`lamps` as a morai_msgs/Lamps received on `source` (a row's name) sets them; a
+    value out of range leaves its lamp as it was."""
     if message.turnSignal in (0, 1, 2):
-        lamps.turn_signal = int(message.turnSignal)
+        lamps = replace(lamps, turn_signal=int(message.turnSignal))
     else:
         log.warning("%s: turnSignal %s is not 0, 1 or 2; ignored", source, message.turnSignal)
     if message.emergencySignal in (0, 1):
-        lamps.emergency = int(message.emergencySignal)
+        lamps = replace(lamps, emergency=int(message.emergencySignal))
     else:
         log.warning(
             "%s: emergencySignal %s is not 0 or 1; ignored", source, message.emergencySignal
         )
+    return lamps
 
 
 def on_lamps(context: BridgeContext, row: Row, message: Any) -> None:
     """/lamps: the main ego's turn and emergency lamps."""
-    apply_lamps(context.settings_of(context.world.egos[0].unique_id).lamps, message, row.name)
+    session = context.ego_session(context.world.egos[0])
+    session.set_lamps(lamps_from(session.lamps, message, row.name))
 
 
 def serve_event_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
     """/Service_MoraiEventCmd: apply the selected parts; answer with the resulting state."""
     event = request.request
     ego = context.world.egos[0]
-    settings = context.settings_of(ego.unique_id)
+    session = context.ego_session(ego)
     option = int(event.option) & 0xFF
     if option & OPTION_CTRL_MODE:
         try:
@@ -58,25 +62,25 @@ def serve_event_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
         except ValueError:
             log.warning("%s: ctrl_mode %s is not 1..4; ignored", row.name, event.ctrl_mode)
         else:
-            switch_ctrl_mode(context, ego, mode)
+            session.set_ctrl_mode(mode, by=row.name)
     if option & OPTION_GEAR and event.gear != GEAR_NO_CHANGE:
         try:
             ego.vehicle.set_gear(Gear(int(event.gear)))
         except ValueError:
             log.warning("%s: gear %s is not -1 or 1..4; ignored", row.name, event.gear)
     if option & OPTION_LAMPS:
-        apply_lamps(settings.lamps, event.lamps, row.name)
+        session.set_lamps(lamps_from(session.lamps, event.lamps, row.name))
     if option & OPTION_SET_PAUSE:
         context.world.paused = bool(event.set_pause)
     profile = context.profile
     lamps = profile.message("morai_msgs/Lamps").new(
         header=context.header(),
-        turnSignal=settings.lamps.turn_signal,
-        emergencySignal=settings.lamps.emergency,
+        turnSignal=session.lamps.turn_signal,
+        emergencySignal=session.lamps.emergency,
     )
     state = profile.message("morai_msgs/EventInfo").new(
         option=event.option,
-        ctrl_mode=int(settings.ctrl_mode),
+        ctrl_mode=int(session.ctrl_mode),
         gear=int(ego.vehicle.gear),
         lamps=lamps,
         set_pause=context.world.paused,

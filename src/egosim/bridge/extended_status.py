@@ -121,7 +121,6 @@ def _turn_signal(context: BridgeContext, unique_id: int) -> int:
     """An NPC ghost's turn signal as placed, another ego's lamps; 0 for the rest."""
     ghosts = context.world.npc_ghosts
     if unique_id in ghosts:
-        return int(ghosts.get(unique_id).placement.turn_signal)
-    if any(ego.unique_id == unique_id for ego in context.world.egos):
-        return context.settings_of(unique_id).lamps.turn_signal
-    return 0
+        return int(ghosts.get(unique_id).turn_signal)
+    ego = next((ego for ego in context.world.egos if ego.unique_id == unique_id), None)
+    return 0 if ego is None else context.ego_session(ego).lamps.turn_signal

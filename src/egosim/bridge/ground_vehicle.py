@@ -43,7 +43,7 @@ def commanded_ego(
 ) -> Ego | None:
     """commanded_main_ego for the ego at `index` of the world's egos."""
     ego = context.world.egos[index]
-    if context.settings_of(ego.unique_id).ctrl_mode is not ControlMode.EXTERNAL:
+    if context.ego_session(ego).ctrl_mode is not ControlMode.EXTERNAL:
         return None
     if not isinstance(ego.vehicle, kind):
         context.warn_throttled(

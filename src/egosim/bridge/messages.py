@@ -20,14 +20,13 @@ def quaternion(profile: Profile, xyzw: Sequence[float]) -> Any:
     )
 
 
-def time_msg(profile: Profile, seconds: float) -> Any:
-    """A ROS time from seconds (non-negative), split into sec and nanosec."""
-    total_ns = round(seconds * 1e9)
+def time_msg(profile: Profile, total_ns: int) -> Any:
+    """A ROS time from nanoseconds (non-negative), split into sec and nanosec."""
     sec, nanosec = divmod(total_ns, 1_000_000_000)
     return profile.message("builtin_interfaces/msg/Time").new(sec=sec, nanosec=nanosec)
 
 
-def header(profile: Profile, stamp_s: float, frame_id: str, seq: int = 0) -> Any:
+def header(profile: Profile, stamp_ns: int, frame_id: str, seq: int = 0) -> Any:
     return profile.message("std_msgs/Header").new(
-        seq=seq, stamp=time_msg(profile, stamp_s), frame_id=frame_id
+        seq=seq, stamp=time_msg(profile, stamp_ns), frame_id=frame_id
     )

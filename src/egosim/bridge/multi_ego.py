@@ -24,8 +24,8 @@ from typing import Any
 from ..world.vehicle import Gear, Pose
 from .codes import ControlMode
 from .context import BridgeContext, RowBinder
-from .control_modes import switch_ctrl_mode
 from .ego import drive_with_ctrl_cmd, ego_status_of
+from .ego_session import Lamps
 from .table import Row
 from .units import mps, rad
 
@@ -36,7 +36,7 @@ log = logging.getLogger(__name__)
 MULTI_EGO_AUTO = 16
 CTRL_MODES = {**{int(mode): mode for mode in ControlMode}, MULTI_EGO_AUTO: ControlMode.AUTO}
 # MultiEgoSetting.turn_signal -> Lamps (turnSignal, emergencySignal).
-TURN_SIGNAL_LAMPS = {0: (0, 0), 1: (1, 0), 2: (2, 0), 3: (0, 1)}
+TURN_SIGNAL_LAMPS = {0: Lamps(0, 0), 1: Lamps(1, 0), 2: Lamps(2, 0), 3: Lamps(0, 1)}
 FLOAT_ARRAYS = (
     "global_position_x",
     "global_position_y",
@@ -69,11 +69,11 @@ def on_multi_ego_setting(context: BridgeContext, row: Row, message: Any) -> None
         return
     world = context.world
     world.keep_egos(message.number_of_ego_vehicle)
-    model_name = world.egos[0].vehicle.model.name
+    model = world.egos[0].vehicle.model
     for k, entry in sorted(entries.items()):
         if k >= len(world.egos):
-            world.add_ego(model_name, _pose(entry, None))
-        _apply(context, k, entry)
+            world.add_ego(model, _pose(entry, None))
+        _apply(context, k, entry, row.name)
     context.session.camera_index = int(message.camera_index)
     _sync_ego_rows(context)
 
@@ -133,7 +133,7 @@ def _pose(entry: dict[str, Any], current: Pose | None) -> Pose:
     )
 
 
-def _apply(context: BridgeContext, k: int, entry: dict[str, Any]) -> None:
+def _apply(context: BridgeContext, k: int, entry: dict[str, Any], by: str) -> None:
     ego = context.world.egos[k]
     vehicle = ego.vehicle
     status = vehicle.status()
@@ -145,28 +145,24 @@ def _apply(context: BridgeContext, k: int, entry: dict[str, Any]) -> None:
         vehicle.teleport(_pose(entry, status.pose), speed, steer)
     if "gear" in entry:
         vehicle.set_gear(Gear(int(entry["gear"])))
-    settings = context.settings_of(ego.unique_id)
+    session = context.ego_session(ego)
     if "ctrl_mode" in entry:
-        switch_ctrl_mode(context, ego, CTRL_MODES[int(entry["ctrl_mode"])])
+        session.set_ctrl_mode(CTRL_MODES[int(entry["ctrl_mode"])], by=by)
     if "turn_signal" in entry:
-        settings.lamps.turn_signal, settings.lamps.emergency = TURN_SIGNAL_LAMPS[
-            int(entry["turn_signal"])
-        ]
+        session.set_lamps(TURN_SIGNAL_LAMPS[int(entry["turn_signal"])])
 
 
 def _sync_ego_rows(context: BridgeContext) -> None:
-    """Open the namespaced rows of egos that appeared, close those of egos removed."""
+    """Open the namespaced rows of egos that appeared; the sessions of egos removed go,
+    closing theirs."""
     egos = context.world.egos
-    present = {ego.unique_id for ego in egos[1:]}
-    ego_rows = context.session.ego_rows
-    for unique_id in set(ego_rows) - present:
-        for close in ego_rows.pop(unique_id):
-            close()
+    context.session.egos.keep(egos)
     if context.rows is None:
         return
     for k, ego in enumerate(egos[1:], start=1):
-        if ego.unique_id not in ego_rows:
-            ego_rows[ego.unique_id] = _open_ego_rows(context.rows, k)
+        session = context.ego_session(ego)
+        if not session.has_rows:
+            session.open_rows(_open_ego_rows(context.rows, k))
 
 
 def _open_ego_rows(rows: RowBinder, k: int) -> list[Callable[[], None]]:

@@ -48,7 +48,8 @@ def object_status(profile: Profile, state: ObjectState) -> Any:
 
 
 def publish_object_list(context: BridgeContext, row: Row) -> Any:
-    """/Object_topic: counts of everything spawned; the N closest objects, closest first."""
+    """/Object_topic: counts of everything spawned; the N closest objects, closest first
+    (from the position /Ego_topic reports to each reported position)."""
     listing = context.world.object_list(context.session.camera_index)
     profile = context.profile
     return profile.message("morai_msgs/ObjectStatusList").new(
@@ -62,19 +63,25 @@ def publish_object_list(context: BridgeContext, row: Row) -> Any:
     )
 
 
-def publish_collision(context: BridgeContext, row: Row) -> Any:
-    """/CollisionData: the main ego's collisions that began since the last message, then
-    the objects it still touches (a contact is reported as long as it lasts).
+EGO_COLLISIONS = "ego_collisions"
+VEHICLE_COLLISIONS = "vehicle_collisions"
 
-    An empty collision_object list means no collision and no contact; global_offset_* is
-    the position of the most recent collided object, in every message after it (zeros
-    before the first).
+
+def publish_collision(context: BridgeContext, row: Row) -> Any:
+    """/CollisionData: the main ego's collisions that began since the row's previous
+    message, then the objects it still touches (a contact is reported as long as it lasts).
+
+    The previous message is the previous one due, whether anyone listened or not
+    (pass_collisions): a subscriber that joins late gets no collision older than one
+    period. An empty collision_object list means no collision and no contact;
+    global_offset_* is the position of the most recent collided object, in every message
+    after it (zeros before the first).
     """
     world = context.world
     ego_id = world.egos[0].unique_id
     new = [
         c.other
-        for c in context.unreported("ego_collisions", world.ego_collision_log)
+        for c in context.unreported(EGO_COLLISIONS, world.ego_collision_log)
         if c.ego_id == ego_id
     ]
     listed = {other.unique_id for other in new}
@@ -95,7 +102,7 @@ def publish_vehicle_collisions(context: BridgeContext, row: Row) -> Any:
     the NPC-NPC contacts that last."""
     profile = context.profile
     collision_type = profile.message("morai_msgs/VehicleCollision")
-    new = context.unreported("vehicle_collisions", context.world.vehicle_collisions)
+    new = context.unreported(VEHICLE_COLLISIONS, context.world.vehicle_collisions)
     listed = {_pair(c) for c in new}
     new += [c for c in context.world.vehicle_contacts if _pair(c) not in listed]
     return profile.message("morai_msgs/VehicleCollisionData").new(
@@ -105,6 +112,16 @@ def publish_vehicle_collisions(context: BridgeContext, row: Row) -> Any:
             for c in new
         ],
     )
+
+
+def pass_collisions(context: BridgeContext, row: Row) -> None:
+    """/CollisionData due with no one listening: its new collisions count as reported."""
+    context.unreported(EGO_COLLISIONS, context.world.ego_collision_log)
+
+
+def pass_vehicle_collisions(context: BridgeContext, row: Row) -> None:
+    """/VehicleCollisionData due with no one listening: the same."""
+    context.unreported(VEHICLE_COLLISIONS, context.world.vehicle_collisions)
 
 
 def _pair(collision: VehicleCollision) -> frozenset[int]:

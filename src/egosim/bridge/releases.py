@@ -6,7 +6,8 @@ superset). A peer compiled against another release is recognised by the md5sum i
 its connection header, and its messages are converted field by field: same-named
 fields are copied (recursively, through nested types), renamed fields follow
 RENAMED_FIELDS, moved fields follow MOVED_FIELDS, and a field the other side lacks
-is dropped on the way out and takes its ROS default on the way in.
+is dropped on the way out and, on the way in, takes the value IMPLIED_FIELDS gives
+(what the older release meant without it) or else its ROS default.
 """
 
 from __future__ import annotations
@@ -32,6 +33,12 @@ RENAMED_FIELDS: dict[str, dict[str, str]] = {
 # type -> {field of an older release: dotted path of the same quantity in 26.r1}
 MOVED_FIELDS: dict[str, dict[str, str]] = {
     "morai_msgs/GhostMessage": {"heading": "rotation.z"},  # 2021.08: yaw, deg
+}
+
+# type -> {field later releases added: its value in a message of a release without it}
+IMPLIED_FIELDS: dict[str, dict[str, Any]] = {
+    # 2021.08 cannot choose the tick length: MORAI SIM ticks its fixed 20 ms step.
+    "morai_msgs/SyncModeCmd": {"time_step": 20},
 }
 
 
@@ -110,6 +117,8 @@ def _convert(message: Any, store: Typestore, store_name: str) -> Any:
         source_name = name if hasattr(message, name) else aliases.get(name)
         if source_name is not None and hasattr(message, source_name):
             values[name] = _convert_value(getattr(message, source_name), desc, store)
+        elif name in IMPLIED_FIELDS.get(ros_name, {}):
+            values[name] = IMPLIED_FIELDS[ros_name][name]
     result = default_message(store, store_name, **values)
     for old_field, path in MOVED_FIELDS.get(ros_name, {}).items():
         if hasattr(result, old_field) and not hasattr(message, old_field):

@@ -53,7 +53,7 @@ def advance_replay(context: BridgeContext, dt: float) -> None:
 
 def serve_sim_proc(context: BridgeContext, row: Row, request: Any) -> Any:
     """/Morai_SimProc: apply the MoraiSimProcHandle; result true only on 0x01 success."""
-    received_ns = round(context.stamp() * 1e9)
+    received_ns = context.stamp_ns()
     result = context.replay.handle(request.request, received_ns=received_ns)
     show_replay(context)
     profile = context.profile
@@ -69,7 +69,7 @@ def publish_sim_proc_status(context: BridgeContext, row: Row) -> Any:
     status = context.replay.status()
     return context.profile.message("morai_msgs/MoraiSimProcStatus").new(
         header=context.header(),
-        latest_command_time=time_msg(context.profile, status.latest_command_time_ns / 1e9),
+        latest_command_time=time_msg(context.profile, status.latest_command_time_ns),
         command_result=int(status.command_result),
         current_mode=int(status.current_mode),
         current_status=int(status.current_status),

@@ -1,30 +1,32 @@
 """Scenario loading by topic (/ScenarioLoad) and service (/Service_MoraiSL).
 
 ScenarioLoad.file_name comes from the network, so it resolves only inside the
-configured scenario roots (a bare name may omit the .yaml extension), must be a
-regular file (a named pipe would never finish), and is read and parsed on the
-transport's thread (`prepare_scenario`), so the simulation loop never waits on a
-user's file; the loop only applies the parsed scenario.
+configured scenario roots (a bare name may omit the .yaml, .xosc or .json extension, as
+MORAI SIM's own scenario names do), must be a regular file (a named pipe would never
+finish), and is read and parsed on the transport's thread (`prepare_scenario`), so the
+simulation loop never waits on a user's file; the loop only applies the parsed scenario.
+An OpenSCENARIO file's catalogue directories must lie inside the roots too; its map must
+be the one running.
 """
 
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
-from ..datapaths import PathOutsideRootsError, read_regular_file, resolve_in_roots
-from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, parse_scenario
+from ..datapaths import PathOutsideRootsError, resolve_in_roots
+from ..scenario_files import SCENARIO_SUFFIXES, read_scenario_file
+from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, ScenarioLoadReport
 from ..yamltext import YamlFileError
 from .context import BridgeContext
 from .network import network_settings_of, section_of
 from .sensor_rig import sensor_rig_of
+from .storyboard import scenario_drives_ego
 from .table import Row
 
 log = logging.getLogger(__name__)
-
-SCENARIO_SUFFIXES = ("", ".yaml", ".yml")
 
 
 class ScenarioRequestError(Exception):
@@ -66,8 +68,7 @@ def read_scenario(request: Any, roots: tuple[Path, ...]) -> ScenarioRequest:
     """Resolve, read and parse the file a ScenarioLoad names (any thread)."""
     try:
         path = scenario_path(request.file_name, roots)
-        text = read_regular_file(path).decode("utf-8")
-        return ScenarioRequest(request, parse_scenario(text, str(path)))
+        return ScenarioRequest(request, read_scenario_file(path, roots=roots))
     except (PathOutsideRootsError, OSError, UnicodeDecodeError, ScenarioError) as error:
         return ScenarioRequest(request, None, f"scenario {request.file_name!r} not loaded: {error}")
 
@@ -87,21 +88,30 @@ def load_requested_scenario(context: BridgeContext, prepared: ScenarioRequest) -
     if prepared.scenario is None:
         raise ScenarioRequestError(prepared.error)
     request = prepared.request
+    options = replace(load_options(request), scenario_drives_ego=scenario_drives_ego(context))
     try:
-        report = context.world.load_scenario(prepared.scenario, load_options(request))
+        report = context.world.load_scenario(prepared.scenario, options)
     except ScenarioError as error:
         raise ScenarioRequestError(f"scenario {request.file_name!r} not loaded: {error}") from error
+    log_scenario_loaded(prepared.scenario, report)
+    if report.network_settings is not None:
+        apply_network_settings(context, prepared.scenario)
+
+
+def log_scenario_loaded(scenario: Scenario, report: ScenarioLoadReport, by: str = "") -> None:
+    """The line every scenario load leaves on the console, whoever asked (`by`)."""
     log.info(
-        "scenario %s loaded: ego %s, %d NPCs, %d pedestrians, %d obstacles%s",
-        prepared.scenario.source.label,
+        "scenario %s loaded%s: ego %s, %d NPCs, %d pedestrians, %d obstacles%s",
+        scenario.source.label,
+        f" by {by}" if by else "",
         "placed" if report.ego_placed else "kept",
         report.npcs_spawned,
         report.pedestrians_spawned,
         report.obstacles_spawned,
         ", paused" if report.paused else "",
     )
-    if report.network_settings is not None:
-        apply_network_settings(context, prepared.scenario)
+    for note in report.notes:
+        log.warning("%s", note)
 
 
 def apply_network_settings(context: BridgeContext, scenario: Scenario) -> None:

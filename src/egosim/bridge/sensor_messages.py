@@ -65,13 +65,13 @@ def point_cloud(profile: Profile, header: Any, points: np.ndarray) -> Any:
     )
 
 
-def tf_message(profile: Profile, stamp_s: float, transforms: Iterable[Transform]) -> Any:
+def tf_message(profile: Profile, stamp_ns: int, transforms: Iterable[Transform]) -> Any:
     stamped = profile.message("geometry_msgs/TransformStamped")
     transform_type = profile.message("geometry_msgs/Transform")
     return profile.message("tf2_msgs/TFMessage").new(
         transforms=[
             stamped.new(
-                header=make_header(profile, stamp_s, transform.parent_frame),
+                header=make_header(profile, stamp_ns, transform.parent_frame),
                 child_frame_id=transform.child_frame,
                 transform=transform_type.new(
                     translation=vector3(profile, transform.translation),

@@ -48,7 +48,7 @@ def publish_radar(context: BridgeContext, row: Row) -> Any:
 
 def publish_tf(context: BridgeContext, row: Row) -> Any:
     rig = context.sensors
-    return tf_message(context.profile, context.stamp(), rig.transforms(context.world))
+    return tf_message(context.profile, context.stamp_ns(), rig.transforms(context.world))
 
 
 def on_sensor_pos_control(context: BridgeContext, row: Row, message: Any) -> None:

@@ -18,4 +18,4 @@ from .table import Row
 def publish_clock(context: BridgeContext, row: Row) -> Any:
     if not context.clock.publishes_clock:
         return None
-    return clock_message(context.profile, time_msg(context.profile, context.stamp()))
+    return clock_message(context.profile, time_msg(context.profile, context.stamp_ns()))

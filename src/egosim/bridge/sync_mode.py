@@ -1,28 +1,32 @@
-"""MORAI's synchronous mode (morai_msgs 26.r1): the client steps the world.
+"""MORAI's synchronous mode (morai_msgs 26.r1, 24.r2, 2021.08): the client steps the world.
 
 Any run serves it: SyncModeCmd(start) switches the simulator into synchronous mode,
 where the world advances only on WaitForTick (the loop stops stepping it and rows
 publish only on ticks), and SyncModeCmd(stop) returns it to the clock mode it had
 (real time, or sim time at its --rtf); `--clock sync` starts a run in it, the world
-held until the first client starts. Header stamps keep the run's clock across the
-switch: simulation time with --clock sim/sync, wall time read at each tick with
---clock real.
+held until the first client starts. While a client holds time, header stamps carry
+the world's time: the stamp at the start plus frames x step (bridge/clock.py); after
+a stop the run's clock goes on from there.
 
 Frames: SyncModeCmd(start) answers with the current frame F and the tick length
-(time_step ms; 0 asks for the simulator's physics step). Every tick advances the
-world by exactly one step of time_step and the frame by one. WaitForTick(frame=N)
-ticks until the world is at frame N, publishing each tick's due outputs before it
-answers; N at or before the current frame does not tick (tick_status false), and
-more than MAX_TICKS_PER_REQUEST ticks at once are refused.
+(time_step ms; 0 asks for the simulator's physics step; a 2021.08 request, which has
+no time_step, gets MORAI's fixed 20 ms). Every tick advances the world by exactly one
+step of time_step and the frame by one. WaitForTick(frame=N) ticks until the world is
+at frame N, publishing each tick's due outputs before it answers; N at or before the
+current frame ticks exactly once (MORAI's own examples send a frame that never
+advances, or 0, and expect a tick per call); more than MAX_TICKS_PER_REQUEST ticks at
+once are refused.
 
-A request tagged with frame N (CtrlCmd, SetGear, ScenarioLoad, AddObject,
-RemoveObject) takes effect in the tick that produces frame N, i.e. before the
-world steps from N-1 to N: for N = current + 1 it is applied at once (its result
-is the real outcome), for a later N it is kept until then (result true: accepted;
-a failure then is logged), and for N at or before the current frame it is refused
-(result false), since that tick is over.
+A request tagged with frame N (CtrlCmd, the CtrlCmd a 2021.08 WaitForTick carries,
+SetGear, ScenarioLoad, AddObject, RemoveObject) takes effect in the tick that produces
+frame N, i.e. before the world steps from N-1 to N. For N later than the next frame it
+is kept until then (result true: accepted; a failure then is logged). For the next
+frame, and for the current or an earlier one, it is applied at once, so it acts on
+the next tick, and its result is the real outcome: MORAI's clients tag a command with
+the frame the last WaitForTick answered, or with a frame that never advances, and the
+command must drive the tick they ask for next.
 
-WaitForTickResponse.time is the simulation time in seconds with 6 decimals
+WaitForTickResponse.time is the world's simulation time in seconds with 6 decimals
 ("12.340000").
 """
 
@@ -74,6 +78,7 @@ def serve_sync_mode_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
         ok = 0 < step_ms <= MAX_TIME_STEP_MS
         if ok:
             session.start(command.user_id, step_ms)
+            context.clock.hold()
             log.info(
                 "sync mode started by %r at frame %d, %d ms",
                 command.user_id,
@@ -84,6 +89,7 @@ def serve_sync_mode_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
             log.error("%s: time_step %d ms is not 1..%d", row.name, step_ms, MAX_TIME_STEP_MS)
     else:
         session.stop()
+        context.clock.release()
         log.info(
             "sync mode stopped at frame %d; the %s clock runs",
             session.frame,
@@ -102,7 +108,8 @@ def serve_sync_mode_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
 
 
 def serve_wait_for_tick(context: BridgeContext, row: Row, request: Any) -> Any:
-    """/SyncModeWaitForTick: tick to the requested frame; the ego's status there."""
+    """/SyncModeWaitForTick: tick to the requested frame (once for the current or an
+    earlier one); the ego's status there."""
     tick = request.request
     session = _session(context, row)
     ticked = False
@@ -110,21 +117,13 @@ def serve_wait_for_tick(context: BridgeContext, row: Row, request: Any) -> Any:
         target = int(tick.frame)
         if tick.user_id != session.user_id:
             log.error("%s: user %r did not start sync mode", row.name, tick.user_id)
-        elif target <= session.frame:
-            log.warning("%s: frame %d is not after the current %d", row.name, target, session.frame)
-        elif target - session.frame > MAX_TICKS_PER_REQUEST:
-            log.error(
-                "%s: %d ticks at once (max %d)",
-                row.name,
-                target - session.frame,
-                MAX_TICKS_PER_REQUEST,
-            )
+        elif (ticks := max(target - session.frame, 1)) > MAX_TICKS_PER_REQUEST:
+            log.error("%s: %d ticks at once (max %d)", row.name, ticks, MAX_TICKS_PER_REQUEST)
         else:
             # Every frame's outputs are out before the reply, so several frames' may go
             # out together (one frame's gain nothing from it).
-            several = target - session.frame > 1
-            with context.hold_output() if several else nullcontext():
-                while session.frame < target:
+            with context.hold_output() if ticks > 1 else nullcontext():
+                for _ in range(ticks):
                     _tick(context, session)
             ticked = True
     world = context.world
@@ -159,10 +158,7 @@ def at_frame(context: BridgeContext, row: Row, frame: int, action: Action) -> bo
     session = _session(context, row)
     if session is None:
         return False
-    if frame <= session.frame:
-        log.error("%s: frame %d is not after the current %d", row.name, frame, session.frame)
-        return False
-    if frame == session.frame + 1:
+    if frame <= session.frame + 1:
         return bool(action(context))
     if not session.schedule(frame, row.name, action):
         log.error("%s: %d requests already wait for their frames", row.name, MAX_PENDING_ACTIONS)
@@ -193,7 +189,8 @@ def serve_ctrl_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
 
 def apply_tick_command(context: BridgeContext, row: Row, request: Any) -> None:
     """Release 2021.08 sends the ego's CtrlCmd inside WaitForTick (later releases use
-    SyncModeCtrlCmd): it drives from the tick producing the requested frame on."""
+    SyncModeCtrlCmd): it drives from the tick producing the requested frame on (the
+    tick this call makes, for the current or an earlier frame)."""
     sent = request.request.command
     command = convert(
         sent, get_profile("2021.08").message("morai_msgs/CtrlCmd"), canonical("morai_msgs/CtrlCmd")

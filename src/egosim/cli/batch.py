@@ -5,15 +5,19 @@ from __future__ import annotations
 import argparse
 import fnmatch
 import importlib.util
+import signal
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 from ..app.exit_codes import EXIT_BAD_INPUT
 from ..batch.case import CaseSpec
 from ..batch.errors import SuiteError
 from ..batch.html_report import write_html_report
+from ..batch.interrupt import EXIT_SIGNALLED, Interrupt, interrupted_by_signals
 from ..batch.junit import write_junit
+from ..batch.logs import tail_report
 from ..batch.pool import default_workers, failed, run_local, run_ray
 from ..batch.progress import BatchProgress
 from ..batch.results import (
@@ -23,11 +27,11 @@ from ..batch.results import (
     summary,
     write_results,
 )
-from ..batch.suite import load_suite
+from ..batch.suite import DEFAULT_TIME_LIMIT_S, load_suite, scenario_suite
+from ..scenario_files import is_morai_scenario, is_openscenario
 
 EXIT_ALL_PASSED = 0
 EXIT_SOME_FAILED = 1
-EXIT_INTERRUPTED = 130
 LOCAL_RAY = "local"
 
 
@@ -42,17 +46,44 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "batch",
         help="run a stack through a suite of scenarios and score every drive",
-        description="Run the suite's stack once per case, each case with its own simulator "
-        "and ROS master, score every drive from the world, and write results.json, "
-        "junit.xml, report.html and a bag per case to the output folder.",
+        description="Run the suite's stack once per case, each case with its own ROS "
+        "master and world on a simulator each worker keeps warm, score every drive from "
+        "the world, and write results.json, junit.xml, report.html and a bag per case to "
+        "the output folder. SIGINT or SIGTERM stops the running cases in order (their "
+        "drives kept) and still writes every output; a second signal stops at once.",
     )
-    parser.add_argument("suite", type=Path, metavar="SUITE.yaml")
+    parser.add_argument(
+        "suite",
+        type=Path,
+        metavar="SUITE.yaml|FILE.xosc|FILE.json",
+        help="a suite file, or an OpenSCENARIO scenario or ParameterValueDistribution file "
+        "(one case per concrete scenario), or a MORAI scenario file (one case); needs --stack",
+    )
+    parser.add_argument(
+        "--stack",
+        metavar="COMMAND",
+        help="with a scenario file: the shell command that starts the stack",
+    )
+    parser.add_argument(
+        "--time-limit",
+        type=float,
+        default=DEFAULT_TIME_LIMIT_S,
+        metavar="SECONDS",
+        help="with a scenario file: simulated time a case may take (default %(default)s)",
+    )
+    parser.add_argument(
+        "--clock",
+        choices=("sim", "sync"),
+        default="sim",
+        help="with a scenario file: sim (as fast as possible) or sync (the stack steps)",
+    )
     parser.add_argument(
         "--workers",
         type=positive_int,
         default=None,
         metavar="N",
-        help="cases at a time on this machine (default: the number of cores)",
+        help="cases at a time on this machine, each worker keeping a simulator warm "
+        "(default: the number of cores)",
     )
     parser.add_argument(
         "--ray",
@@ -60,8 +91,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         const=LOCAL_RAY,
         default=None,
         metavar="ADDRESS",
-        help="one Ray task per case: on the cluster at ADDRESS, else the one `ray start` "
-        "runs here, else a new local one (needs pip install egosim[ray])",
+        help="run the cases on Ray actors, one per CPU: of the cluster at ADDRESS, else of "
+        "the one `ray start` runs here, else of a new local one (needs pip install "
+        "egosim[ray])",
     )
     parser.add_argument(
         "--filter",
@@ -100,7 +132,14 @@ def run(args: argparse.Namespace) -> int:
         print("egosim batch: --workers is for local runs; Ray places the cases", file=sys.stderr)
         return EXIT_BAD_INPUT
     try:
-        cases = selected(load_suite(args.suite), args.filter)
+        if is_openscenario(args.suite) or is_morai_scenario(args.suite):
+            if not args.stack:
+                print("egosim batch: a scenario file needs --stack COMMAND", file=sys.stderr)
+                return EXIT_BAD_INPUT
+            suite = scenario_suite(args.suite, args.stack, args.time_limit, args.clock)
+        else:
+            suite = load_suite(args.suite)
+        cases = selected(suite, args.filter)
     except SuiteError as error:
         print(f"egosim batch: {error}", file=sys.stderr)
         return EXIT_BAD_INPUT
@@ -112,8 +151,21 @@ def run(args: argparse.Namespace) -> int:
         print("egosim batch: --ray needs Ray: pip install 'egosim[ray]'", file=sys.stderr)
         return EXIT_BAD_INPUT
     workers = args.workers or default_workers()
-    started = time.monotonic()
-    interrupted = False
+    interrupt = Interrupt()
+    with interrupted_by_signals(interrupt) as reinstall:
+        started = time.monotonic()
+        new = _run_cases(args, to_run, out_dir, workers, interrupt, reinstall)
+        return _report(args, cases, to_run, results, new, out_dir, workers, interrupt, started)
+
+
+def _run_cases(
+    args: argparse.Namespace,
+    to_run: list[CaseSpec],
+    out_dir: Path,
+    workers: int,
+    interrupt: Interrupt,
+    reinstall: Callable[[], None],
+) -> dict[str, dict]:
     done = failures = 0
     new: dict[str, dict] = {}
     with BatchProgress(len(to_run)) as bar:
@@ -123,31 +175,47 @@ def run(args: argparse.Namespace) -> int:
             done += 1
             failures += failed(result)
             bar.log(f"{result['status'].upper():7} {result['name']}  {result.get('reason', '')}")
+            for line in tail_report(result.get("log_tail")):
+                bar.log(f"        {line}")
             bar.update(done, failures, running)
 
-        try:
-            if args.ray is not None:
-                address = None if args.ray == LOCAL_RAY else args.ray
-                run_ray(to_run, str(out_dir), address, on_result, new)
-            else:
-                run_local(to_run, str(out_dir), workers, on_result, new)
-        except KeyboardInterrupt:
-            interrupted = True
+        if args.ray is not None:
+            address = None if args.ray == LOCAL_RAY else args.ray
+            run_ray(to_run, str(out_dir), address, on_result, new, interrupt, reinstall)
+        else:
+            run_local(to_run, str(out_dir), workers, on_result, new, interrupt)
+    return new
+
+
+def _report(
+    args: argparse.Namespace,
+    cases: list[CaseSpec],
+    to_run: list[CaseSpec],
+    results: dict[str, dict],
+    new: dict[str, dict],
+    out_dir: Path,
+    workers: int,
+    interrupt: Interrupt,
+    started: float,
+) -> int:
     results.update(new)
     execution = {
         "runner": "ray" if args.ray is not None else "local",
         "workers": None if args.ray is not None else workers,
         "cases_run": len(to_run),
         "wall_s": round(time.monotonic() - started, 3),
-        "interrupted": interrupted,
+        "interrupted": interrupt.stop.is_set(),
     }
     document = results_document(args.suite, cases, results, execution)
     written = [write_results(out_dir, document), write_junit(out_dir, args.suite.stem, document)]
-    written.append(write_html_report(out_dir, f"egosim batch: {args.suite.name}", document))
+    if interrupt.hurry.is_set():
+        print("egosim batch: stopped at once: no report.html", file=sys.stderr)
+    else:
+        written.append(write_html_report(out_dir, f"egosim batch: {args.suite.name}", document))
     counts = summary(document["cases"])
     print(", ".join(f"{v} {k}" for k, v in counts.items()), flush=True)
     for path in written:
         print(path, flush=True)
-    if interrupted:
-        return EXIT_INTERRUPTED
+    if interrupt.stop.is_set():
+        return EXIT_SIGNALLED + (interrupt.signal_number or signal.SIGINT)
     return EXIT_ALL_PASSED if counts["passed"] == counts["cases"] else EXIT_SOME_FAILED

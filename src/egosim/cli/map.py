@@ -112,7 +112,7 @@ def lane_rows(lane_map: LaneMap) -> list[tuple[str, ...]]:
                 f"{lane.speed_limit:.2f}",
                 "yes" if lane.is_junction else "no",
                 "-" if lane.stop_line_s is None else f"{lane.stop_line_s:.2f}",
-                lane.traffic_light_id or "-",
+                ",".join(lane.traffic_light_ids) or "-",
                 ",".join(lane.successors) or "-",
             )
         )
@@ -164,11 +164,17 @@ def crosswalk_rows(lane_map: LaneMap) -> list[tuple[str, ...]]:
 def _georeference(georef: GeoReference) -> str:
     lat, lon, _ = georef.local_to_geodetic(0.0, 0.0, 0.0)
     grid = georef.projection or f"UTM zone {georef.utm_zone}{'N' if georef.northern else 'S'}"
-    return (
+    placed = (
         f"{grid}, local origin at easting {georef.origin_east:.3f} m, northing "
         f"{georef.origin_north:.3f} m, altitude {georef.origin_up:.3f} m "
         f"(lat {lat:.6f}, lon {lon:.6f})"
     )
+    if georef.assumed:
+        return (
+            f"assumed, the map names none: {placed}, where the built-in maps are; "
+            "GPS latitudes and longitudes are invented"
+        )
+    return placed
 
 
 def _print_table(rows: Sequence[tuple[str, ...]], what: str) -> None:

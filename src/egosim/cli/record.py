@@ -10,7 +10,7 @@ from pathlib import Path
 
 from ..app.exit_codes import EXIT_BAD_INPUT, EXIT_ROS_FAILED
 from ..app.recording import TopicRecorder, open_recorder, record_from_network
-from ..app.signals import stop_on_signals
+from ..app.signals import CLEAN_STOP_DEADLINE_S, stop_on_signals
 from ..bridge.camera_rows import camera_topic_names
 from ..bridge.network import load_network_settings
 from ..bridge.table import Direction
@@ -62,16 +62,18 @@ def record(args: argparse.Namespace) -> int:
     except (OSError, YamlFileError) as error:
         print(f"egosim record: network settings: {error}", file=sys.stderr)
         return EXIT_BAD_INPUT
-    try:
-        recorder = TopicRecorder(open_recorder(args.bag))
-    except RecorderError as error:
-        print(f"egosim record: {error}", file=sys.stderr)
-        return EXIT_BAD_INPUT
-    stop = threading.Event()
-    with stop_on_signals(stop), recorder:
+    # Signals are handled before the bag exists: none can end the process with it open.
+    with stop_on_signals(threading.Event(), CLEAN_STOP_DEADLINE_S) as control:
         try:
-            record_from_network(recorder, topics, stop, args.duration, args.ros_args)
-        except (OSError, Ros1Error) as error:
-            print(f"egosim record: cannot join the ROS master: {error}", file=sys.stderr)
-            return EXIT_ROS_FAILED
+            recorder = TopicRecorder(open_recorder(args.bag))
+        except RecorderError as error:
+            print(f"egosim record: {error}", file=sys.stderr)
+            return EXIT_BAD_INPUT
+        control.close_when_forced(recorder.close)
+        with recorder:
+            try:
+                record_from_network(recorder, topics, control, args.duration, args.ros_args)
+            except (OSError, Ros1Error) as error:
+                print(f"egosim record: cannot join the ROS master: {error}", file=sys.stderr)
+                return EXIT_ROS_FAILED
     return 0

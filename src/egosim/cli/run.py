@@ -10,6 +10,8 @@ from pathlib import Path
 
 from ..app.options import ClockMode, RunOptions
 from ..app.runner import run as run_simulator
+from ..app.signals import CLEAN_STOP_DEADLINE_S, exit_now
+from ..bridge.codes import ControlMode
 from ..msgs import DEFAULT_PROFILE, PROFILES
 from ..view import DEFAULT_HOST, DEFAULT_PORT, ViewOptions, live_view
 
@@ -37,6 +39,13 @@ def port_number(text: str) -> int:
     return value
 
 
+def parameter_assignment(text: str) -> tuple[str, str]:
+    name, equals, value = text.partition("=")
+    if not equals or not name.strip():
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
+    return name.strip(), value
+
+
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "run",
@@ -56,7 +65,28 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         "--scenario",
         type=Path,
         metavar="PATH",
-        help="scenario YAML; runs on the map it names (the town has a default scenario)",
+        help="scenario: egosim YAML or OpenSCENARIO .xosc; runs on the map it names (the "
+        "town has a default scenario). An OpenSCENARIO run ends when its storyboard does",
+    )
+    parser.add_argument(
+        "--ctrl-mode",
+        choices=("external", "auto"),
+        default="external",
+        help="the ego's control mode at start: external (its stack drives, the default) or "
+        "auto (egosim drives it: an OpenSCENARIO scenario's own actions, else the autopilot)",
+    )
+    parser.add_argument(
+        "--param",
+        action="append",
+        default=[],
+        type=parameter_assignment,
+        metavar="NAME=VALUE",
+        help="set a parameter an OpenSCENARIO scenario declares (repeatable)",
+    )
+    parser.add_argument(
+        "--keep-running",
+        action="store_true",
+        help="keep running after an OpenSCENARIO scenario's storyboard has ended",
     )
     parser.add_argument("--network", type=Path, metavar="PATH", help="network settings YAML")
     parser.add_argument("--clock", choices=[m.value for m in ClockMode], default="real")
@@ -145,8 +175,11 @@ def run(args: argparse.Namespace) -> int:
         physics_rate_hz=args.physics_rate,
         data_roots=tuple(args.data_root),
         ros_argv=tuple(args.ros_args),
+        ctrl_mode=ControlMode.AUTO if args.ctrl_mode == "auto" else ControlMode.EXTERNAL,
+        keep_running=args.keep_running,
+        scenario_parameters=tuple(args.param),
     )
     attach = []
     if not args.no_view:
         attach.append(live_view(ViewOptions(args.view_host, args.view_port, args.view_readonly)))
-    return run_simulator(options, attach)
+    exit_now(run_simulator(options, attach, stop_deadline_s=CLEAN_STOP_DEADLINE_S))

@@ -3,6 +3,7 @@
 Public API:
     DriveEvaluator, EvaluationSettings, DriveScore, METRIC_NAMES   observe a world, score it
     Infraction, InfractionKind                                     what went wrong, when, where
+    InfractionWatch, ego_sample                                    one ego's, as they begin
     Route, RouteError                                              the route to drive
     CARLA_LEADERBOARD_1_PENALTIES, driving_score, penalty_factor   the driving score
     Criterion, CriterionResult, CriterionError, parse_criterion    pass criteria
@@ -18,6 +19,7 @@ from egosim.evaluation.evaluator import (
 from egosim.evaluation.infractions import COLLISION_KINDS, Infraction, InfractionKind
 from egosim.evaluation.penalties import CARLA_LEADERBOARD_1_PENALTIES, driving_score, penalty_factor
 from egosim.evaluation.route import Route, RouteError
+from egosim.evaluation.watch import InfractionWatch, ego_sample
 
 __all__ = [
     "CARLA_LEADERBOARD_1_PENALTIES",
@@ -31,9 +33,11 @@ __all__ = [
     "EvaluationSettings",
     "Infraction",
     "InfractionKind",
+    "InfractionWatch",
     "Route",
     "RouteError",
     "driving_score",
+    "ego_sample",
     "parse_criterion",
     "penalty_factor",
 ]

@@ -11,29 +11,12 @@ from egosim.evaluation.infractions import COLLISION_KINDS, Infraction, Infractio
 from egosim.evaluation.lead import lead_gap
 from egosim.evaluation.penalties import CARLA_LEADERBOARD_1_PENALTIES, driving_score, penalty_factor
 from egosim.evaluation.route import Route, RouteProgress
-from egosim.evaluation.rules import (
-    BlockedWatch,
-    ExcursionWatch,
-    Sample,
-    StopLineWatch,
-    in_own_lane,
-    lane_departure_m,
-    off_road_m,
-    wrong_way,
-)
+from egosim.evaluation.rules import Sample
+from egosim.evaluation.watch import DEFAULT_BLOCKED_AFTER_S, InfractionWatch, ego_sample
 from egosim.world import World
-from egosim.world.traffic import ObjectType
 
-DEFAULT_BLOCKED_AFTER_S = 60.0
 TRAJECTORY_PERIOD_S = 0.1
 """The trajectory kept for reports is sampled this often."""
-
-_COLLISION_KIND = {
-    int(ObjectType.PEDESTRIAN): InfractionKind.COLLISION_PEDESTRIAN,
-    int(ObjectType.NPC_VEHICLE): InfractionKind.COLLISION_VEHICLE,
-    int(ObjectType.EGO): InfractionKind.COLLISION_VEHICLE,
-    int(ObjectType.OBSTACLE): InfractionKind.COLLISION_STATIC,
-}
 
 
 @dataclass(frozen=True)
@@ -78,15 +61,12 @@ class DriveEvaluator:
         self, world: World, route: Route | None = None, settings: EvaluationSettings | None = None
     ) -> None:
         self.settings = settings or EvaluationSettings()
-        self._map = world.map
         self._route = None if route is None else RouteProgress(route)
-        self._stop_lines = StopLineWatch(world.map)
-        self._lane = ExcursionWatch(InfractionKind.LANE_DEPARTURE)
-        self._road = ExcursionWatch(InfractionKind.OFF_ROAD)
-        self._wrong_way = ExcursionWatch(InfractionKind.WRONG_WAY)
-        self._blocked = BlockedWatch(self.settings.blocked_after_s)
-        self._events: list[Infraction] = []
-        self._collisions_seen = len(world.ego_collision_log)
+        self._watch = InfractionWatch(
+            world,
+            blocked_after_s=self.settings.blocked_after_s,
+            lane_departure_margin_m=self.settings.lane_departure_margin_m,
+        )
         self._times: list[float] = []
         self._long: list[float] = []
         self._lat: list[float] = []
@@ -94,7 +74,6 @@ class DriveEvaluator:
         self._trajectory: list[tuple[float, float, float, float]] = []
         self._distance_m = 0.0
         self._last_xy: tuple[float, float] | None = None
-        self._wrong_way_since: float | None = None
         self._min_ttc: float | None = None
         self._min_headway: float | None = None
         self._start_s: float | None = None
@@ -103,7 +82,7 @@ class DriveEvaluator:
     @property
     def finish_reason(self) -> str | None:
         """Why the drive is over whatever the time ("route_completed", "blocked"), else None."""
-        if self._blocked.record is not None:
+        if self._watch.blocked:
             return "blocked"
         if self._route is not None and self._route.completed:
             return "route_completed"
@@ -115,75 +94,13 @@ class DriveEvaluator:
 
     def observe(self, world: World) -> None:
         """Take one sample of the main ego (call after each step of the world)."""
-        sample = self._sample(world)
+        sample = ego_sample(world)
+        self._watch.observe(world, sample)
         if self._start_s is None:
             self._start_s = sample.time_s
-        self._collisions(world)
-        aspects = {i: world.signals.light(i).aspect for i in self._lights_near(sample)}
-        if (event := self._stop_lines.observe(sample, aspects)) is not None:
-            self._events.append(event)
-        departure = lane_departure_m(sample, self.settings.lane_departure_margin_m)
-        self._lane.observe(sample, departure, f"over the edge of lane {sample.lane_id}")
-        self._road.observe(sample, off_road_m(sample), "off every lane")
-        self._observe_wrong_way(sample)
-        if (event := self._blocked.observe(sample)) is not None:
-            self._events.append(event)
         if self._route is not None:
             self._route.update(sample.x, sample.y)
         self._kinematics(world, sample)
-
-    def _lights_near(self, sample: Sample) -> list[str]:
-        light = self._map.lanes[sample.lane_id].traffic_light_id
-        return [] if light is None else [light]
-
-    def _sample(self, world: World) -> Sample:
-        status = world.ego_status(0)
-        lane = world.ego_lane_state(0)
-        pose = status.pose
-        width = lane.distance_left + lane.distance_right
-        # The lane it drives along is the projection the world keeps; another one is
-        # looked for only when the ego is outside that lane.
-        inside = in_own_lane(lane.lateral_offset, width)
-        return Sample(
-            time_s=world.sim_time,
-            x=pose.x,
-            y=pose.y,
-            yaw=pose.yaw,
-            speed_mps=status.speed,
-            lane_id=lane.lane_id,
-            s=lane.s,
-            lateral_m=lane.lateral_offset,
-            lane_width_m=width,
-            body_width_m=world.egos[0].vehicle.model.width,
-            nearest=None if inside else world.map.project(pose.x, pose.y),
-        )
-
-    def _collisions(self, world: World) -> None:
-        log = world.ego_collision_log
-        if len(log) < self._collisions_seen:  # the log was cleared by a scenario load
-            self._collisions_seen = 0
-        main = world.egos[0].unique_id
-        for record in log[self._collisions_seen :]:
-            if record.ego_id != main:
-                continue
-            other = record.other
-            kind = _COLLISION_KIND.get(int(other.object_type), InfractionKind.COLLISION_STATIC)
-            detail = f"with {other.name} (id {other.unique_id})"
-            self._events.append(
-                Infraction(kind, record.time_s, other.position[0], other.position[1], detail)
-            )
-        self._collisions_seen = len(log)
-
-    def _observe_wrong_way(self, sample: Sample) -> None:
-        if not wrong_way(sample, self._map):
-            self._wrong_way_since = None
-            self._wrong_way.observe(sample, None)
-            return
-        if self._wrong_way_since is None:
-            self._wrong_way_since = sample.time_s
-        lasted = sample.time_s - self._wrong_way_since
-        against = sample.nearest.lane_id if sample.nearest is not None else sample.lane_id
-        self._wrong_way.observe(sample, lasted, f"against lane {against}")
 
     def _kinematics(self, world: World, sample: Sample) -> None:
         status = world.ego_status(0)
@@ -208,12 +125,7 @@ class DriveEvaluator:
     def infractions(self, *, timed_out: bool = False) -> list[Infraction]:
         """Every infraction so far, by time; `timed_out` adds the time-out of a route not
         completed."""
-        found = [
-            *self._events,
-            *self._lane.records,
-            *self._road.records,
-            *self._wrong_way.records,
-        ]
+        found = self._watch.records()
         if timed_out and self._route is not None and not self._route.completed:
             t, x, y, _ = self._trajectory[-1] if self._trajectory else (0.0, 0.0, 0.0, 0.0)
             detail = f"route {self._route.completion:.0%} driven when time ran out"

@@ -45,7 +45,8 @@ class Infraction:
     detail: str = ""
     magnitude: float | None = None
     """Its size where it has one: m beyond the boundary for a lane departure or off-road
-    excursion, s for wrong-way driving, m/s impact speed for a collision."""
+    excursion, s for wrong-way driving, m/s for a collision (the ego's speed just before
+    the contact)."""
 
     def as_dict(self) -> dict[str, object]:
         return {

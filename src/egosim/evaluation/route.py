@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
 import numpy.typing as npt
 
+from egosim.evaluation.lane_travel import DETOUR_FACTOR
 from egosim.world.arrays import FloatArray
 from egosim.world.map import LaneMap
 
@@ -79,10 +81,16 @@ class RouteProgress:
     def __init__(self, route: Route) -> None:
         self.route = route
         self.progress_m = 0.0
+        self._last: tuple[float, float] | None = None
 
     def update(self, x: float, y: float) -> None:
+        # Samples far apart (a fast car, a long sync tick) move the ego further than the
+        # window: it reaches as far ahead as the ego can have driven since the last one.
+        moved = 0.0 if self._last is None else math.hypot(x - self._last[0], y - self._last[1])
+        self._last = (x, y)
+        ahead = SEARCH_AHEAD_M + DETOUR_FACTOR * moved
         s, distance = self.route.locate(
-            x, y, self.progress_m - SEARCH_BEHIND_M, self.progress_m + SEARCH_AHEAD_M
+            x, y, self.progress_m - SEARCH_BEHIND_M, self.progress_m + ahead
         )
         if distance <= ROUTE_TOLERANCE_M:
             self.progress_m = max(self.progress_m, s)

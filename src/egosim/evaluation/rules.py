@@ -4,11 +4,13 @@ road excursions, wrong-way driving, standing blocked."""
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 from egosim.evaluation.infractions import Infraction, InfractionKind
+from egosim.evaluation.lane_travel import way_between
 from egosim.world.map import Lane, LaneMap, LaneProjection
-from egosim.world.signals import GREEN, GREEN_LEFT, OFF, RED
+from egosim.world.signals import GREEN, GREEN_LEFT, OFF, RED, combined_aspect
 
 STOPPED_SPEED_MPS = 0.1
 """Slower than this the ego counts as standing."""
@@ -44,50 +46,92 @@ class Sample:
 
 
 class StopLineWatch:
-    """Reports crossing a stop line on red, or at a stop sign without having stopped."""
+    """Reports crossing a stop line on red, or at a stop sign without having stopped.
+
+    A stop line governed by several heads is red when the lamps lit on them together are
+    (egosim.world.signals.lane_signals): a lit arrow on one head is a go for the line.
+    A crossing is found on the way along the lanes between two samples (lane_travel), so
+    a line passed between samples counts however far apart they are; it is timed where
+    the way reaches the line, as if the ego drove the way at an even pace."""
 
     def __init__(self, lane_map: LaneMap) -> None:
         self._map = lane_map
         self._previous: Sample | None = None
-        self._stood_at_line = False
+        self._stood_at: str | None = None
+        """The lane in whose stop zone the ego has stood since it last crossed a line."""
 
-    def observe(self, sample: Sample, aspect_of: dict[str, int]) -> Infraction | None:
+    def observe(self, sample: Sample, aspect_of: Callable[[str], int]) -> list[Infraction]:
+        """The infractions between the previous sample and this one; `aspect_of` gives a
+        light's aspect (protocol bits; OFF when unknown)."""
         previous, self._previous = self._previous, sample
-        if previous is None:
-            return None
-        lane = self._map.lanes[previous.lane_id]
-        stop = _stop_station(lane)
-        if stop is None:
-            return None
-        on_lane = sample.lane_id == lane.id
-        if on_lane and sample.s <= stop and stop - sample.s <= STOP_ZONE_M:
-            self._stood_at_line |= sample.speed_mps < STOPPED_SPEED_MPS
-        crossed = previous.s < stop and (
-            (on_lane and sample.s >= stop) or sample.lane_id in lane.successors
+        if self._stands_in_stop_zone(sample):
+            self._stood_at = sample.lane_id
+        found = [] if previous is None else self._crossings(previous, sample, aspect_of)
+        if self._stood_at != sample.lane_id:  # it left that lane (past its line, or aside)
+            self._stood_at = None
+        return found
+
+    def _stands_in_stop_zone(self, sample: Sample) -> bool:
+        stop = _stop_station(self._map.lanes[sample.lane_id])
+        return (
+            stop is not None
+            and sample.speed_mps < STOPPED_SPEED_MPS
+            and 0.0 <= stop - sample.s <= STOP_ZONE_M
         )
-        stood = self._stood_at_line
-        if crossed or not on_lane:
-            self._stood_at_line = False
-        if not crossed:
-            return None
-        x, y, _, _ = self._map.pose_at(lane.id, stop)
-        if lane.traffic_light_id is not None:
-            aspect = aspect_of.get(lane.traffic_light_id, OFF)
-            if is_red(aspect):
-                detail = f"light {lane.traffic_light_id} red at the stop line of lane {lane.id}"
-                return Infraction(InfractionKind.RED_LIGHT, sample.time_s, x, y, detail)
-            return None
-        if not stood:
-            detail = f"did not stop at the stop line of lane {lane.id}"
-            return Infraction(InfractionKind.STOP_LINE, sample.time_s, x, y, detail)
+
+    def _crossings(
+        self, previous: Sample, sample: Sample, aspect_of: Callable[[str], int]
+    ) -> list[Infraction]:
+        chord = math.hypot(sample.x - previous.x, sample.y - previous.y)
+        way = way_between(
+            self._map, (previous.lane_id, previous.s), (sample.lane_id, sample.s), chord
+        )
+        if way is None:
+            return []
+        found = []
+        for stretch in way.stretches:
+            lane = self._map.lanes[stretch.lane_id]
+            line = _stop_station(lane)
+            if line is None or not stretch.start_s < line <= stretch.end_s:
+                continue
+            stood = self._stood_at == lane.id
+            if stood:
+                self._stood_at = None
+            share = way.fraction_at(stretch, line)
+            time_s = previous.time_s + share * (sample.time_s - previous.time_s)
+            if (event := _crossing(self._map, lane, line, time_s, aspect_of, stood)) is not None:
+                found.append(event)
+        return found
+
+
+def _crossing(
+    lane_map: LaneMap,
+    lane: Lane,
+    line: float,
+    time_s: float,
+    aspect_of: Callable[[str], int],
+    stood: bool,
+) -> Infraction | None:
+    """What crossing `lane`'s stop line at `time_s` was: a red light run, a stop sign run,
+    or nothing wrong."""
+    x, y, _, _ = lane_map.pose_at(lane.id, line)
+    heads = lane.traffic_light_ids
+    if heads:
+        if is_red(combined_aspect(aspect_of(i) for i in heads)):
+            detail = f"light {'/'.join(heads)} red at the stop line of lane {lane.id}"
+            return Infraction(InfractionKind.RED_LIGHT, time_s, x, y, detail)
         return None
+    if not stood:
+        detail = f"did not stop at the stop line of lane {lane.id}"
+        return Infraction(InfractionKind.STOP_LINE, time_s, x, y, detail)
+    return None
 
 
 def _stop_station(lane: Lane) -> float | None:
     """Where a vehicle on `lane` must stop: its stop line, or its end under a light."""
     if lane.stop_line_s is not None:
         return lane.stop_line_s
-    if lane.traffic_light_id is not None:
+    if lane.traffic_light_ids:
         return lane.length
     return None
 

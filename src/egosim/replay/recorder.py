@@ -98,6 +98,8 @@ class BagRecorder:
         self._reported_drops = 0
         self._failure: BaseException | None = None
         self._closed = False
+        self._finishing = threading.Lock()
+        self._finished = False
         start_recording(self.path)
         self._thread = threading.Thread(
             target=self._drain, name=f"bag-writer:{self.path.name}", daemon=True
@@ -136,14 +138,22 @@ class BagRecorder:
     def stats(self) -> RecorderStats:
         return RecorderStats(self._written, self._flushed, self._queue.dropped, self._chunks)
 
-    def close(self) -> RecorderStats:
-        """Write what is queued, the index and the header; raises if the writer failed."""
-        if not self._closed:
-            self._closed = True
-            self._queue.close()
-            self._thread.join()
-            stop_recording(self.path)
-            self._report_drops()
+    def close(self, timeout: float | None = None) -> RecorderStats:
+        """Write what is queued, the index and the header; raises if the writer failed, or
+        has not finished within `timeout` s (None: however long it takes).
+
+        Any thread may close, several at once (a forced exit closes while the main thread
+        may be closing too): each returns once the bag is complete."""
+        self._closed = True
+        self._queue.close()
+        self._thread.join(timeout)
+        if self._thread.is_alive():
+            raise RecorderError(f"{self.path}: the writer did not finish within {timeout} s")
+        with self._finishing:
+            if not self._finished:
+                self._finished = True
+                stop_recording(self.path)
+                self._report_drops()
         if self._failure is not None:
             raise RecorderError(f"recording {self.path} failed: {self._failure!r}") from (
                 self._failure

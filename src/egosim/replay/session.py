@@ -131,7 +131,15 @@ class ReplaySession:
         if options.load_file:
             try:
                 self._load(command.rosbag_file_name)
-            except (PathOutsideRootsError, OSError, ReplayError) as exc:
+            except (PathOutsideRootsError, FileNotFoundError) as exc:
+                log.error(
+                    "cannot load rosbag %r: %s (bag names resolve inside the data roots: "
+                    "egosim run --data-root DIR)",
+                    command.rosbag_file_name,
+                    exc,
+                )
+                return CommandResult.BAG_LOAD_FAILED
+            except (OSError, ReplayError) as exc:
                 log.error("cannot load rosbag %r: %s", command.rosbag_file_name, exc)
                 return CommandResult.BAG_LOAD_FAILED
         try:

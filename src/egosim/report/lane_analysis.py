@@ -13,6 +13,7 @@ from egosim.evaluation import Infraction
 from egosim.evaluation.rules import Sample, StopLineWatch
 from egosim.world.arrays import FloatArray
 from egosim.world.map import LaneMap
+from egosim.world.signals import OFF
 
 from .recorded_drive import RecordedDrive
 
@@ -73,8 +74,7 @@ def red_lights_run(lane_map: LaneMap, drive: RecordedDrive, errors: LaneErrors) 
             body_width_m=0.0,
             nearest=nearest[i],
         )
-        if (event := watch.observe(sample, aspects)) is not None:
-            found.append(event)
+        found.extend(watch.observe(sample, lambda light, shown=aspects: shown.get(light, OFF)))
     return found
 
 

@@ -30,6 +30,7 @@ from .lane_analysis import LaneErrors, lane_errors, red_lights_run
 from .recorded_drive import RecordedDrive
 
 COLLISION = "collision"
+CONTACT_AT_START = "contact_at_start"
 RED_LIGHT = "red_light"
 TRAJECTORY_MARGIN_M = 30.0
 TRAJECTORY_MAX_PX = 1600
@@ -54,17 +55,29 @@ class DriveEvent:
 def drive_events(
     drive: RecordedDrive, lane_map: LaneMap, red_lights: list[Infraction]
 ) -> list[DriveEvent]:
-    """Collisions and red lights run, by time."""
+    """Collisions, contacts under way when the recording began, and red lights run, by
+    time."""
     events = [
         DriveEvent(
             c.time_s, c.x, c.y, COLLISION, f"hit {c.name}", f"with {c.name} (id {c.unique_id})"
         )
         for c in drive.collisions
     ]
+    events += [
+        DriveEvent(
+            c.time_s,
+            c.x,
+            c.y,
+            CONTACT_AT_START,
+            f"touching {c.name}",
+            f"already touching {c.name} (id {c.unique_id}) when the recording began",
+        )
+        for c in drive.contacts_at_start
+    ]
     for run in red_lights:
         # An infraction at a stop line stands on the centre line of the lane it governs.
-        light = lane_map.lanes[lane_map.project(run.x, run.y).lane_id].traffic_light_id
-        label = f"red light {light}" if light else "red light"
+        heads = lane_map.lanes[lane_map.project(run.x, run.y).lane_id].traffic_light_ids
+        label = f"red light {'/'.join(heads)}" if heads else "red light"
         events.append(DriveEvent(run.time_s, run.x, run.y, RED_LIGHT, label, run.detail))
     return sorted(events, key=lambda e: e.time_s)
 
@@ -79,8 +92,9 @@ def drive_report_blocks(drive: RecordedDrive, lane_map: LaneMap, map_note: str =
             "Trajectory over the map",
             _trajectory_figure(drive, lane_map, events),
             "trajectory",
-            caption="Circle: start, square: end; crosses: collisions (red) and red lights "
-            "run (orange). Metres in the map frame.",
+            caption="Circle: start, square: end; crosses: collisions (red), red lights "
+            "run (orange) and contacts under way when the recording began. Metres in the map "
+            "frame.",
         ),
         FigureBlock(
             "Speed, steering, pedals and lane errors",
@@ -115,11 +129,18 @@ def _summary(
         f"mean {float(np.mean(drive.speed_mps)):.2f} m/s",
         f"lateral error: max {float(np.max(lateral)):.2f} m, "
         f"RMS {float(np.sqrt(np.mean(lateral**2))):.2f} m",
-        f"collisions: {sum(e.kind == COLLISION for e in events)}",
+        f"collisions: {sum(e.kind == COLLISION for e in events)}" + _under_way_note(events),
         f"red lights run: {sum(e.kind == RED_LIGHT for e in events)}"
         + ("" if drive.light_states else " (the bag holds no light status)"),
     ]
     return "\n".join(lines)
+
+
+def _under_way_note(events: list[DriveEvent]) -> str:
+    under_way = sum(e.kind == CONTACT_AT_START for e in events)
+    if not under_way:
+        return ""
+    return f" ({under_way} more already under way when the recording began: not counted)"
 
 
 def _trajectory_figure(drive: RecordedDrive, lane_map: LaneMap, events: list[DriveEvent]) -> Figure:

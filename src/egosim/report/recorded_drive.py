@@ -8,6 +8,7 @@ import os
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from rosbags.interfaces import Connection
@@ -17,16 +18,22 @@ from rosbags.typesys.msg import denormalize_msgtype
 from egosim.msgs import PROFILES, MsgsError, Profile, get_profile
 from egosim.replay import DEFAULT_TOPICS, BagError, BagTimeline, MissingTopicsError, ReplayTopics
 from egosim.world.arrays import FloatArray
+from egosim.world.collision import ContactTracker
 
 log = logging.getLogger(__name__)
 
 COLLISION_TYPE = "morai_msgs/CollisionData"
 LIGHT_STATUS_TYPE = "morai_msgs/GetTrafficLightStatus"
+#: The ego's side of each contact pair the tracker follows (one topic: one ego).
+EGO_SIDE = -1
 
 
 @dataclass(frozen=True)
 class RecordedCollision:
-    """A collision the simulator reported (/CollisionData): when, where, with what."""
+    """A contact of the ego /CollisionData listed: when it was first listed, where (the
+    other object's position then), with what. A contact is listed in every message while it
+    lasts; touching again within REJOIN_S of parting is the same contact, as the simulator
+    counts collisions (world/collision.py)."""
 
     time_s: float
     x: float
@@ -61,6 +68,11 @@ class RecordedDrive:
     brake_pedal: FloatArray
     front_steer_rad: FloatArray
     collisions: tuple[RecordedCollision, ...]
+    """Contacts that began during the recording."""
+    contacts_at_start: tuple[RecordedCollision, ...]
+    """Contacts already listed by the bag's first /CollisionData message: under way when
+    the recording began (a bag `egosim record` wrote next to a running simulator may begin
+    while the ego rests against what it hit long before), so not collisions of this drive."""
     light_states: tuple[LightState, ...]
 
     @property
@@ -82,7 +94,7 @@ def read_drive(
         raise MissingTopicsError(f"{path} has no {topics.ego} messages")
     ego = timeline.ego
     columns = ego.columns
-    collisions, lights = _read_events(timeline)
+    events = _read_events(timeline)
     return RecordedDrive(
         path=timeline.path,
         profile=timeline.profile,
@@ -95,15 +107,21 @@ def read_drive(
         accel_pedal=columns[:, 10],
         brake_pedal=columns[:, 11],
         front_steer_rad=columns[:, 12],
-        collisions=collisions,
-        light_states=lights,
+        collisions=events.collisions,
+        contacts_at_start=events.contacts_at_start,
+        light_states=events.lights,
     )
 
 
-def _read_events(
-    timeline: BagTimeline,
-) -> tuple[tuple[RecordedCollision, ...], tuple[LightState, ...]]:
-    collisions: list[RecordedCollision] = []
+@dataclass(frozen=True)
+class _Events:
+    collisions: tuple[RecordedCollision, ...]
+    contacts_at_start: tuple[RecordedCollision, ...]
+    lights: tuple[LightState, ...]
+
+
+def _read_events(timeline: BagTimeline) -> _Events:
+    listings: dict[str, list[tuple[float, Any]]] = {}  # collision topic -> (t, message)
     lights: list[LightState] = []
     try:
         with Reader(timeline.path) as reader:
@@ -118,19 +136,40 @@ def _read_events(
                     lights.append(
                         LightState(t, message.trafficLightIndex, int(message.trafficLightStatus))
                     )
-                    continue
-                collisions.extend(
-                    RecordedCollision(
-                        t, obj.position.x, obj.position.y, obj.name, obj.unique_id, obj.type
-                    )
-                    for obj in message.collision_object
-                )
+                else:
+                    listings.setdefault(connection.topic, []).append((t, message))
     except (ReaderError, KeyError, ValueError, MsgsError) as exc:
         raise BagError(f"cannot read {timeline.path}: {exc}") from exc
-    return (
+    collisions: list[RecordedCollision] = []
+    at_start: list[RecordedCollision] = []
+    for messages in listings.values():
+        began, under_way = _contacts(sorted(messages, key=lambda m: m[0]))
+        collisions += began
+        at_start += under_way
+    return _Events(
         tuple(sorted(collisions, key=lambda c: c.time_s)),
+        tuple(sorted(at_start, key=lambda c: c.time_s)),
         tuple(sorted(lights, key=lambda s: s.time_s)),
     )
+
+
+def _contacts(
+    messages: list[tuple[float, Any]],
+) -> tuple[list[RecordedCollision], list[RecordedCollision]]:
+    """The contacts that one topic's CollisionData messages (by time) list, each once, at
+    its first listing: (those that began in the recording, those the first message lists)."""
+    tracker = ContactTracker()
+    began: list[RecordedCollision] = []
+    under_way: list[RecordedCollision] = []
+    for number, (t, message) in enumerate(messages):
+        listed = {obj.unique_id: obj for obj in message.collision_object}
+        for _, unique_id in tracker.begin([(EGO_SIDE, uid) for uid in listed], t):
+            obj = listed[unique_id]
+            contact = RecordedCollision(
+                t, obj.position.x, obj.position.y, obj.name, obj.unique_id, obj.type
+            )
+            (under_way if number == 0 else began).append(contact)
+    return began, under_way
 
 
 def _event_connections(connections: Iterable[Connection], preferred: str) -> dict[int, Profile]:

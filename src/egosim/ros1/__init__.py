@@ -12,7 +12,8 @@ Public API::
       .service_proxy(service, srv_type, *, persistent=False) -> ServiceProxy
       .get_param / set_param / has_param / delete_param / search_param / get_param_names
       .subscribe_param(key, callback), .resolve_name(name)
-      .on_shutdown(callback), .shutdown(reason), .wait_for_shutdown(timeout), .is_shutdown
+      .on_shutdown(callback), .on_shutdown_request(handler), .shutdown(reason),
+      .wait_for_shutdown(timeout), .is_shutdown
     Publisher.publish(data), .publish_variants(md5 -> bytes | callable),
         .publish_many([data | variants, ...]), .close()
     Master(uri).start() / .shutdown()    the embedded master

@@ -56,4 +56,5 @@ class BadRequestError(ServiceError):
 
 
 class NodeShutdownError(Ros1Error):
-    """The node has been shut down."""
+    """The node has been shut down (or is shutting down: a service handler may raise it
+    for a request that comes too late, which is answered with an error and no traceback)."""

@@ -90,6 +90,7 @@ class Node:
         # What this node set on the parameter server, to set again on a new master.
         self._params_set: dict[str, Any] = {}
         self._shutdown_callbacks: list[Callable[[str], None]] = []
+        self._shutdown_request_handler: Callable[[str], None] | None = None
         self._connection_ids = itertools.count(1)
         self._shutdown_started = False
         self._shutdown_deadline = 0.0
@@ -450,6 +451,25 @@ class Node:
         """``callback(reason)`` runs once the node has shut down (e.g. after ``rosnode kill``)."""
         with self._lock:
             self._shutdown_callbacks.append(callback)
+
+    def on_shutdown_request(self, handler: Callable[[str], None]) -> None:
+        """Hand a peer's shutdown request (``rosnode kill``: the Slave API's ``shutdown``)
+        to ``handler(reason)`` instead of shutting down at once: the node's owner stops its
+        own work first, then calls ``shutdown``, so nothing it still does meets a node
+        already gone. ``handler`` runs on the request's thread and must not block."""
+        with self._lock:
+            self._shutdown_request_handler = handler
+
+    def request_shutdown(self, reason: str) -> None:
+        """A peer asked this node to shut down: the handler of ``on_shutdown_request``
+        decides when; without one the node shuts down now, on a thread of its own (the
+        request's thread is one of the servers ``shutdown`` stops)."""
+        with self._lock:
+            handler = self._shutdown_request_handler
+        if handler is not None:
+            handler(reason)
+            return
+        threading.Thread(target=self.shutdown, args=(reason,), daemon=True).start()
 
     @property
     def is_shutdown(self) -> bool:

@@ -10,7 +10,7 @@ from collections import deque
 from typing import Any
 
 from . import rpc
-from .errors import Ros1Error
+from .errors import PeerUnreachableError, Ros1Error
 
 log = logging.getLogger(__name__)
 
@@ -49,6 +49,8 @@ class Notifier:
                 method, args = queue.popleft()
             try:
                 rpc.call(api, method, self._caller_id, *args, timeout=self._timeout)
+            except PeerUnreachableError as exc:  # the node left without unregistering
+                log.debug("%s to %s failed: %s", method, api, exc)
             except (Ros1Error, xmlrpc.client.Error) as exc:
                 log.info("%s to %s failed: %s", method, api, exc)
             except Exception as exc:  # a bad API or value must not end the queue

@@ -155,7 +155,8 @@ class _Outbox:
                 with self._ready:
                     self._writing = False
         except OSError as exc:
-            log.info(
+            # A subscriber leaving (broken pipe, reset) is routine: every rostopic echo does.
+            log.debug(
                 "subscriber %s of connection %d left: %s",
                 self.stats.peer,
                 self.stats.connection_id,

@@ -139,6 +139,14 @@ class ServiceServer:
             self.bytes_received += len(request) + 4
             try:
                 ok, body = _OK, self._handler(request, header)
+            except NodeShutdownError as exc:  # a call that came as the node stops: routine
+                log.debug(
+                    "service %s: request from %s not served: %s",
+                    self.service,
+                    header["callerid"],
+                    exc,
+                )
+                ok, body = _FAILED, str(exc).encode()
             except BadRequestError as exc:
                 caller = header["callerid"]
                 throttle.log(

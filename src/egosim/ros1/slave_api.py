@@ -6,7 +6,6 @@ Replies are ``[code, statusMessage, value]`` like the master's.
 from __future__ import annotations
 
 import os
-import threading
 from collections.abc import Callable
 from typing import Any, Protocol
 
@@ -49,7 +48,7 @@ class SlaveNode(Protocol):
 
     def param_updated(self, key: str, value: Any) -> None: ...
 
-    def shutdown(self, reason: str = ...) -> None: ...
+    def request_shutdown(self, reason: str) -> None: ...
 
 
 class SlaveApi:
@@ -138,9 +137,8 @@ class SlaveApi:
         return reply(StatusCode.SUCCESS, "", self._node.master_uri)
 
     def shutdown(self, caller_id: str, msg: str = "") -> Reply:
-        # The node stops this very server, so it must not do so from the request's thread.
         reason = f"requested by {caller_id}: {msg}" if msg else f"requested by {caller_id}"
-        threading.Thread(target=self._node.shutdown, args=(reason,), daemon=True).start()
+        self._node.request_shutdown(reason)
         return reply(StatusCode.SUCCESS, "shutdown", 0)
 
     def get_pid(self, caller_id: str) -> Reply:

@@ -82,7 +82,11 @@ class _Inbound:
                 return
             except ConnectionClosedError as exc:
                 if not self._stop.is_set():
-                    log.info(
+                    # A publisher that served us and ends between messages (a rostopic
+                    # pub -1 done) is routine; one that hangs up before or mid-message is not.
+                    routine = self.stats.connected and not exc.mid_frame
+                    log.log(
+                        logging.DEBUG if routine else logging.INFO,
                         "publisher %s of %s left: %s",
                         self.stats.publisher_uri,
                         self._sub.topic,

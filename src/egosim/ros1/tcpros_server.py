@@ -76,9 +76,12 @@ class TcprosServer:
             header = read_header(sock, self._limits.max_header_bytes)
             sock.settimeout(None)
             keep = self._dispatch(sock, header, peer)
-        except (ProtocolError, OSError) as exc:
+        except ProtocolError as exc:
             if not self._closed:
                 log.warning("TCPROS peer %s: %s", peer, exc)
+        except OSError as exc:  # reset, broken pipe: the peer went away
+            if not self._closed:
+                log.debug("TCPROS peer %s: %s", peer, exc)
         finally:
             with self._lock:
                 self._pending.discard(sock)

@@ -64,6 +64,7 @@ def live_view(options: ViewOptions) -> Attach:
             prepare=controls.prepare,
             apply=controls.apply,
             capture=stage.capture,
+            history=lambda: encode(stage.history.message()),
             map_json=lambda: encode(map_snapshot(context.world.map)),
             system_state=running.node.master.get_system_state,
             hello={

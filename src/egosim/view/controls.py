@@ -14,10 +14,12 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from ..bridge import BridgeContext, ControlMode
-from ..bridge.scenarios import scenario_path
-from ..datapaths import PathOutsideRootsError, read_regular_file
+from ..bridge.scenarios import log_scenario_loaded, scenario_path
+from ..bridge.storyboard import scenario_drives_ego
+from ..datapaths import PathOutsideRootsError
 from ..replay.codes import SET_START_TIME, CommandResult, PlaybackStatus, ProcessCommand
-from ..world.scenario import Scenario, ScenarioError, parse_scenario
+from ..scenario_files import looks_like_scenario, read_scenario_file
+from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions
 from ..world.vehicle import Vehicle
 from .keyboard import HeldKeys, KeyboardDriver
 
@@ -25,7 +27,6 @@ log = logging.getLogger(__name__)
 
 #: Control modes the page offers: keyboard, external (ROS /ctrl_cmd), autopilot.
 PAGE_CTRL_MODES = (ControlMode.KEYBOARD, ControlMode.EXTERNAL, ControlMode.AUTO)
-SCENARIO_SUFFIXES = (".yaml", ".yml")
 #: At most this many scenario files are listed (a data root may be a large tree).
 MAX_LISTED_SCENARIOS = 200
 
@@ -42,9 +43,9 @@ class _Read:
     again: Callable[[], Scenario]
 
 
-def _read_file(path: Path) -> _Read | ControlError:
+def _read_file(path: Path, roots: tuple[Path, ...]) -> _Read | ControlError:
     def parse() -> Scenario:
-        return parse_scenario(read_regular_file(path).decode("utf-8"), str(path))
+        return read_scenario_file(path, roots=roots)
 
     try:
         return _Read(parse(), parse)
@@ -119,7 +120,7 @@ class ViewControls:
             for path in sorted(base.rglob("*")):
                 if len(names) >= MAX_LISTED_SCENARIOS:
                     break
-                if path.suffix in SCENARIO_SUFFIXES and path.is_file():
+                if looks_like_scenario(path):
                     names.append(path.relative_to(base).as_posix())
         return {"scenarios": names}
 
@@ -140,7 +141,7 @@ class ViewControls:
             path = scenario_path(name, self.context.data_roots)
         except (PathOutsideRootsError, OSError) as error:
             return ControlError(f"scenario {name!r} not loaded: {error}")
-        return _read_file(path)
+        return _read_file(path, tuple(self.context.data_roots))
 
     def _read_again(self) -> _Read | ControlError:
         source = self.reload_source
@@ -167,11 +168,12 @@ class ViewControls:
 
     def _load(self, scenario: Scenario) -> None:
         try:
-            self.context.world.load_scenario(scenario)
+            options = ScenarioLoadOptions(scenario_drives_ego=scenario_drives_ego(self.context))
+            report = self.context.world.load_scenario(scenario, options)
         except ScenarioError as error:
             raise ControlError(str(error)) from error
         self._keyboards.clear()
-        log.info("view: scenario %s loaded", scenario.source.label)
+        log_scenario_loaded(scenario, report, "the view")
 
     # -- driving ----------------------------------------------------------------------
 
@@ -186,11 +188,11 @@ class ViewControls:
         if mode not in PAGE_CTRL_MODES:
             raise ControlError(f"control mode {mode!r} is not one of {PAGE_CTRL_MODES}")
         ego = self.context.world.egos[self._ego_index(request)]
-        self.context.settings_of(ego.unique_id).ctrl_mode = ControlMode(mode)
+        self.context.ego_session(ego).set_ctrl_mode(ControlMode(mode), by="the view")
 
     def keys(self, request: dict[str, Any]) -> None:
         ego = self.context.world.egos[self._ego_index(request)]
-        if self.context.settings_of(ego.unique_id).ctrl_mode is not ControlMode.KEYBOARD:
+        if self.context.ego_session(ego).ctrl_mode is not ControlMode.KEYBOARD:
             raise ControlError("the ego is not in keyboard control mode")
         if not isinstance(ego.vehicle, Vehicle):
             raise ControlError("keyboard driving needs a road vehicle")
@@ -206,7 +208,7 @@ class ViewControls:
             ego = egos.get(unique_id)
             keyboard = (
                 ego is not None
-                and self.context.settings_of(unique_id).ctrl_mode is ControlMode.KEYBOARD
+                and self.context.ego_session(ego).ctrl_mode is ControlMode.KEYBOARD
                 and isinstance(ego.vehicle, Vehicle)
             )
             if not keyboard:

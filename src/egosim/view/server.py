@@ -1,9 +1,10 @@
 """The live view's web server (aiohttp, on its own thread and event loop).
 
 GET / and /static/... serve the page from the package, /map.json the map (gzipped,
-made once); /ws is one websocket per browser: a hello, then the newest frame whenever the
-loop offers one (a browser that cannot keep up skips frames; one that stalls a send
-for SEND_TIMEOUT_S or stops answering pings is dropped) and the ROS graph every few
+made once); /ws is one websocket per browser: a hello, the plots' history (the last
+minute, so a late page starts full), then the newest frame whenever the loop offers
+one (a browser that cannot keep up skips frames; one that stalls a send for
+SEND_TIMEOUT_S or stops answering pings is dropped) and the ROS graph every few
 seconds. Requests from the page go to the loop thread through the app's inbox.
 """
 
@@ -67,6 +68,8 @@ class ViewBackend:
     """Runs one page request on the loop thread (ViewControls.apply)."""
     capture: Callable[[], None]
     """Takes a frame now, on the loop thread (ViewStage.capture)."""
+    history: Callable[[], str]
+    """The "history" message's JSON: the plotted series so far (PlotHistory)."""
     map_json: Callable[[], str]
     system_state: Callable[[], tuple[list[Any], list[Any], list[Any]]]
     hello: dict[str, Any]
@@ -211,20 +214,30 @@ class ViewServer:
         client = _Client(ws)
         self._clients.add(client)
         self._set_watchers()
-        sender = asyncio.create_task(self._send_frames(client))
+        log.debug("view: a browser connected (%d watching)", len(self._clients))
+        sender: asyncio.Task[None] | None = None
         try:
+            # Hello, graph and history come before any frame; the first frame is one taken
+            # for this browser, never an older one the hub still holds.
             await self._send(client, json.dumps({**self.backend.hello, "readonly": self.readonly}))
             if self._graph is not None:
                 await self._send(client, self._graph)
+            history = await asyncio.get_running_loop().run_in_executor(None, self.backend.history)
+            await self._send(client, history)
+            client.sent = self.backend.hub.sequence
+            sender = asyncio.create_task(self._send_frames(client))
             self.backend.inbox.post(self.backend.capture)  # a first frame, even when paused
             async for message in ws:
                 if message.type is WSMsgType.TEXT:
                     await self._on_request(client, message.data)
         finally:
-            sender.cancel()
+            if sender is not None:
+                sender.cancel()
             self._clients.discard(client)
             self._set_watchers()
             await ws.close()
+            # Routine: every closed tab and reload does it.
+            log.debug("view: a browser left (%d still watching)", len(self._clients))
         return ws
 
     def _set_watchers(self) -> None:
@@ -238,8 +251,11 @@ class ViewServer:
             return False
         try:
             await asyncio.wait_for(client.ws.send_str(text), SEND_TIMEOUT_S)
-        except (TimeoutError, asyncio.TimeoutError, ConnectionError) as error:
-            log.info("view: dropping a browser that does not keep up (%s)", type(error).__name__)
+        except (TimeoutError, asyncio.TimeoutError):
+            log.info("view: dropping a browser that does not keep up")
+            await client.ws.close()
+            return False
+        except ConnectionError:  # the browser went (a closed tab): its departure is logged
             await client.ws.close()
             return False
         return True

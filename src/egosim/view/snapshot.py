@@ -136,7 +136,8 @@ class FrameInfo:
     controls_enabled: bool
 
 
-def _egos(context: BridgeContext) -> list[dict[str, Any]]:
+def ego_entries(context: BridgeContext) -> list[dict[str, Any]]:
+    """Every ego as a frame lists it (the page's panel, plots and drawing read these)."""
     world = context.world
     egos = []
     for index, ego in enumerate(world.egos):
@@ -158,7 +159,7 @@ def _egos(context: BridgeContext) -> list[dict[str, Any]]:
                 "forward_speed": status.velocity[0],
                 "acceleration": status.acceleration[0],
                 "gear": status.gear.name.lower(),
-                "ctrl_mode": int(context.settings_of(ego.unique_id).ctrl_mode),
+                "ctrl_mode": int(context.ego_session(ego).ctrl_mode),
                 "steer": status.front_steer,
                 "accel_pedal": status.accel_pedal,
                 "brake_pedal": status.brake_pedal,
@@ -223,7 +224,7 @@ def capture_frame(
         "sync_frame": context.sync.frame if context.sync.holds_time else None,
         "controls": info.controls_enabled,
         "followed": context.session.camera_index,
-        "egos": _egos(context),
+        "egos": ego_entries(context),
         # The tables themselves: the world replaces, never edits, their arrays, so the
         # server thread may read them later (see _objects).
         "objects": world.shown_tables(),

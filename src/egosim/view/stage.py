@@ -1,5 +1,6 @@
-"""The view's part of every tick (loop thread): finish a single step, and take a frame
-for the browsers when one is due. It never waits on the server."""
+"""The view's part of every tick (loop thread): finish a single step, keep the plots'
+history, and take a frame for the browsers when one is due. It never waits on the
+server."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from ..bridge import BridgeContext, Stage
 from ..sensors import sensor_in_map
 from ..world.vehicle import Pose
 from .controls import ViewControls
+from .history import PlotHistory
 from .hub import FrameHub
 from .snapshot import FrameInfo, ImageSource, capture_frame
 
@@ -48,17 +50,21 @@ class ViewStage:
         self._last: tuple[float, float] | None = None  # (wall, sim) at the last frame
         self._lidar_points: np.ndarray | None = None
         self._lidar_at = -float("inf")
+        self.history = PlotHistory()
+        """The last minute of the plotted series, for pages that open later."""
 
     def stage(self) -> Stage[BridgeContext]:
         """This as the "view" stage of the tick pipeline."""
         return Stage("view", lambda context, tick: self.after_step())
 
     def after_step(self) -> None:
-        """Run after every tick: the cheap checks, and a frame when the hub wants one."""
+        """Run after every tick: the cheap checks, a history sample when one is due, and
+        a frame when the hub wants one."""
         if self.controls.pause_after_step:
             self.controls.pause_after_step = False
             self.context.world.paused = True
         self.controls.release_silent_keyboards()
+        self.history.record(self.context)
         if self.hub.due():
             self.capture()
 

@@ -1,11 +1,12 @@
 """The World: map, ego vehicles, traffic, signals and collisions advanced by step(dt).
 
 A thin assembly of the modules that hold the logic. Its agents are populations
-(world/populations): the egos, then the NPC vehicles (simulated and ghosts), the
-pedestrians and the obstacles, in the order of the object table; a replay swaps a
-recorded population in for a kind's simulated ones. The world orders them, steps them
-and keeps the logs; world/contact_handling.py answers their contacts. It is pure and
-deterministic: the same scenario, seed and command sequence give bit-identical states.
+(world/populations): the egos, then the NPC vehicles (simulated, ghosts, a storyboard's),
+the pedestrians (simulated, a storyboard's) and the obstacles (likewise), in the order
+of the object table; a replay swaps a recorded population in for a kind's own ones. The
+world orders them, steps them and keeps the logs; world/contact_handling.py answers
+their contacts. It is pure and deterministic: the same scenario, seed and command
+sequence give bit-identical states.
 """
 
 from __future__ import annotations
@@ -29,7 +30,10 @@ from egosim.world.populations import (
     RecordedObstacles,
     RecordedPedestrians,
     RecordedVehicles,
+    Replaceable,
     ReplayedEgos,
+    ScriptedPopulation,
+    ScriptedRoadUsers,
     SimulatedEgos,
     SimulatedNpcs,
     SimulatedObstacles,
@@ -38,6 +42,8 @@ from egosim.world.populations import (
 )
 from egosim.world.recorded_scene import RecordedScene
 from egosim.world.scenario import Scenario, ScenarioLoadOptions, ScenarioLoadReport
+from egosim.world.scenario.frame import in_map_frame
+from egosim.world.scenario.model import StoryboardRun
 from egosim.world.scenario.placement import (
     check_map,
     ego_placement,
@@ -59,6 +65,7 @@ from egosim.world.traffic import (
     NpcFleet,
     ObjectState,
     ObjectTable,
+    ObjectType,
     PedestrianCrowd,
     StaticObstacles,
     closest_objects,
@@ -70,8 +77,10 @@ from egosim.world.traffic.npc_vehicles import NpcSpawn
 from egosim.world.traffic.object_list import ObjectList
 from egosim.world.traffic.obstacles import ObstacleSpawn
 from egosim.world.traffic.pedestrians import PedestrianSpawn
+from egosim.world.traffic.scripted import ScriptedObjects
 from egosim.world.vehicle import (
     DEFAULT_EGO_MODEL,
+    EgoModel,
     Pose,
     VehicleStatus,
     ego_model,
@@ -124,29 +133,45 @@ class World:
         self.sim_time = 0.0
         self.paused = False
         self.signals = TrafficSignals(lane_map)
-        graph = LaneGraph(lane_map, self.signals.light_ids)
+        graph = LaneGraph(lane_map, self.signals.lane_signals.of_lane)
         light_positions = {light_id: k for k, light_id in enumerate(self.signals.light_ids)}
         self.npcs = NpcFleet(graph, np.random.default_rng(0))
         self.npc_ghosts = NpcGhosts()
         self.pedestrians = PedestrianCrowd()
         self.obstacles = StaticObstacles()
+        self.scripted = ScriptedObjects()
+        """The vehicles, pedestrians and objects a storyboard places at every step."""
+        self.scripted_egos: set[int] = set()
+        """Egos (unique ids) whose pose a storyboard places: not stepped, immovable."""
+        self.storyboard: StoryboardRun | None = None
+        """The running OpenSCENARIO storyboard of the last scenario loaded, if it has one
+        (the tick pipeline's storyboard stage steps it)."""
         self._next_id = 1
         self._command_timeout_s: float | None = None
         self.egos: list[Ego] = []
-        self._simulated_egos = SimulatedEgos(lane_map, self.egos)
-        self._simulated: tuple[tuple[Population, ...], ...] = (
-            (SimulatedNpcs(self.npcs), PlacedGhosts(self.npc_ghosts)),
+        self._simulated_egos = SimulatedEgos(lane_map, self.egos, self.scripted_egos)
+        self._own: tuple[tuple[Replaceable, ...], ...] = (
+            (
+                SimulatedNpcs(self.npcs),
+                PlacedGhosts(self.npc_ghosts),
+                ScriptedRoadUsers(self.scripted, ObjectType.NPC_VEHICLE),
+            ),
             (
                 SimulatedPedestrians(
                     self.pedestrians, CrosswalkLights(crossed_lights(lane_map, light_positions))
                 ),
+                ScriptedRoadUsers(self.scripted, ObjectType.PEDESTRIAN),
             ),
-            (SimulatedObstacles(self.obstacles, lane_map),),
+            (
+                SimulatedObstacles(self.obstacles, lane_map),
+                ScriptedPopulation(self.scripted, ObjectType.OBSTACLE),
+            ),
         )
-        """Per kind (NPC vehicles, pedestrians, obstacles): its simulated populations."""
+        """Per kind (NPC vehicles, pedestrians, obstacles): the populations of the world's
+        own agents (simulated, placed by NpcGhostCmd, placed by a storyboard)."""
         self.recorded = RecordedScene()
         """What a replay shows instead of simulating (nothing by default); see show_recorded."""
-        self._show(self._simulated_egos, self._simulated)
+        self._show(self._simulated_egos, self._own)
         self.add_ego(DEFAULT_EGO_MODEL, self._first_lane_pose())
         self.contact_model = ContactModel()
         """Restitution and friction of every contact (world/contact.py)."""
@@ -173,17 +198,30 @@ class World:
     def _allocate_ids(self) -> Iterator[int]:
         return itertools.count(self._next_id)
 
+    def reserve_ids(self, count: int) -> list[int]:
+        """`count` fresh object ids (a storyboard's entities)."""
+        ids = list(range(self._next_id, self._next_id + count))
+        self._next_id += count
+        return ids
+
     def _show(self, egos: EgoPopulation, kinds: tuple[tuple[Population, ...], ...]) -> None:
-        """From now on the world's agents are `egos`, then the populations of each kind."""
+        """From now on the world's agents are `egos`, then the populations of each kind;
+        those of its own populations that a recording stands in for wait meanwhile."""
         self._egos = egos
         self._kinds = kinds
         self._populations: tuple[Population, ...] = (egos, *itertools.chain(*kinds))
+        shown = {id(population) for population in self._populations}
+        self._waiting = tuple(
+            population for population in itertools.chain(*self._own) if id(population) not in shown
+        )
 
     # -- egos ------------------------------------------------------------------------
 
-    def add_ego(self, model_name: str, pose: Pose) -> Ego:
-        """A further ego vehicle (the first one is the main ego)."""
-        vehicle = ego_vehicle(ego_model(model_name), pose, self._command_timeout_s)
+    def add_ego(self, model: str | EgoModel, pose: Pose) -> Ego:
+        """A further ego vehicle (the first one is the main ego), of a catalogue model
+        named or given."""
+        chosen = ego_model(model) if isinstance(model, str) else model
+        vehicle = ego_vehicle(chosen, pose, self._command_timeout_s)
         ego = Ego(self._next_id, vehicle)
         self._next_id += 1
         self.egos.append(ego)
@@ -236,7 +274,7 @@ class World:
 
     def shown_tables(self) -> list[ObjectTable]:
         """NPCs, pedestrians and obstacles in view: the recorded ones where a replay shows
-        them, else the simulated ones."""
+        them, else the world's own (simulated, ghosts, a storyboard's)."""
         return [_joined([population.table() for population in kind]) for kind in self._kinds]
 
     def objects(self) -> ObjectTable:
@@ -246,16 +284,20 @@ class World:
     def object_list(self, ego_index: int = 0, size: int | None = None) -> ObjectList:
         """ObjectStatusList: counts of all spawned objects; the `size` (default
         object_list_size) objects closest to the ego, split by kind, closest first. The
-        other egos count and appear among the vehicles."""
+        other egos count and appear among the vehicles.
+
+        Closest is measured as a client measures it from the two messages: from the ego's
+        reported position (its reference point, /Ego_topic's position) to each object's
+        reported position (its footprint centre, ObjectStatus.position), in the plane.
+        """
         npcs, pedestrians, obstacles = self.shown_tables()
         egos = self._egos.table()
         other_egos = egos.select(egos.unique_ids != self.egos[ego_index].unique_id)
         others = ObjectTable.concatenate([other_egos, npcs, pedestrians, obstacles])
-        status = self.ego_status(ego_index)
-        centre = self.egos[ego_index].box_centre(status)
+        pose = self.ego_status(ego_index).pose
         return closest_objects(
             others,
-            centre,
+            (pose.x, pose.y),
             self.object_list_size if size is None else size,
             counts=(len(other_egos) + len(npcs), len(pedestrians), len(obstacles)),
         )
@@ -265,6 +307,7 @@ class World:
         an unknown id becomes a new NPC. Returns the ids refused: those of an ego, a
         pedestrian or an obstacle."""
         taken = {ego.unique_id for ego in self.egos}
+        taken.update(self.scripted.unique_ids())
         taken.update(int(i) for i in self.pedestrians.unique_ids)
         taken.update(int(i) for i in self.obstacles.table().unique_ids)
         accepted = [p for p in placements if p.unique_id not in taken]
@@ -310,7 +353,7 @@ class World:
 
     def show_recorded(self, scene: RecordedScene) -> None:
         """Show `scene` from now on: its ego pose at once, its object tables instead of
-        the simulated agents of those kinds, which stop being stepped until a later
+        the world's own agents of those kinds, which stop being stepped until a later
         scene leaves their kind out (RecordedScene() returns to full simulation)."""
         self.recorded = scene
         recorded: tuple[tuple[ObjectTable | None, Callable[[ObjectTable], Population]], ...] = (
@@ -319,8 +362,8 @@ class World:
             (scene.obstacles, RecordedObstacles),
         )
         kinds = tuple(
-            simulated if table is None else (population(table),)
-            for simulated, (table, population) in zip(self._simulated, recorded, strict=True)
+            own if table is None else (population(table),)
+            for own, (table, population) in zip(self._own, recorded, strict=True)
         )
         if scene.ego is None:
             self._show(self._simulated_egos, kinds)
@@ -334,7 +377,8 @@ class World:
     def step(self, dt: float | None = None) -> None:
         """Advance dt s (default physics_step_s); a paused world does not move.
 
-        The signals, then each population in order (the egos first), then the contacts.
+        The signals, then each population in order (the egos first; those a recording
+        stands in for wait), then the contacts.
         """
         dt = self.physics_step_s if dt is None else dt
         if not dt > 0.0:
@@ -343,9 +387,11 @@ class World:
             return
         self.signals.step(dt)
         populations = self._populations
-        surroundings = Surroundings(self.map, LightsView.of(self.signals), populations)
+        surroundings = Surroundings(self.map, LightsView.of(self.signals), populations, self._egos)
         for population in populations:
             population.step(dt, surroundings)
+        for waiting in self._waiting:
+            waiting.wait(surroundings)
         self.sim_time += dt
         self._log(self._contacts.step(populations, self.contact_model, self.sim_time))
 
@@ -369,6 +415,7 @@ class World:
         """
         options = options or ScenarioLoadOptions()
         check_map(scenario, self.map)
+        scenario, notes = in_map_frame(scenario, self.map.georef)
         ids = self._allocate_ids()
         # Every section is checked, so that a file's mistakes are all reported at once.
         problems = Problems()
@@ -406,23 +453,44 @@ class World:
             main = self.egos[0]
             if main.vehicle.model != model:
                 main.vehicle = ego_vehicle(model, pose, self._command_timeout_s)
+            main.catalogue_model = model
             main.vehicle.teleport(pose, speed)
+            if scenario.ego is not None and scenario.ego.gear is not None:
+                main.vehicle.set_gear(scenario.ego.gear)
         self.npcs.spawn(npcs)
         self.pedestrians.spawn(walkers)
         self.obstacles.spawn(things)
+        self.scripted.clear()
+        self.scripted_egos.clear()
+        self.storyboard = None
+        if scenario.storyboard is not None:
+            kinds = {
+                "vehicle": options.load_surrounding_vehicle_data,
+                "pedestrian": options.load_pedestrian_data,
+                "miscellaneous object": options.load_object_data,
+            }
+            self.storyboard = scenario.storyboard.start(
+                self,
+                options.load_ego_vehicle_data,
+                frozenset(kind for kind, wanted in kinds.items() if wanted),
+                options.scenario_drives_ego,
+            )
         self._contacts.forget(self.objects())
         self.ego_contacts, self.vehicle_contacts = {}, []
         self.paused = options.set_pause
         network = scenario.network if options.load_network_connection_data else None
         if options.load_network_connection_data:
             self.network_settings_request = network
+        scripted = self.scripted
         return ScenarioLoadReport(
-            ego_placed=ego is not None,
-            npcs_spawned=len(npcs),
-            pedestrians_spawned=len(walkers),
-            obstacles_spawned=len(things),
+            ego_placed=ego is not None
+            or bool(scenario.storyboard and options.load_ego_vehicle_data),
+            npcs_spawned=len(npcs) + len(scripted.table(ObjectType.NPC_VEHICLE)),
+            pedestrians_spawned=len(walkers) + len(scripted.table(ObjectType.PEDESTRIAN)),
+            obstacles_spawned=len(things) + len(scripted.table(ObjectType.OBSTACLE)),
             network_settings=network,
             paused=self.paused,
+            notes=notes,
         )
 
     def _signals_for(self, scenario: Scenario) -> TrafficSignals:
@@ -430,18 +498,32 @@ class World:
         for intersection_id, path in spec.paths.items():
             if intersection_id not in self.map.intersections:
                 raise scenario.error((*path, "id"), f"no intersection {intersection_id} in the map")
-        try:
-            return TrafficSignals(
-                self.map, spec.intersections, IntersectionProgram(timing=spec.default)
+        programs = dict(spec.intersections)
+        phase_paths = {i: (*path, "initial_phase") for i, path in spec.paths.items()}
+        signalised = sorted(i for i, site in self.map.intersections.items() if site.light_ids)
+        for start in spec.starts:
+            if not 0 <= start.index < len(signalised):
+                raise scenario.error(
+                    start.path,
+                    f"no signalised intersection number {start.index} in map "
+                    f"{self.map.name!r} (it has {len(signalised)}, numbered from 0)",
+                )
+            intersection_id = signalised[start.index]
+            programs[intersection_id] = IntersectionProgram(
+                timing=spec.default, initial_phase=start.phase, initial_elapsed_s=start.elapsed_s
             )
+            phase_paths[intersection_id] = start.path
+        try:
+            return TrafficSignals(self.map, programs, IntersectionProgram(timing=spec.default))
         except UnknownPhaseError as error:
-            path = spec.paths[error.intersection_id]
-            raise scenario.error((*path, "initial_phase"), str(error)) from None
+            raise scenario.error(phase_paths[error.intersection_id], str(error)) from None
 
 
 def _joined(tables: list[ObjectTable]) -> ObjectTable:
-    """One table of `tables` in order (a kind's single population's own table as it is)."""
-    return tables[0] if len(tables) == 1 else ObjectTable.concatenate(tables)
+    """One table of `tables` in order (where only one has rows, that one as it is: most
+    kinds have one population with agents in it)."""
+    filled = [table for table in tables if len(table)]
+    return filled[0] if len(filled) == 1 else ObjectTable.concatenate(filled or tables[:1])
 
 
 __all__ = ["DEFAULT_PHYSICS_STEP_S", "Ego", "EgoLaneState", "ObjectState", "World"]

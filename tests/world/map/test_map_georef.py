@@ -1,6 +1,8 @@
 import numpy as np
 import pytest
+from pyproj import Transformer
 
+from egosim.world.map.builtin_origin import BUILTIN_GEOREF, assumed_georeference
 from egosim.world.map.georef import GeoReference
 
 KOREA = GeoReference(
@@ -63,3 +65,16 @@ def test_mapspec_constants() -> None:
 def test_zone_out_of_range_rejected() -> None:
     with pytest.raises(ValueError):
         GeoReference(61, True, 0.0, 0.0, 0.0)
+
+
+def test_an_assumed_georeference_keeps_what_morai_stacks_compute_from_gps() -> None:
+    georef = assumed_georeference()
+    assert georef.assumed and not BUILTIN_GEOREF.assumed
+    # A MORAI stack projects GPS to UTM 52N and subtracts MapSpec's offset.
+    to_utm = Transformer.from_crs("EPSG:4326", "EPSG:32652", always_xy=True)
+    lat, lon, _ = georef.local_to_geodetic(120.0, -35.0, 0.0)
+    east, north = to_utm.transform(lon, lat)
+    assert (georef.utm_zone, georef.northern) == (52, True)
+    assert (east - georef.origin_east, north - georef.origin_north) == pytest.approx(
+        (120.0, -35.0), abs=1e-6
+    )

@@ -72,7 +72,7 @@ def test_map_refuses_dangling_links_and_repeated_ids() -> None:
     with pytest.raises(MapGeometryError):
         _map(_lane(), _lane())
     with pytest.raises(MapGeometryError):
-        _map(_lane(traffic_light_id="TL1_N"))
+        _map(_lane(traffic_light_ids=("TL1_N",)))
 
 
 def test_unknown_lane_lookups_raise() -> None:

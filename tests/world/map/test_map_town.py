@@ -86,14 +86,14 @@ def test_lights_govern_existing_lanes_with_stop_lines(town: LaneMap) -> None:
         assert light.id in town.intersections[light.intersection_id].light_ids
         for lane_id in light.lane_ids:
             lane = town.lanes[lane_id]
-            assert lane.traffic_light_id == light.id
+            assert lane.traffic_light_ids == (light.id,)
             assert lane.stop_line_s is not None
             assert 0.0 < lane.stop_line_s < lane.length
             # The light stands beside the stop line and faces the approaching cars.
             x, y, _, heading = town.pose_at(lane_id, lane.stop_line_s)
             assert math.hypot(light.position[0] - x, light.position[1] - y) < 10.0
             assert abs(math.remainder(light.heading - heading, math.tau)) == pytest.approx(math.pi)
-    governed = {lane.id for lane in town.lanes.values() if lane.traffic_light_id}
+    governed = {lane.id for lane in town.lanes.values() if lane.traffic_light_ids}
     assert governed == {i for light in town.traffic_lights.values() for i in light.lane_ids}
 
 

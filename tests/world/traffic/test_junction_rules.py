@@ -14,7 +14,7 @@ FLASHING_JUNCTION = 17
 
 
 def _approach_lanes(light_id: str) -> list[str]:
-    return [lane.id for lane in TOWN.lanes.values() if lane.traffic_light_id == light_id]
+    return [lane.id for lane in TOWN.lanes.values() if light_id in lane.traffic_light_ids]
 
 
 def _merging_movements() -> tuple[list[str], list[str]]:

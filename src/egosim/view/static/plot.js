@@ -1,37 +1,18 @@
-// Small offline time-series plots on a canvas: the last `span` seconds of a few series.
+// Small offline time-series plots on a canvas: the last `span` seconds of a few series
+// read from a store of columns ({t: [...], speed: [...], ...}, oldest first).
 "use strict";
 
 class TimePlot {
-  // series: [{label, colour}], span: seconds kept and shown.
+  // series: [{label, colour, key, scale}]: store[key] times scale, against store.t.
   constructor(canvas, title, unit, series, span = 60) {
     this.canvas = canvas;
     this.title = title;
     this.unit = unit;
     this.series = series;
     this.span = span;
-    this.times = [];
-    this.values = series.map(() => []);
   }
 
-  push(t, values) {
-    const last = this.times.length ? this.times[this.times.length - 1] : -Infinity;
-    if (t < last) this.clear(); // time went back: a new scenario or a replay seek
-    this.times.push(t);
-    values.forEach((v, i) => this.values[i].push(v));
-    let drop = 0;
-    while (drop < this.times.length && this.times[drop] < t - this.span) drop++;
-    if (drop) {
-      this.times.splice(0, drop);
-      this.values.forEach((v) => v.splice(0, drop));
-    }
-  }
-
-  clear() {
-    this.times = [];
-    this.values = this.series.map(() => []);
-  }
-
-  draw() {
+  draw(store) {
     const c = this.canvas;
     const ratio = window.devicePixelRatio || 1;
     const w = c.clientWidth, h = c.clientHeight;
@@ -41,11 +22,21 @@ class TimePlot {
     g.clearRect(0, 0, w, h);
     g.fillStyle = "#1d2125";
     g.fillRect(0, 0, w, h);
-    const all = this.values.flat().filter(Number.isFinite);
+    const times = store ? store.t : [];
+    const values = this.series.map((s) => (store ? store[s.key].map((v) => v * (s.scale || 1)) : []));
+    g.font = "11px system-ui, sans-serif";
+    if (!times.length) {
+      g.fillStyle = "#e4e7eb";
+      g.fillText(`${this.title} (${this.unit})`, 36, 10);
+      g.fillStyle = "#9aa4af";
+      g.fillText("waiting for data…", 36, h / 2 + 8);
+      return;
+    }
+    const all = values.flat().filter(Number.isFinite);
     let lo = Math.min(0, ...all), hi = Math.max(0, ...all);
     if (hi - lo < 1e-6) { hi = lo + 1; }
     const pad = (hi - lo) * 0.1; lo -= pad; hi += pad;
-    const tEnd = this.times.length ? this.times[this.times.length - 1] : 0;
+    const tEnd = times[times.length - 1];
     const x = (t) => 34 + ((t - (tEnd - this.span)) / this.span) * (w - 38);
     const y = (v) => 14 + (1 - (v - lo) / (hi - lo)) * (h - 20);
     g.strokeStyle = "#363d45"; g.lineWidth = 1;
@@ -54,17 +45,14 @@ class TimePlot {
     g.fillText(hi.toFixed(hi - lo < 3 ? 2 : 0), 2, 18);
     g.fillText(lo.toFixed(hi - lo < 3 ? 2 : 0), 2, h - 6);
     this.series.forEach((s, i) => {
-      const v = this.values[i];
+      const v = values[i];
       g.strokeStyle = s.colour; g.lineWidth = 1.5; g.beginPath();
-      this.times.forEach((t, k) => (k ? g.lineTo(x(t), y(v[k])) : g.moveTo(x(t), y(v[k]))));
+      times.forEach((t, k) => (k ? g.lineTo(x(t), y(v[k])) : g.moveTo(x(t), y(v[k]))));
       g.stroke();
     });
     g.fillStyle = "#e4e7eb"; g.font = "11px system-ui, sans-serif";
-    const now = this.series.map((s, i) => {
-      const v = this.values[i];
-      return v.length ? `${s.label} ${v[v.length - 1].toFixed(1)}` : s.label;
-    });
-    g.fillText(`${this.title} (${this.unit})  ${now.join("  ")}`, 36, 10);
+    const now = this.series.map((s, i) => `${s.label} ${values[i][values[i].length - 1].toFixed(1)}`);
+    g.fillText(`${this.title} (${this.unit})  ${now.join("  ").trim()}`, 36, 10);
   }
 }
 

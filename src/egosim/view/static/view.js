@@ -5,9 +5,9 @@
 const $ = (id) => document.getElementById(id);
 const KMH = 3.6;
 const DEG = 180 / Math.PI;
-const TRAIL_SECONDS = 60;
-const TRAIL_SPACING_S = 0.2;
-const PLOT_SPACING_S = 0.1;
+// What is kept of each ego for its plots and trail (the server's history has the same).
+const SAMPLE_FIELDS = ["x", "y", "speed", "steer", "accel_pedal", "brake_pedal", "lane_offset"];
+const RETRY_MS = 2000;
 const KEY_PERIOD_MS = 100;
 const CTRL_KEYBOARD = 1;
 const FOLLOW_SCALE = 4; // px per m when the page opens following an ego
@@ -20,10 +20,12 @@ const COLOURS = {
 };
 
 const state = {
-  map: null, frame: null, hello: null, connected: false,
+  map: null, mapError: null, frame: null, hello: null, connected: false,
   view: { cx: 0, cy: 0, scale: 4 }, follow: true, egoIndex: 0,
-  layers: {}, trails: new Map(), hover: null, keys: new Set(), errors: [],
-  framesReceived: 0,
+  // Per ego id: the last `span` s sampled every `spacing` s, as columns (t and SAMPLE_FIELDS).
+  samples: new Map(), spacing: 0.1, span: 60,
+  layers: {}, pointer: null, tooltip: null, keys: new Set(), errors: [],
+  framesReceived: 0, firstFrameTime: null, loading: null, pageLeft: false,
 };
 // Page state, read by tests and handy in the console.
 window.egosimView = state;
@@ -37,11 +39,13 @@ let socket = null;
 function connect() {
   const scheme = location.protocol === "https:" ? "wss" : "ws";
   socket = new WebSocket(`${scheme}://${location.host}/ws`);
-  socket.onopen = () => { state.connected = true; setConnection("live", "live"); sendLayers(); };
+  socket.onopen = () => { state.connected = true; setConnection("live", "live"); sendLayers(); showLoading(); };
   socket.onclose = () => {
     state.connected = false;
+    if (state.pageLeft) return;
     setConnection("lost", "disconnected — retrying");
-    setTimeout(connect, 2000);
+    showLoading();
+    setTimeout(connect, RETRY_MS);
   };
   socket.onmessage = (event) => receive(JSON.parse(event.data));
 }
@@ -58,6 +62,7 @@ function send(request) {
 
 function receive(message) {
   if (message.type === "hello") onHello(message);
+  else if (message.type === "history") onHistory(message);
   else if (message.type === "frame") onFrame(message);
   else if (message.type === "graph") showNodes(message.nodes);
   else if (message.type === "reply") onReply(message);
@@ -65,15 +70,25 @@ function receive(message) {
 
 function onHello(hello) {
   state.hello = hello;
-  if (!state.map) {
-    fetch("/map.json").then((r) => r.json()).then(onMap)
-      .catch((error) => showMessage(`map not loaded: ${error}`, true));
-  }
   if (!hello.readonly) send({ op: "scenarios" });
+}
+
+// The map is fetched at once, beside the socket's connection; a failed fetch is retried.
+function loadMap() {
+  fetch("/map.json")
+    .then((r) => { if (!r.ok) throw new Error(`HTTP ${r.status}`); return r.json(); })
+    .then(onMap)
+    .catch((error) => {
+      state.mapError = String(error.message || error);
+      showLoading();
+      setTimeout(loadMap, RETRY_MS);
+    });
 }
 
 function onMap(map) {
   state.map = map;
+  state.mapError = null;
+  showLoading();
   const [x0, y0, x1, y1] = map.bounds;
   state.view.cx = (x0 + x1) / 2;
   state.view.cy = (y0 + y1) / 2;
@@ -123,48 +138,93 @@ function showMessage(text, error = false) {
   box.className = error ? "message error" : "message";
 }
 
+// ---- loading -----------------------------------------------------------------------------
+
+// The steps before the page can show the simulation, each waiting, done or failed; the
+// overlay lists them until all are done (and again while the connection is lost).
+function loadingSteps() {
+  const everConnected = state.frame !== null;
+  return [
+    { id: "loading-connection", done: state.connected,
+      text: state.connected ? "connected to the simulator"
+        : everConnected ? "connection lost, reconnecting…" : "connecting to the simulator…" },
+    { id: "loading-map", done: state.map !== null, failed: state.mapError !== null,
+      text: state.map ? "map loaded"
+        : state.mapError ? `map not loaded (${state.mapError}), retrying…` : "loading the map…" },
+    { id: "loading-frame", done: state.frame !== null,
+      text: state.frame ? "first frame received" : "waiting for the first frame…" },
+  ];
+}
+
+function showLoading() {
+  const steps = loadingSteps();
+  const waiting = steps.find((step) => !step.done);
+  state.loading = waiting ? waiting.text : null;
+  $("loading").hidden = !waiting;
+  for (const step of steps) {
+    const item = $(step.id);
+    item.textContent = step.text;
+    item.className = step.done ? "done" : step.failed ? "failed" : "waiting";
+  }
+}
+
 // ---- frames ------------------------------------------------------------------------------
+
+function onHistory(history) {
+  state.spacing = history.spacing_s;
+  state.span = history.span_s;
+  plots.forEach((p) => { p.span = history.span_s; });
+  state.samples = new Map(history.egos.map((ego) => [ego.id,
+    Object.fromEntries(["t", ...SAMPLE_FIELDS].map((k) => [k, ego[k]]))]));
+}
 
 function onFrame(frame) {
   const previous = state.frame;
-  if (previous && frame.sim_time < previous.sim_time) { state.trails.clear(); plots.forEach((p) => p.clear()); }
+  if (previous && frame.sim_time < previous.sim_time) state.samples.clear();
   state.frame = frame;
   state.framesReceived += 1;
+  if (state.firstFrameTime === null) { state.firstFrameTime = frame.sim_time; showLoading(); }
   if (state.egoIndex >= frame.egos.length) state.egoIndex = 0;
-  recordTrails(frame);
-  recordPlots(frame);
+  recordSamples(frame);
   updatePanel(frame);
 }
 
-function recordTrails(frame) {
+// Extend each ego's samples from the frame, one per `spacing` s, the last `span` s kept.
+function recordSamples(frame) {
+  const now = frame.sim_time;
+  const shown = new Set(frame.egos.map((ego) => ego.id));
+  for (const id of [...state.samples.keys()]) if (!shown.has(id)) state.samples.delete(id);
   for (const ego of frame.egos) {
-    let trail = state.trails.get(ego.id);
-    if (!trail) { trail = []; state.trails.set(ego.id, trail); }
-    const last = trail[trail.length - 1];
-    if (!last || frame.sim_time - last[2] >= TRAIL_SPACING_S) trail.push([ego.x, ego.y, frame.sim_time]);
-    while (trail.length && trail[0][2] < frame.sim_time - TRAIL_SECONDS) trail.shift();
+    let store = state.samples.get(ego.id);
+    if (!store) {
+      store = Object.fromEntries(["t", ...SAMPLE_FIELDS].map((k) => [k, []]));
+      state.samples.set(ego.id, store);
+    }
+    const last = store.t.length ? store.t[store.t.length - 1] : -Infinity;
+    if (now - last < state.spacing - 1e-6) continue;
+    store.t.push(now);
+    for (const k of SAMPLE_FIELDS) store[k].push(ego[k]);
+    let drop = 0;
+    while (drop < store.t.length && store.t[drop] < now - state.span) drop++;
+    if (drop) for (const k of ["t", ...SAMPLE_FIELDS]) store[k].splice(0, drop);
   }
 }
 
 const plots = [
-  new TimePlot($("plot-speed"), "speed", "km/h", [{ label: "", colour: "#4aa8ff" }]),
-  new TimePlot($("plot-steer"), "steering", "deg", [{ label: "", colour: "#c792ea" }]),
+  new TimePlot($("plot-speed"), "speed", "km/h", [{ label: "", colour: "#4aa8ff", key: "speed", scale: KMH }]),
+  new TimePlot($("plot-steer"), "steering", "deg", [{ label: "", colour: "#c792ea", key: "steer", scale: DEG }]),
   new TimePlot($("plot-pedals"), "pedals", "0..1", [
-    { label: "accel", colour: "#34c759" }, { label: "brake", colour: "#ff5a5a" }]),
-  new TimePlot($("plot-lane"), "from lane centre", "m", [{ label: "", colour: "#ffcc00" }]),
+    { label: "accel", colour: "#34c759", key: "accel_pedal" },
+    { label: "brake", colour: "#ff5a5a", key: "brake_pedal" }]),
+  new TimePlot($("plot-lane"), "from lane centre", "m", [{ label: "", colour: "#ffcc00", key: "lane_offset" }]),
 ];
-let lastPlotTime = -Infinity;
 
-function recordPlots(frame) {
-  const ego = frame.egos[state.egoIndex];
-  if (!ego) return;
-  if (frame.sim_time < lastPlotTime) lastPlotTime = -Infinity;
-  if (frame.sim_time - lastPlotTime < PLOT_SPACING_S) return;
-  lastPlotTime = frame.sim_time;
-  plots[0].push(frame.sim_time, [ego.speed * KMH]);
-  plots[1].push(frame.sim_time, [ego.steer * DEG]);
-  plots[2].push(frame.sim_time, [ego.accel_pedal, ego.brake_pedal]);
-  plots[3].push(frame.sim_time, [ego.lane_offset]);
+// The samples of the ego the panel shows (before the first frame: the history's first).
+function shownSamples() {
+  const ego = state.frame && state.frame.egos[state.egoIndex];
+  if (ego) return state.samples.get(ego.id) || null;
+  const first = state.samples.values().next();
+  return first.done ? null : first.value;
 }
 
 function updatePanel(frame) {
@@ -270,6 +330,11 @@ function polyline(g, points) {
   points.forEach(([x, y], i) => (i ? g.lineTo(x, y) : g.moveTo(x, y)));
 }
 
+function polylineXY(g, xs, ys) {
+  g.beginPath();
+  xs.forEach((x, i) => (i ? g.lineTo(x, ys[i]) : g.moveTo(x, ys[i])));
+}
+
 function drawMap(g, map) {
   const px = 1 / state.view.scale;
   g.lineJoin = "round";
@@ -368,10 +433,10 @@ function drawEgos(g, frame) {
   if (state.layers.trails) {
     g.lineWidth = Math.max(0.3, 2 / state.view.scale);
     frame.egos.forEach((ego, i) => {
-      const trail = state.trails.get(ego.id);
-      if (!trail || trail.length < 2) return;
+      const trail = state.samples.get(ego.id);
+      if (!trail || trail.t.length < 2) return;
       g.strokeStyle = i === state.egoIndex ? "rgba(58,160,255,0.7)" : "rgba(176,124,255,0.6)";
-      polyline(g, trail); g.lineTo(ego.x, ego.y); g.stroke();
+      polylineXY(g, trail.x, trail.y); g.lineTo(ego.x, ego.y); g.stroke();
     });
   }
   frame.egos.forEach((ego, i) => {
@@ -455,7 +520,9 @@ function draw() {
     }
   }
   $("scale").textContent = `${(100 / state.view.scale).toFixed(0)} m per 100 px`;
-  plots.forEach((p) => p.draw());
+  showTooltip();
+  const samples = shownSamples();
+  plots.forEach((p) => p.draw(samples));
   requestAnimationFrame(draw);
 }
 
@@ -471,9 +538,11 @@ canvas.addEventListener("mousemove", (e) => {
     state.view.cx -= dx / state.view.scale; state.view.cy += dy / state.view.scale;
     drag = [e.clientX, e.clientY];
   }
-  hover(e);
+  const rect = canvas.getBoundingClientRect();
+  state.pointer = [e.clientX - rect.left, e.clientY - rect.top];
+  showTooltip();
 });
-canvas.addEventListener("mouseleave", () => { $("tooltip").hidden = true; });
+canvas.addEventListener("mouseleave", () => { state.pointer = null; showTooltip(); });
 canvas.addEventListener("wheel", (e) => {
   e.preventDefault();
   const rect = canvas.getBoundingClientRect();
@@ -486,12 +555,11 @@ canvas.addEventListener("wheel", (e) => {
   }
 }, { passive: false });
 
-function hover(e) {
-  const tip = $("tooltip");
+// What is under the pointer (canvas px): its description, or null.
+function thingAt(px, py) {
   const frame = state.frame;
-  if (!frame || !state.map) { tip.hidden = true; return; }
-  const rect = canvas.getBoundingClientRect();
-  const [wx, wy] = screenToWorld(e.clientX - rect.left, e.clientY - rect.top);
+  if (!frame || !state.map) return null;
+  const [wx, wy] = screenToWorld(px, py);
   const reach = Math.max(1.5, 8 / state.view.scale);
   let best = null, bestD = Infinity;
   const consider = (text, x, y, size) => {
@@ -507,10 +575,19 @@ function hover(e) {
   if (state.layers.lights) {
     for (const light of state.map.lights) consider(`light ${light.id}`, light.position[0], light.position[1], 2);
   }
-  tip.hidden = best === null;
-  if (best !== null) {
-    tip.textContent = best;
-    tip.style.left = `${e.clientX - rect.left + 14}px`; tip.style.top = `${e.clientY - rect.top + 10}px`;
+  return best;
+}
+
+// The tooltip, for what is under the pointer now: run when the mouse moves and at every
+// redraw, so it follows what moves under a still mouse and goes when that has driven off.
+function showTooltip() {
+  const tip = $("tooltip");
+  const text = state.pointer && !drag ? thingAt(...state.pointer) : null;
+  state.tooltip = text;
+  tip.hidden = text === null;
+  if (text !== null) {
+    if (tip.textContent !== text) tip.textContent = text;
+    tip.style.left = `${state.pointer[0] + 14}px`; tip.style.top = `${state.pointer[1] + 10}px`;
   }
 }
 
@@ -555,7 +632,6 @@ $("ctrl-mode").addEventListener("change", (e) => {
 });
 $("ego-select").addEventListener("change", (e) => {
   state.egoIndex = Number(e.target.value);
-  plots.forEach((p) => p.clear());
   setFollow(true);
 });
 $("follow").addEventListener("change", (e) => { state.follow = e.target.checked; });
@@ -572,6 +648,14 @@ for (const box of document.querySelectorAll("#layers input")) {
   });
 }
 
+// Leaving the page closes its socket: a page kept frozen in the browser's back-forward
+// cache would otherwise stop reading it, and the server would wait on it. Coming back
+// connects again.
+window.addEventListener("pagehide", () => { state.pageLeft = true; if (socket) socket.close(1000, "page left"); });
+window.addEventListener("pageshow", (e) => { if (e.persisted) { state.pageLeft = false; connect(); } });
+
 window.addEventListener("error", (e) => state.errors.push(String(e.message)));
+showLoading();
+loadMap();
 connect();
 requestAnimationFrame(draw);

@@ -1,4 +1,6 @@
-"""Where the built-in maps sit on Earth."""
+"""Where the built-in maps sit on Earth, and maps that name no place of their own."""
+
+import dataclasses
 
 from egosim.world.map.georef import GeoReference
 
@@ -6,3 +8,11 @@ from egosim.world.map.georef import GeoReference
 BUILTIN_GEOREF = GeoReference(
     utm_zone=52, northern=True, origin_east=313_000.0, origin_north=4_161_000.0, origin_up=0.0
 )
+
+
+def assumed_georeference() -> GeoReference:
+    """The georeference of a map that names none: the built-in maps' UTM zone 52N origin,
+    marked assumed. UTM 52N, as MORAI's Korean maps, keeps what MORAI stacks rely on:
+    MapSpec names a UTM zone and offset, and UTM(GPS latitude, longitude) minus that offset
+    is the map position; only the place on Earth is invented."""
+    return dataclasses.replace(BUILTIN_GEOREF, assumed=True)

@@ -41,6 +41,9 @@ class GeoReference:
     origin_up: float
     ellipsoid: str = "WGS84"
     projection: str | None = None
+    assumed: bool = False
+    """The map names no georeference: egosim placed it where the built-in maps are, so its
+    latitudes and longitudes are invented (see `assumed_georeference`)."""
 
     def __post_init__(self) -> None:
         if not 1 <= self.utm_zone <= 60:

@@ -15,6 +15,7 @@ from egosim.world.map.georef import GeoReference
 from egosim.world.map.light_type import LightType
 from egosim.world.map.polyline import segment_headings, stations
 from egosim.world.map.projection import LaneProjection, LaneProjections, SegmentTable
+from egosim.world.map.road_coordinates import RoadCoordinates
 from egosim.world.map.road_marking import RoadMarking
 
 # Gap between lanes on the flattened station axis, so a station never reaches the next lane.
@@ -59,7 +60,9 @@ class Lane(_ArrayFieldsEquality):
     left_neighbor: str | None = None
     right_neighbor: str | None = None
     stop_line_s: float | None = None
-    traffic_light_id: str | None = None
+    traffic_light_ids: tuple[str, ...] = ()
+    """Every signal head governing the stop line, in the map's order; a driver reads them
+    together (egosim.world.signals.lane_signals), GetTrafficLightStatus names the nearest."""
     is_junction: bool = False
     stations: FloatArray = field(init=False, repr=False)
     length: float = field(init=False)
@@ -155,6 +158,9 @@ class LaneMap:
         self.georef = georef
         self.markings: tuple[RoadMarking, ...] = ()
         """Paint the map's data lists (empty: see egosim.world.map.markings)."""
+        self.roads: RoadCoordinates | None = None
+        """The roads the lanes were built from (OpenDRIVE's), None for a map of lanes
+        only (see egosim.world.map.lane_roads)."""
         self.lane_ids: tuple[str, ...] = tuple(self.lanes)
         self._index = {lane_id: i for i, lane_id in enumerate(self.lane_ids)}
         self._check_references()
@@ -194,17 +200,21 @@ class LaneMap:
         result.markings = tuple(markings)
         return result
 
+    def with_roads(self, roads: RoadCoordinates) -> LaneMap:
+        """This map with the road coordinates of the data it was built from."""
+        result = copy.copy(self)
+        result.roads = roads
+        return result
+
     def _check_references(self) -> None:
         for lane in self.lanes.values():
             named = (*lane.successors, *lane.predecessors, lane.left_neighbor, lane.right_neighbor)
             missing = [i for i in named if i is not None and i not in self.lanes]
             if missing:
                 raise MapGeometryError(f"lane {lane.id} refers to unknown lanes {missing}")
-            if (
-                lane.traffic_light_id is not None
-                and lane.traffic_light_id not in self.traffic_lights
-            ):
-                raise MapGeometryError(f"lane {lane.id}: unknown light {lane.traffic_light_id}")
+            unknown = [i for i in lane.traffic_light_ids if i not in self.traffic_lights]
+            if unknown:
+                raise MapGeometryError(f"lane {lane.id}: unknown light {', '.join(unknown)}")
 
     def lane_index(self, lane_id: str) -> int:
         try:

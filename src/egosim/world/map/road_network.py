@@ -94,7 +94,7 @@ class _LaneDraft:
     left_neighbor: str | None = None
     right_neighbor: str | None = None
     stop_line_s: float | None = None
-    traffic_light_id: str | None = None
+    traffic_light_ids: tuple[str, ...] = ()
 
     def freeze(self) -> Lane:
         return Lane(
@@ -107,7 +107,7 @@ class _LaneDraft:
             left_neighbor=self.left_neighbor,
             right_neighbor=self.right_neighbor,
             stop_line_s=self.stop_line_s,
-            traffic_light_id=self.traffic_light_id,
+            traffic_light_ids=self.traffic_light_ids,
             is_junction=self.is_junction,
         )
 
@@ -298,7 +298,7 @@ class RoadNetworkBuilder:
         for lane_id in arm.incoming:
             lane = self._lanes[lane_id]
             lane.stop_line_s = float(stations(lane.centerline)[-1]) - setback
-            lane.traffic_light_id = light_id
+            lane.traffic_light_ids = (light_id,)
         # Incoming traffic drives along -direction, so its right-hand kerb is on this side.
         kerb_side = np.array([-arm.direction[1], arm.direction[0]])
         kerb = len(arm.incoming) * self.lane_width + LIGHT_KERB_OFFSET_M

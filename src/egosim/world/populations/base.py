@@ -2,10 +2,10 @@
 
 A population is a group of agents of one kind that the world steps and shows as one
 block of rows of its object table: the egos, the simulated NPC vehicles, the NPC
-ghosts, the pedestrians, the obstacles, or a recorded table that a replay shows in
-place of a kind's simulated populations. The world keeps no per-kind logic of its
-own: it orders the populations, steps them, and lets world/contact_handling.py answer
-their contacts through the same interface.
+ghosts, the pedestrians, the obstacles, those a storyboard places, or a recorded table
+that a replay shows in place of a kind's own populations. The world keeps no per-kind
+logic of its own: it orders the populations, steps them, and lets
+world/contact_handling.py answer their contacts through the same interface.
 
 A row index handed to a population (`Shove.rows`, `halt`) counts within the
 population's own table.
@@ -23,6 +23,7 @@ import numpy as np
 from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.map import LaneMap, LaneProjections
 from egosim.world.traffic import LaneOccupants, LightsView, ObjectTable
+from egosim.world.vehicle import VehicleStatus
 
 
 @dataclass(frozen=True, eq=False)
@@ -100,22 +101,65 @@ class Population(Protocol):
         ...
 
 
-class Surroundings:
-    """What the populations of a step move among: the lights and who stands in which lane.
+class Replaceable(Population, Protocol):
+    """A population of the world's own agents, which a replay's recorded table of its
+    kind can stand in for (World.show_recorded)."""
 
-    The lane occupants are worked out when a population first asks, with one lane
-    projection for every population's points, and are then kept for the rest of the
-    step: the populations step in order (the egos first), so those asking see the ones
-    before them where they now are, and the others where the step found them.
+    def wait(self, surroundings: Surroundings) -> None:
+        """A step while a recording stands in for it: it stays as it is, but notices what
+        it waits for (a dormant NPC or pedestrian wakes when an ego has come near)."""
+        ...
+
+
+class EgoPopulation(Population, Protocol):
+    """The egos, with what the world reports of each (by index, the main ego first)."""
+
+    def status(self, index: int) -> VehicleStatus:
+        """The ego's state as the protocol reports it."""
+        ...
+
+    def lanes(self) -> LaneProjections:
+        """Where each ego's reference point lies on its lane (its yaw as the hint)."""
+        ...
+
+    def positions(self) -> FloatArray:
+        """(N, 2) each ego's reference point (its reported position), m."""
+        ...
+
+
+class Surroundings:
+    """What the populations of a step move among: the lights, where the egos are, who
+    stands in which lane.
+
+    The egos' positions and the lane occupants are worked out when a population first
+    asks, the occupants with one lane projection for every population's points, and are
+    then kept for the rest of the step: the populations step in order (the egos first),
+    so those asking see the ones before them where they now are, and the others where
+    the step found them.
     """
 
     def __init__(
-        self, lane_map: LaneMap, lights: LightsView, populations: Sequence[Population]
+        self,
+        lane_map: LaneMap,
+        lights: LightsView,
+        populations: Sequence[Population],
+        egos: EgoPopulation | None = None,
     ) -> None:
+        """`egos`: the egos among `populations`, whom dormant agents wait for (none: a
+        world of no egos, where nobody wakes)."""
         self.lights = lights
         self._map = lane_map
+        self._egos = egos
         self._populations = populations
+        self._ego_positions: FloatArray | None = None
         self._occupants: list[LaneOccupants] | None = None
+
+    def ego_positions(self) -> FloatArray:
+        """(N, 2) each ego's reference point, m (see EgoPopulation.positions)."""
+        if self._ego_positions is None:
+            egos = self._egos
+            self._ego_positions = np.empty((0, 2)) if egos is None else egos.positions()
+        return self._ego_positions
 
     def occupants_besides(self, population: Population) -> LaneOccupants:
         """Every other population's lane occupants, in the populations' order."""

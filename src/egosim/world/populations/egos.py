@@ -1,19 +1,26 @@
-"""The ego vehicles as a population: driven by their commands, or the main one replayed."""
+"""The ego vehicles as a population: driven by their commands or placed by a storyboard,
+or the main one replayed."""
 
 from __future__ import annotations
 
 import math
 from dataclasses import replace
-from typing import Protocol
 
 import numpy as np
 
 from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.map import LaneMap, LaneProjections
-from egosim.world.populations.base import LanePoints, Population, Shove, Surroundings
+from egosim.world.populations.base import LanePoints, Shove, Surroundings
 from egosim.world.recorded_scene import RecordedEgo
 from egosim.world.traffic import LaneOccupants, ObjectTable, ObjectType
-from egosim.world.vehicle import EgoVehicle, Pose, RoadSurface, VehicleStatus
+from egosim.world.vehicle import (
+    EgoModel,
+    EgoVehicle,
+    Pose,
+    RoadSurface,
+    VehicleStatus,
+    ego_vehicle,
+)
 
 GRADE_BASE_M = 1.0
 """Length of lane over which the grade under an ego is measured, m."""
@@ -25,6 +32,17 @@ class Ego:
     def __init__(self, unique_id: int, vehicle: EgoVehicle) -> None:
         self.unique_id = unique_id
         self.vehicle = vehicle
+        self.catalogue_model: EgoModel = vehicle.model
+        """The catalogue model it was given (a scenario may drive it with the figures of
+        its own car for a while: see use_model)."""
+
+    def use_model(self, model: EgoModel, command_timeout: float | None) -> None:
+        """Drive on as a vehicle of `model` (a scenario's car), where it is, as fast."""
+        if self.vehicle.model == model:
+            return
+        status = self.vehicle.status()
+        self.vehicle = ego_vehicle(model, status.pose, command_timeout)
+        self.vehicle.teleport(status.pose, status.velocity[0])
 
     def box_centre(self, status: VehicleStatus) -> tuple[float, float]:
         """Footprint centre, m: the reference point moved to the middle of the body."""
@@ -33,32 +51,27 @@ class Ego:
         return status.pose.x + offset * math.cos(yaw), status.pose.y + offset * math.sin(yaw)
 
 
-class EgoPopulation(Population, Protocol):
-    """The egos, with what the world reports of each (by index, the main ego first)."""
-
-    def status(self, index: int) -> VehicleStatus:
-        """The ego's state as the protocol reports it."""
-        ...
-
-    def lanes(self) -> LaneProjections:
-        """Where each ego's reference point lies on its lane (its yaw as the hint)."""
-        ...
-
-
 class SimulatedEgos:
-    """Every ego driven by its own commands, on the road under it.
+    """Every ego driven by its own commands, on the road under it, except those whose
+    pose a storyboard places (`scripted`, by unique id): those are not stepped and are
+    immovable in a contact.
 
-    `egos` is the world's list itself: egos added to or removed from it are the
-    population's at once.
+    `egos` and `scripted` are the world's own list and set: what is added to or removed
+    from them is the population's at once.
     """
 
-    def __init__(self, lane_map: LaneMap, egos: list[Ego]) -> None:
+    def __init__(self, lane_map: LaneMap, egos: list[Ego], scripted: set[int]) -> None:
         self.map = lane_map
         self.egos = egos
+        self.scripted = scripted
         self._lane_cache: tuple[tuple[Pose, ...], LaneProjections] | None = None
 
     def status(self, index: int) -> VehicleStatus:
         return self.egos[index].vehicle.status()
+
+    def positions(self) -> FloatArray:
+        poses = [ego.vehicle.status().pose for ego in self.egos]
+        return np.array([(pose.x, pose.y) for pose in poses], dtype=np.float64)
 
     def lanes(self) -> LaneProjections:
         """Kept while no ego moves: the step, the ego status and the light lookup all
@@ -132,16 +145,21 @@ class SimulatedEgos:
 
     def inverse_masses(self) -> FloatArray:
         inverse: FloatArray = 1.0 / np.array([ego.vehicle.model.mass for ego in self.egos])
+        if self.scripted:
+            placed = np.array([ego.unique_id in self.scripted for ego in self.egos], dtype=bool)
+            inverse[placed] = 0.0
         return inverse
 
     def step(self, dt: float, surroundings: Surroundings) -> None:
         self.drive(dt)
 
     def drive(self, dt: float, first: int = 0) -> None:
-        """Step the egos from index `first` on, each on the road under it."""
+        """Step the egos from index `first` on, each on the road under it (those a
+        storyboard places stay where it put them)."""
         surfaces = self.road_surfaces()
         for ego, surface in zip(self.egos[first:], surfaces[first:], strict=True):
-            ego.vehicle.step(dt, surface)
+            if ego.unique_id not in self.scripted:
+                ego.vehicle.step(dt, surface)
 
     def road_surfaces(self) -> list[RoadSurface]:
         """The road under each ego: the height of its lane there, and the pitch the
@@ -166,7 +184,9 @@ class SimulatedEgos:
         for row, displacement, change in zip(
             shove.rows.tolist(), shove.displacements, shove.velocity_changes, strict=True
         ):
-            self.egos[row].vehicle.shove(tuple(displacement), tuple(change))
+            ego = self.egos[row]
+            if ego.unique_id not in self.scripted:
+                ego.vehicle.shove(tuple(displacement), tuple(change))
 
     def halt(self, rows: IntArray) -> None:
         """An ego's driver decides for itself what to do after a collision."""
@@ -195,6 +215,9 @@ class ReplayedEgos:
 
     def lanes(self) -> LaneProjections:
         return self.simulated.lanes()
+
+    def positions(self) -> FloatArray:
+        return self.simulated.positions()
 
     def table(self) -> ObjectTable:
         return self.simulated.table()

@@ -28,7 +28,8 @@ PEDESTRIAN_MASS_KG = 75.0
 
 
 class SimulatedNpcs:
-    """The NPC vehicles that drive themselves (the IDM lane followers of NpcFleet)."""
+    """The NPC vehicles that drive themselves (the IDM lane followers of NpcFleet); a
+    dormant one sets off when an ego has come within its active distance."""
 
     def __init__(self, fleet: NpcFleet) -> None:
         self.fleet = fleet
@@ -48,9 +49,14 @@ class SimulatedNpcs:
         return inverse
 
     def step(self, dt: float, surroundings: Surroundings) -> None:
+        self.wait(surroundings)
         # An empty fleet has no driver to place anyone on lanes for.
         if len(self.fleet):
             self.fleet.step(dt, surroundings.lights, surroundings.occupants_besides(self))
+
+    def wait(self, surroundings: Surroundings) -> None:
+        if self.fleet.dormant.any():
+            self.fleet.wake(surroundings.ego_positions())
 
     def shove(self, shove: Shove) -> None:
         self.fleet.shove(shove.rows, shove.displacements, shove.velocities)
@@ -82,6 +88,9 @@ class PlacedGhosts:
     def step(self, dt: float, surroundings: Surroundings) -> None:
         """Ghosts move only when placed."""
 
+    def wait(self, surroundings: Surroundings) -> None:
+        """A ghost waits for nothing."""
+
     def shove(self, shove: Shove) -> None:
         """Immovable: no contact moves a ghost."""
 
@@ -90,7 +99,8 @@ class PlacedGhosts:
 
 
 class SimulatedPedestrians:
-    """The pedestrians walking their paths, waiting at crosswalks for the walk signal."""
+    """The pedestrians walking their paths, waiting at crosswalks for the walk signal; a
+    dormant one sets off when an ego has come within its active distance."""
 
     def __init__(self, crowd: PedestrianCrowd, crosswalk_lights: CrosswalkLights) -> None:
         self.crowd = crowd
@@ -111,9 +121,14 @@ class SimulatedPedestrians:
         return np.full(len(self.crowd), 1.0 / PEDESTRIAN_MASS_KG)
 
     def step(self, dt: float, surroundings: Surroundings) -> None:
+        self.wait(surroundings)
         lights = surroundings.lights
         stops_traffic = (lights.aspects == RED) | (lights.aspects == OFF) | lights.flashing
         self.crowd.step(dt, self.crosswalk_lights.walk_signals(stops_traffic))
+
+    def wait(self, surroundings: Surroundings) -> None:
+        if self.crowd.dormant.any():
+            self.crowd.wake(surroundings.ego_positions())
 
     def shove(self, shove: Shove) -> None:
         self.crowd.shove(shove.rows, shove.displacements)
@@ -155,6 +170,9 @@ class SimulatedObstacles:
 
     def step(self, dt: float, surroundings: Surroundings) -> None:
         self.obstacles.step(dt)
+
+    def wait(self, surroundings: Surroundings) -> None:
+        """An obstacle waits for nothing."""
 
     def shove(self, shove: Shove) -> None:
         self.obstacles.shove(shove.rows, shove.displacements, shove.velocities)

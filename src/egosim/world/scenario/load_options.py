@@ -17,6 +17,8 @@ class ScenarioLoadOptions:
     load_surrounding_vehicle_data / load_pedestrian_data / load_object_data: place the
         file's NPC vehicles / pedestrians / obstacles.
     set_pause: leave the world paused after loading.
+    scenario_drives_ego: an OpenSCENARIO storyboard drives the ego from its Init on (the
+        ego's control mode is auto); otherwise its stack does.
     """
 
     delete_all: bool = True
@@ -26,6 +28,7 @@ class ScenarioLoadOptions:
     load_pedestrian_data: bool = True
     load_object_data: bool = True
     set_pause: bool = False
+    scenario_drives_ego: bool = False
 
 
 @dataclass(frozen=True)
@@ -39,3 +42,5 @@ class ScenarioLoadReport:
     network_settings: dict[str, Any] | None
     """The file's `network` section when load_network_connection_data was set (else None)."""
     paused: bool
+    notes: tuple[str, ...] = ()
+    """What the load did that the caller should report (positions moved between frames)."""

@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import PurePath
-from typing import Any
+from typing import Any, Protocol
 
+from egosim.world.map.georef import GeoReference
 from egosim.world.scenario.errors import ScenarioError
 from egosim.world.signals import IntersectionProgram, PhaseTiming
+from egosim.world.vehicle import Gear
 from egosim.yamltext import FieldPath, YamlDocument
 
 
@@ -23,11 +26,13 @@ class PoseStart:
 
 @dataclass(frozen=True)
 class LaneStart:
-    """Station s (m) along a lane, `lateral` m left of its centreline."""
+    """Station s (m) along a lane, `lateral` m left of its centreline; `ratio` (0..1)
+    gives the station as a fraction of the lane's length instead."""
 
     lane: str
     s: float = 0.0
     lateral: float = 0.0
+    ratio: float | None = None
 
 
 Start = PoseStart | LaneStart
@@ -40,6 +45,8 @@ class EgoSpec:
     start: Start
     speed: float = 0.0
     """m/s."""
+    gear: Gear | None = None
+    """The gear the ego is put in; None: the one it is in."""
 
 
 @dataclass(frozen=True)
@@ -67,6 +74,8 @@ class NpcSpec:
     stalled: bool = False
     """Stands where it is placed for the whole scenario (a broken-down car)."""
     lane_change: LaneChangeSpec | None = None
+    active_distance: float | None = None
+    """Stands still until an ego comes within this many metres; None: moves at once."""
 
 
 @dataclass(frozen=True)
@@ -81,6 +90,11 @@ class PedestrianSpec:
     crosswalk: str | None = None
     waypoints: tuple[tuple[float, float], ...] | None = None
     loop: bool = True
+    active_distance: float | None = None
+    """Waits until an ego comes within this many metres of `wake_point`; None: walks at
+    once."""
+    wake_point: tuple[float, float] | None = None
+    """Where that distance is measured from; None: the start of the walk."""
 
 
 @dataclass(frozen=True)
@@ -93,11 +107,69 @@ class ObstacleSpec:
 
 
 @dataclass(frozen=True)
+class SignalStart:
+    """The `index`-th signalised intersection of the map (by ascending id, from 0) starts
+    its program in phase `phase`, `elapsed_s` s into it (a MORAI scenario's traffic
+    light entry); `path` is that entry."""
+
+    path: FieldPath
+    index: int
+    phase: int
+    elapsed_s: float = 0.0
+
+
+@dataclass(frozen=True)
 class SignalsSpec:
     default: PhaseTiming = field(default_factory=PhaseTiming)
     intersections: dict[int, IntersectionProgram] = field(default_factory=dict)
     paths: dict[int, FieldPath] = field(default_factory=dict)
     """Where each intersection's entry sits in the file."""
+    starts: tuple[SignalStart, ...] = ()
+    """Where programs start, naming intersections by their place in the map's order."""
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """How a scenario stands: its storyboard's state and MORAI's evaluation verdict."""
+
+    state: str
+    """"running", "stopped" (its StopTrigger fired), "success" or "failure" (an
+    evaluation group fired)."""
+    time: float
+    """Scenario time of the end (or now, while running), s."""
+    verdict: str | None
+    """"success", "failure", or None: no evaluation, or none of its groups fired."""
+
+
+class StoryboardRun(Protocol):
+    """An OpenSCENARIO storyboard running on a world (egosim.world.openscenario), stepped
+    once per tick before the world (the tick pipeline's storyboard stage)."""
+
+    @property
+    def finished(self) -> bool:
+        """Its StopTrigger (or an evaluation group) has ended the scenario."""
+        ...
+
+    def outcome(self) -> Outcome:
+        """Its state now (or at its end) and its evaluation's verdict."""
+        ...
+
+    def step(self, dt: float, ego_driven: bool) -> list[str]:
+        """Advance dt s; ego_driven: the scenario drives the ego this step. Returns the
+        lines to report (each once)."""
+        ...
+
+
+class StoryboardProgram(Protocol):
+    """A storyboard ready to run: `start` places its entities (its Init) on a world."""
+
+    def start(
+        self, world: Any, load_ego: bool, kinds: frozenset[str], drives_ego: bool
+    ) -> StoryboardRun:
+        """Run Init on `world`; load_ego: place the ego as Init says; kinds: the entity
+        kinds to create (vehicle, pedestrian, miscellaneous object); drives_ego: the
+        scenario drives the ego (its control mode is auto)."""
+        ...
 
 
 def map_name_of(reference: str) -> str:
@@ -125,9 +197,19 @@ class Scenario:
     source: YamlDocument = field(
         default_factory=lambda: YamlDocument("<scenario>", None, error_type=ScenarioError)
     )
+    storyboard: StoryboardProgram | None = None
+    """An OpenSCENARIO file's storyboard (its entities and what they do)."""
+    origin: GeoReference | None = None
+    """The frame the file's positions are in (a MORAI scenario's map offsets), when the
+    file says; a load moves them into the map's frame. None: the map's own frame."""
+
+    field_names: Mapping[str, str] = field(default_factory=dict)
+    """What the file calls the fields errors name, where it is not egosim's YAML (a MORAI
+    file's start is its `initPosition`, a lane its `initLink`)."""
 
     def error(self, path: FieldPath, message: str) -> ScenarioError:
         """An error naming this scenario's file, the line of `path` and the field."""
+        path = tuple(self.field_names.get(p, p) if isinstance(p, str) else p for p in path)
         error = self.source.error(path, message)
         if isinstance(error, ScenarioError):
             return error

@@ -80,6 +80,8 @@ def lane_position(
     if isinstance(start, LaneStart):
         index = _lane_index(scenario, lane_map, start.lane, (*path, "lane"))
         length = lane_map.lane_lengths[index]
+        if start.ratio is not None:
+            return index, start.ratio * float(length), start.lateral
         if start.s > length:
             raise scenario.error(
                 (*path, "s"),
@@ -161,6 +163,7 @@ def _npc_spawn(scenario: Scenario, lane_map: LaneMap, npc: NpcSpec, unique_id: i
         route=tuple(route),
         start_delay_s=math.inf if npc.stalled else npc.start_delay_s,
         lane_change=change,
+        active_distance=math.inf if npc.active_distance is None else npc.active_distance,
     )
 
 
@@ -193,7 +196,15 @@ def _pedestrian_spawn(
         )
     problems.raise_any()
     assert model is not None
-    return PedestrianSpawn(unique_id, model, path, walker.speed, walker.start_s)
+    return PedestrianSpawn(
+        unique_id,
+        model,
+        path,
+        walker.speed,
+        walker.start_s,
+        active_distance=math.inf if walker.active_distance is None else walker.active_distance,
+        wake_point=walker.wake_point,
+    )
 
 
 def _walk_path(scenario: Scenario, lane_map: LaneMap, walker: PedestrianSpec) -> WalkPath:

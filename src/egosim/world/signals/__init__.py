@@ -4,7 +4,8 @@ Public API:
     TrafficSignals, IntersectionProgram, LightState   the map's lights, programs, overrides
     IntersectionController, IntersectionStatus        one intersection's program runner
     Phase, PhaseTiming, build_program                 phase programs
-    governing_light_id, nearest_light_id              the light a vehicle looks at
+    governing_light_id, nearest_light_id              the head a vehicle looks at
+    LaneSignals, combined_aspect                      a stop line's heads read together
     RED, YELLOW, GREEN, GREEN_LEFT, OFF, LightType, can_show,
         LEFT_ARROW_TYPES, has_left_arrow   aspects and head types
     SignalError and subclasses
@@ -30,6 +31,7 @@ from egosim.world.signals.errors import (
     UnsupportedAspectError,
 )
 from egosim.world.signals.governing import governing_light_id, nearest_light_id
+from egosim.world.signals.lane_signals import LaneSignals, combined_aspect
 from egosim.world.signals.phases import Phase, PhaseTiming, build_program
 from egosim.world.signals.system import IntersectionProgram, LightState, TrafficSignals
 
@@ -43,6 +45,7 @@ __all__ = [
     "IntersectionController",
     "IntersectionProgram",
     "IntersectionStatus",
+    "LaneSignals",
     "LightState",
     "LightType",
     "Phase",
@@ -55,6 +58,7 @@ __all__ = [
     "UnsupportedAspectError",
     "build_program",
     "can_show",
+    "combined_aspect",
     "governing_light_id",
     "has_left_arrow",
     "nearest_light_id",

@@ -1,8 +1,9 @@
-"""Which light a vehicle should be looking at (GetTrafficLightStatus's "closest light")."""
+"""Which head a vehicle should be looking at (GetTrafficLightStatus's "closest light")."""
 
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 
 from egosim.world.map import LaneMap
 
@@ -18,20 +19,23 @@ def governing_light_id(
     y: float,
     lookahead_m: float = DEFAULT_LOOKAHEAD_M,
 ) -> str | None:
-    """The light whose stop line is next ahead of (lane_id, s), else the nearest light to (x, y).
+    """The head governing the stop line next ahead of (lane_id, s) that stands nearest to
+    (x, y), else the nearest light of the map to (x, y).
 
     Ahead means on this lane before its stop line, or on the lanes that follow within
-    `lookahead_m` (taking each lane's first successor). None when the map has no lights.
+    `lookahead_m` (taking each lane's first successor). Where several heads govern that
+    stop line, the nearest one is the one MORAI SIM reports (a K-City stop line has a
+    round-green head and a left-arrow head 3 m apart). None when the map has no lights.
     """
     lane = lane_map.lane(lane_id)
     travelled = -s
     seen: set[str] = set()
     while travelled <= lookahead_m and lane.id not in seen:
         seen.add(lane.id)
-        if lane.traffic_light_id is not None:
+        if lane.traffic_light_ids:
             stop = lane.length if lane.stop_line_s is None else lane.stop_line_s
             if travelled + stop >= 0.0:
-                return lane.traffic_light_id
+                return nearest_light_id(lane_map, x, y, lane.traffic_light_ids)
         if not lane.successors:
             break
         travelled += lane.length
@@ -39,10 +43,14 @@ def governing_light_id(
     return nearest_light_id(lane_map, x, y)
 
 
-def nearest_light_id(lane_map: LaneMap, x: float, y: float) -> str | None:
-    """The light standing closest to (x, y) in the plane; None when there are none."""
+def nearest_light_id(
+    lane_map: LaneMap, x: float, y: float, among: Iterable[str] | None = None
+) -> str | None:
+    """The light standing closest to (x, y) in the plane, of `among` (default: all the
+    map's lights; ties go to the first); None when there are none."""
     best, best_distance = None, math.inf
-    for site in lane_map.traffic_lights.values():
+    for light_id in lane_map.traffic_lights if among is None else among:
+        site = lane_map.traffic_lights[light_id]
         distance = math.hypot(site.position[0] - x, site.position[1] - y)
         if distance < best_distance:
             best, best_distance = site.id, distance

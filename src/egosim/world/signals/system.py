@@ -9,14 +9,14 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.world.map import LaneMap
-from egosim.world.map.light_type import LightType
-from egosim.world.signals.aspects import LEFT_ARROW_TYPES, OFF, can_show, has_green
+from egosim.world.signals.aspects import OFF, can_show
 from egosim.world.signals.controller import IntersectionController, IntersectionStatus
 from egosim.world.signals.errors import (
     UnknownIntersectionError,
     UnknownLightError,
     UnsupportedAspectError,
 )
+from egosim.world.signals.lane_signals import LaneSignals
 from egosim.world.signals.phases import PhaseTiming, build_program
 
 
@@ -60,17 +60,12 @@ class TrafficSignals:
         self.light_types = np.array(
             [lane_map.traffic_lights[i].light_type for i in self.light_ids], dtype=np.int64
         )
-        self.flashing_heads = self.light_types == LightType.FLASHING_YELLOW
-        """Per light: its head only flashes yellow."""
-        self.arrow_heads = np.isin(self.light_types, LEFT_ARROW_TYPES)
-        """Per light: its head has a left-arrow lamp."""
-        self.arrow_only_heads = self.arrow_heads & ~np.array(
-            [has_green(int(t)) for t in self.light_types], dtype=bool
-        )
-        """Per light: its head has a left arrow and no round green (type 1)."""
+        self.lane_signals = LaneSignals(lane_map, self.light_ids)
+        """The signal each lane's drivers obey (its heads read together)."""
         self.controllers: dict[int, IntersectionController] = {}
         self._overrides: dict[str, int] = {}
         self._aspects = np.full(len(self.light_ids), OFF, dtype=np.int64)
+        self._signal_aspects = self._aspects
         self.configure(programs, default)
 
     def configure(
@@ -119,10 +114,22 @@ class TrafficSignals:
                 self._aspects[self._light_index[light_id]] = aspect
         for light_id, aspect in self._overrides.items():
             self._aspects[self._light_index[light_id]] = aspect
+        self._update_signals()
+
+    def _update_signals(self) -> None:
+        # Kept between changes: agents read the signals every step, aspects change seldom.
+        self._signal_aspects = self.lane_signals.aspects(self._aspects)
 
     def aspects(self) -> npt.NDArray[np.int64]:
         """Aspect of every light, in `light_ids` order (read-only view)."""
         view: npt.NDArray[np.int64] = self._aspects.view()
+        view.flags.writeable = False
+        return view
+
+    def signal_aspects(self) -> npt.NDArray[np.int64]:
+        """Aspect of every signal of `lane_signals`: the lights' own, then those of the
+        sets of heads governing a lane together (read-only view)."""
+        view: npt.NDArray[np.int64] = self._signal_aspects.view()
         view.flags.writeable = False
         return view
 
@@ -150,6 +157,7 @@ class TrafficSignals:
             )
         self._overrides[light_id] = aspect
         self._aspects[k] = aspect
+        self._update_signals()
 
     def release_light(self, light_id: str) -> None:
         """Hand the light back to its intersection's program."""

@@ -8,14 +8,17 @@ Public API:
     ObjectList, closest_objects                    ObjectStatusList semantics
     LaneGraph, LaneOccupants, LightsView           the arrays the agents run on
     BoxModel, PEDESTRIAN_MODELS, OBSTACLE_MODELS   sizes of non-vehicle models
+    MORAI_OBSTACLE_DATA_IDS, obstacle_for_data_id  MORAI's obstacle DataIDs -> models
 """
 
 from egosim.world.traffic.catalogue import (
     DEFAULT_OBSTACLE_MODEL,
     DEFAULT_PEDESTRIAN_MODEL,
+    MORAI_OBSTACLE_DATA_IDS,
     OBSTACLE_MODELS,
     PEDESTRIAN_MODELS,
     BoxModel,
+    obstacle_for_data_id,
 )
 from egosim.world.traffic.idm import IntelligentDriverModel
 from egosim.world.traffic.lane_graph import LaneGraph
@@ -38,6 +41,7 @@ from egosim.world.traffic.signal_rules import LightsView, signal_permissions
 __all__ = [
     "DEFAULT_OBSTACLE_MODEL",
     "DEFAULT_PEDESTRIAN_MODEL",
+    "MORAI_OBSTACLE_DATA_IDS",
     "OBSTACLE_MODELS",
     "PEDESTRIAN_MODELS",
     "BoxModel",
@@ -61,6 +65,7 @@ __all__ = [
     "crossed_lights",
     "crosswalk_path",
     "leaders_ahead",
+    "obstacle_for_data_id",
     "sidewalk_path",
     "signal_permissions",
 ]

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from egosim.world.arrays import IntArray
 from egosim.world.map import Lane, LaneMap
 from egosim.world.map.polyline import segment_headings
 
@@ -17,25 +18,20 @@ COMFORT_LATERAL_ACCEL_MPS2 = 3.0
 
 
 class LaneGraph:
-    """Lengths, speed limits, stop lines, lights, turn directions and successors per lane."""
+    """Lengths, speed limits, stop lines, signals, turn directions and successors per lane."""
 
-    def __init__(self, lane_map: LaneMap, light_ids: tuple[str, ...]) -> None:
+    def __init__(self, lane_map: LaneMap, lane_signals: IntArray) -> None:
+        """`lane_signals`: per lane, the signal its drivers obey (LaneSignals.of_lane)."""
         self.lane_map = lane_map
         ids = lane_map.lane_ids
         lanes = [lane_map.lanes[i] for i in ids]
-        light_index = {light_id: k for k, light_id in enumerate(light_ids)}
         self.length = np.array([lane.length for lane in lanes])
         self.speed_limit = np.array([lane.speed_limit for lane in lanes])
         self.stop_s = np.array(
             [np.nan if lane.stop_line_s is None else lane.stop_line_s for lane in lanes]
         )
-        self.light = np.array(
-            [
-                light_index.get(lane.traffic_light_id, -1) if lane.traffic_light_id else -1
-                for lane in lanes
-            ],
-            dtype=np.int64,
-        )
+        self.light: IntArray = lane_signals
+        """Per lane: its signal (an index into LightsView), -1 without a light."""
         self.curve_speed = np.minimum(
             self.speed_limit, [_comfortable_curve_speed(lane) for lane in lanes]
         )

@@ -7,7 +7,8 @@ a dead-end lane. Laterally it sits on its lane's centreline plus a fixed offset;
 lane end it moves on to the successor it planned (its route, else a seeded random pick).
 A scripted lane change puts it on the lane beside at once, at the offset it had, and
 slides it to that lane's centreline along a half-cosine (no sideways speed at either
-end), its heading turned with the sideways motion.
+end), its heading turned with the sideways motion. An NPC given an activation distance
+stands dormant, like a parked car, until an ego comes that close (`wake`).
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from egosim.world.arrays import BoolArray, FloatArray, Indices, IntArray
+from egosim.world.traffic.activation import still_dormant
 from egosim.world.traffic.idm import IntelligentDriverModel
 from egosim.world.traffic.junction_rules import (
     DECISION_MARGIN_M,
@@ -41,6 +43,7 @@ _PER_NPC_ARRAYS = (
     "unique_ids", "dims", "lane", "next_lanes", "s", "speed", "accel", "lateral",
     "target_speed", "speed_factor", "delay", "crashed", "yellow", "pose", "yaw_rate", "mass",
     "change_to", "change_timer", "change_duration", "slide_from", "slide_elapsed",
+    "active_distance", "dormant", "wake_speed",
 )  # fmt: skip
 _PER_NPC_LISTS = ("names", "routes", "route_pos")
 
@@ -64,7 +67,9 @@ class NpcSpawn:
     centreline, moving at `speed` m/s. It drives at `target_speed` m/s when given, else at
     `speed_factor` times each lane's limit; it waits `start_delay_s` s before moving and
     follows `route` (lane indices) where the route names a successor, or the lane after a
-    successor (routes may leave junction connectors out)."""
+    successor (routes may leave junction connectors out). With a finite
+    `active_distance` (m) it stands until an ego comes within that distance of it, then
+    sets off at `speed` (after its delay)."""
 
     unique_id: int
     model: VehicleModel
@@ -77,6 +82,7 @@ class NpcSpawn:
     route: tuple[int, ...] = field(default=())
     start_delay_s: float = 0.0
     lane_change: LaneChange | None = None
+    active_distance: float = math.inf
 
 
 class NpcFleet:
@@ -126,6 +132,12 @@ class NpcFleet:
         """Offset from the new lane's centreline when a lane change began, m."""
         self.slide_elapsed = np.empty(0)
         """Seconds since that lane change began; inf: not changing lanes."""
+        self.active_distance = np.empty(0)
+        """m; an ego this close wakes a dormant NPC."""
+        self.dormant = np.empty(0, bool)
+        """Per NPC: still waiting for an ego to come within its active distance."""
+        self.wake_speed = np.empty(0)
+        """m/s a dormant NPC sets off at (its spawn speed)."""
 
     def __len__(self) -> int:
         return len(self.unique_ids)
@@ -160,6 +172,11 @@ class NpcFleet:
         self.change_duration = np.append(self.change_duration, [c.duration_s for c in changes])
         self.slide_from = np.append(self.slide_from, np.zeros(len(spawns)))
         self.slide_elapsed = np.append(self.slide_elapsed, np.full(len(spawns), np.inf))
+        distances = [n.active_distance for n in spawns]
+        self.active_distance = np.append(self.active_distance, distances)
+        self.dormant = np.append(self.dormant, np.isfinite(distances))
+        self.wake_speed = np.append(self.wake_speed, [n.speed for n in spawns])
+        self.speed[self.dormant] = 0.0
         self.next_lanes = np.vstack(
             (self.next_lanes, np.full((len(spawns), LOOKAHEAD_LANES), -1, np.int64))
         )
@@ -210,7 +227,16 @@ class NpcFleet:
 
     def parked(self) -> BoolArray:
         """Per NPC: still waiting to set off (a parked car, immovable in a contact)."""
-        return self.delay > 0.0
+        parked: BoolArray = (self.delay > 0.0) | self.dormant
+        return parked
+
+    def wake(self, points: FloatArray) -> None:
+        """Dormant NPCs within their active distance of any of `points` (K, 2) m (the
+        egos) wake up, for good, moving at their spawn speed."""
+        dormant = still_dormant(self.dormant, self.pose, self.active_distance, points)
+        woken = self.dormant & ~dormant
+        self.speed[woken] = self.wake_speed[woken]
+        self.dormant = dormant
 
     def shove(self, indices: IntArray, displacement: FloatArray, velocity: FloatArray) -> None:
         """A contact's response: move NPCs `indices` by `displacement` (K, 2) m and take
@@ -232,8 +258,8 @@ class NpcFleet:
         if n == 0:
             return
         graph = self.graph
-        waiting = self.delay > 0.0
-        self.delay = np.maximum(self.delay - dt, 0.0)
+        waiting = (self.delay > 0.0) | self.dormant
+        self.delay = np.where(self.dormant, self.delay, np.maximum(self.delay - dt, 0.0))
         frozen = waiting | self.crashed
 
         occupants = LaneOccupants.concatenate([self.occupants(), others])

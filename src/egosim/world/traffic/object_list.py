@@ -23,12 +23,12 @@ class ObjectList:
 
 
 def closest_objects(
-    table: ObjectTable, centre: tuple[float, float], size: int, counts: tuple[int, int, int]
+    table: ObjectTable, origin: tuple[float, float], size: int, counts: tuple[int, int, int]
 ) -> ObjectList:
-    """The `size` objects of `table` nearest `centre` (plane distance between centres,
-    ties in table order), split into vehicles (NPCs and other egos), pedestrians and
-    obstacles."""
-    offset = table.positions[:, :2] - np.asarray(centre)
+    """The `size` objects of `table` nearest `origin` (plane distance from `origin` to
+    each object's position, ties in table order), split into vehicles (NPCs and other
+    egos), pedestrians and obstacles."""
+    offset = table.positions[:, :2] - np.asarray(origin)
     distance = np.hypot(offset[:, 0], offset[:, 1])
     nearest = np.argsort(distance, kind="stable")[: max(size, 0)]
     records = table.records(nearest)

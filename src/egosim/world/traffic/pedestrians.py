@@ -2,11 +2,14 @@
 
 A walk path may carry gates: stations where the path steps onto a crosswalk. A pedestrian
 reaching a gate waits there until that crosswalk's walk signal allows crossing; once on
-the crosswalk it keeps walking whatever the lights do (drivers yield to it).
+the crosswalk it keeps walking whatever the lights do (drivers yield to it). A pedestrian
+given an activation distance stands where it starts until an ego comes that close to its
+wake point (`wake`).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -14,6 +17,7 @@ import numpy as np
 
 from egosim.world.arrays import BoolArray, FloatArray, Indices, IntArray
 from egosim.world.map import Crosswalk, LaneMap, Sidewalk
+from egosim.world.traffic.activation import still_dormant
 from egosim.world.traffic.catalogue import BoxModel
 from egosim.world.traffic.objects import ObjectTable, ObjectType
 
@@ -64,13 +68,16 @@ def crosswalk_path(crosswalk: Crosswalk, crosswalk_index: int) -> WalkPath:
 
 @dataclass(frozen=True)
 class PedestrianSpawn:
-    """One pedestrian: walks `path` at `speed` m/s from station `start_s` m."""
+    """One pedestrian: walks `path` at `speed` m/s from station `start_s` m, once an ego
+    has come within `active_distance` m of `wake_point` (None: where it starts)."""
 
     unique_id: int
     model: BoxModel
     path: WalkPath
     speed: float
     start_s: float = 0.0
+    active_distance: float = math.inf
+    wake_point: tuple[float, float] | None = None
 
 
 class PedestrianCrowd:
@@ -84,6 +91,10 @@ class PedestrianCrowd:
         self.unique_ids: IntArray = np.empty(0, np.int64)
         self.s: FloatArray = np.empty(0)
         self.stopped: BoolArray = np.empty(0, bool)
+        self.dormant: BoolArray = np.empty(0, bool)
+        """Per pedestrian: still waiting for an ego to come within its active distance."""
+        self.active_distance: FloatArray = np.empty(0)
+        self.wake_points: FloatArray = np.empty((0, 2))
         self.shoved: FloatArray = np.empty((0, 2))
         """Per pedestrian: how far contacts pushed them off their path, m (map frame)."""
         self._layout(())
@@ -109,6 +120,12 @@ class PedestrianCrowd:
         self.s = np.clip(self.s, 0.0, self.length)
         position, self.heading = self._place(self.s)
         self.position = position + self.shoved
+        distances = [p.active_distance for p in spawns]
+        self.active_distance = np.append(self.active_distance, distances)
+        self.dormant = np.append(self.dormant, np.isfinite(distances))
+        starts = position[len(position) - len(spawns) :]
+        wake = [p.wake_point or tuple(start) for p, start in zip(spawns, starts, strict=True)]
+        self.wake_points = np.vstack((self.wake_points, np.array(wake, dtype=np.float64)))
 
     def _layout(self, spawns: Sequence[PedestrianSpawn]) -> None:
         """Flatten every path onto one station axis (keys), with the gates on it."""
@@ -163,6 +180,11 @@ class PedestrianCrowd:
         """Struck pedestrians stay where they are (or where a contact pushes them)."""
         self.stopped[indices] = True
 
+    def wake(self, points: FloatArray) -> None:
+        """Dormant pedestrians whose wake point lies within their active distance of any
+        of `points` (K, 2) m (the egos) set off, for good."""
+        self.dormant = still_dormant(self.dormant, self.wake_points, self.active_distance, points)
+
     def shove(self, indices: IntArray, displacement: FloatArray) -> None:
         """A contact's response: push pedestrians `indices` by `displacement` (K, 2) m."""
         self.shoved[indices] += displacement
@@ -174,7 +196,7 @@ class PedestrianCrowd:
         if n == 0:
             return
         old_s = self.s
-        new_s = old_s + np.where(self.stopped, 0.0, self.walk_speed * dt)
+        new_s = old_s + np.where(self.stopped | self.dormant, 0.0, self.walk_speed * dt)
         if len(self._gate_key):
             old_key = self._key_base + old_s
             g = np.searchsorted(self._gate_key, old_key, side="left")
@@ -239,14 +261,14 @@ class CrosswalkLights:
 CROSSWALK_SAMPLE_STEP_M = 0.5
 
 
-def _holding_lights(lane_map: LaneMap, lane_id: str) -> set[str | None]:
+def _holding_lights(lane_map: LaneMap, lane_id: str) -> set[str]:
     """The lights that hold the traffic on a lane: its own, or for a junction connector
     those of the lanes leading into it (where a map ends its lanes at the stop line, as
     MGeo does, a crossing at the junction's mouth lies over connectors)."""
     lane = lane_map.lanes[lane_id]
-    if lane.traffic_light_id is not None or not lane.is_junction:
-        return {lane.traffic_light_id}
-    return {lane_map.lanes[p].traffic_light_id for p in lane.predecessors}
+    if lane.traffic_light_ids or not lane.is_junction:
+        return set(lane.traffic_light_ids)
+    return {light for p in lane.predecessors for light in lane_map.lanes[p].traffic_light_ids}
 
 
 def crossed_lights(lane_map: LaneMap, light_index: Mapping[str, int]) -> list[tuple[int, ...]]:
@@ -268,8 +290,7 @@ def crossed_lights(lane_map: LaneMap, light_index: Mapping[str, int]) -> list[tu
         own = [
             i
             for i in lights
-            if i is not None
-            and lane_map.traffic_lights[i].intersection_id == crosswalk.intersection_id
+            if lane_map.traffic_lights[i].intersection_id == crosswalk.intersection_id
         ]
         result.append(tuple(sorted(light_index[i] for i in own)))
     return result

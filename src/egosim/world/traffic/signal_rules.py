@@ -13,8 +13,9 @@ from egosim.world.traffic.lane_graph import TURN_LEFT
 
 @dataclass(frozen=True, eq=False)
 class LightsView:
-    """Per light: the aspect now and facts about its head (flashing, has a left arrow,
-    has a left arrow and no round green)."""
+    """Per signal of TrafficSignals.lane_signals (signal k < number of lights is light k
+    alone; later ones are heads governing a lane together): the aspect now and facts
+    about its heads (flashing, has a left arrow, has a left arrow and no round green)."""
 
     aspects: IntArray
     flashing: BoolArray
@@ -23,12 +24,8 @@ class LightsView:
 
     @classmethod
     def of(cls, signals: TrafficSignals) -> LightsView:
-        return cls(
-            signals.aspects(),
-            signals.flashing_heads,
-            signals.arrow_heads,
-            signals.arrow_only_heads,
-        )
+        table = signals.lane_signals
+        return cls(signals.signal_aspects(), table.flashing, table.arrow, table.arrow_only)
 
 
 def signal_permissions(

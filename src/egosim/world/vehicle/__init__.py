@@ -5,6 +5,7 @@ Public API:
     ControlCommand, LongitudinalMode, CommandVerdict, CommandGate   CtrlCmd semantics
     Gear                                        P/R/N/D
     VehicleModel, VEHICLE_CATALOGUE, DEFAULT_EGO_MODEL, vehicle_model   the catalogue
+    MORAI_VEHICLE_DATA_IDS, model_for_data_id   MORAI's vehicle DataIDs -> catalogue models
     Wheels, WheelStatus                         per-wheel outputs
     SkidSteerVehicle, SideEffortCommand, BodyVelocityCommand   skid-steer ground vehicles
     GroundVehicleModel, GROUND_VEHICLE_CATALOGUE              their catalogue
@@ -15,8 +16,10 @@ Public API:
 
 from egosim.world.vehicle.catalogue import (
     DEFAULT_EGO_MODEL,
+    MORAI_VEHICLE_DATA_IDS,
     VEHICLE_CATALOGUE,
     VehicleModel,
+    model_for_data_id,
     vehicle_model,
 )
 from egosim.world.vehicle.control import (
@@ -47,6 +50,7 @@ __all__ = [
     "DEFAULT_EGO_MODEL",
     "EGO_MODELS",
     "GROUND_VEHICLE_CATALOGUE",
+    "MORAI_VEHICLE_DATA_IDS",
     "VEHICLE_CATALOGUE",
     "BodyVelocityCommand",
     "CommandGate",
@@ -70,6 +74,7 @@ __all__ = [
     "Wheels",
     "ego_model",
     "ego_vehicle",
+    "model_for_data_id",
     "sensor_mount_origin",
     "vehicle_model",
 ]

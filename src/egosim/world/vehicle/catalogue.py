@@ -53,6 +53,9 @@ class VehicleModel(VehicleBody):
     """Loaded tyre radius, m."""
     max_reverse_speed: float
     """Speed the powertrain stops pushing at in reverse, m/s."""
+    max_speed: float = math.inf
+    """Speed the powertrain stops pushing at going forwards (a governed top speed), m/s;
+    inf: none, power and drag alone set the top speed."""
 
     @property
     def max_drive_force(self) -> float:
@@ -88,7 +91,6 @@ def _estimated_model(
     mass: float,
     front_axle_load_fraction: float,
     cg_height: float,
-    min_turning_radius: float,
     max_drive_torque: float,
     max_power: float,
     max_brake_decel: float,
@@ -96,6 +98,9 @@ def _estimated_model(
     rolling_resistance_coeff: float,
     wheel_radius: float,
     max_reverse_speed: float,
+    min_turning_radius: float | None = None,
+    max_steer_front: float | None = None,
+    max_speed: float = math.inf,
     cornering_coeff_front: float = 8.0,
     cornering_coeff_rear: float = 12.0,
     max_steer_rate: float = 0.6,
@@ -109,9 +114,13 @@ def _estimated_model(
     Axle cornering stiffness is a cornering coefficient (N/rad per N of axle
     load) times the static axle load; a higher rear coefficient gives the mild
     understeer production cars are tuned for.
-    The largest front wheel angle is the one that puts the outer front wheel on
-    the published kerb-to-kerb turning circle.
+    The largest front wheel angle is the published one (`max_steer_front`), else the
+    one that puts the outer front wheel on the published kerb-to-kerb turning circle.
     """
+    if max_steer_front is None:
+        if min_turning_radius is None:
+            raise ValueError(f"{name}: give max_steer_front or min_turning_radius")
+        max_steer_front = math.atan(wheelbase / (min_turning_radius - track_width / 2.0))
     cg_to_rear_axle = front_axle_load_fraction * wheelbase
     cg_to_front_axle = wheelbase - cg_to_rear_axle
     weight = mass * GRAVITY
@@ -131,7 +140,7 @@ def _estimated_model(
         cg_height=cg_height,
         cornering_stiffness_front=cornering_coeff_front * weight * front_axle_load_fraction,
         cornering_stiffness_rear=cornering_coeff_rear * weight * (1.0 - front_axle_load_fraction),
-        max_steer_front=math.atan(wheelbase / (min_turning_radius - track_width / 2.0)),
+        max_steer_front=max_steer_front,
         max_steer_rear=0.0,
         max_steer_rate=max_steer_rate,
         max_drive_torque=max_drive_torque,
@@ -141,6 +150,7 @@ def _estimated_model(
         rolling_resistance_coeff=rolling_resistance_coeff,
         wheel_radius=wheel_radius,
         max_reverse_speed=max_reverse_speed,
+        max_speed=max_speed,
     )
 
 
@@ -295,8 +305,67 @@ VEHICLE_CATALOGUE: dict[str, VehicleModel] = {
             max_steer_rate=0.4,
             yaw_dynamic_index=1.5,
         ),
+        _estimated_model(
+            name="2023_Hyundai_Ioniq5",
+            length=4.635,
+            width=1.890,
+            height=1.605,
+            wheelbase=3.000,
+            front_overhang=0.845,
+            track_width=1.628,
+            mass=1910.0,
+            front_axle_load_fraction=0.51,
+            cg_height=0.52,
+            max_steer_front=math.radians(40.0),
+            max_drive_torque=3000.0,
+            max_power=150e3,
+            max_brake_decel=9.0,
+            drag_area=0.288 * 2.60,
+            rolling_resistance_coeff=0.009,
+            wheel_radius=0.360,
+            max_reverse_speed=_REVERSE_SPEED_LIMIT_CAR,
+            max_speed=185.0 / 3.6,
+        ),
+        _estimated_model(
+            name="ERP42",
+            length=2.020,
+            width=1.160,
+            height=0.860,
+            wheelbase=1.040,
+            front_overhang=0.490,
+            track_width=0.985,
+            mass=210.0,
+            front_axle_load_fraction=0.50,
+            cg_height=0.40,
+            max_steer_front=math.radians(28.0),
+            max_drive_torque=110.0,
+            max_power=3.0e3,
+            max_brake_decel=5.0,
+            drag_area=0.80 * 1.00,
+            rolling_resistance_coeff=0.015,
+            wheel_radius=0.280,
+            max_reverse_speed=10.0 / 3.6,
+            max_speed=25.0 / 3.6,
+        ),
     )
 }
+
+
+MORAI_VEHICLE_DATA_IDS: dict[int, str] = {
+    20200003: "2016_Kia_Niro(HEV)",
+    30100010: "2016_Hyundai_Ioniq",
+    30200003: "2016_Kia_Niro(HEV)",
+}
+"""MORAI SIM's vehicle `DataID`s (what its scenario files and ego settings name a model
+by) -> catalogue model names: 2xxxxxxx ego vehicles, 3xxxxxxx NPC vehicles. Only the ids
+public MORAI material shows are here; docs/vehicle.md says where each comes from."""
+
+
+def model_for_data_id(data_id: int) -> VehicleModel | None:
+    """The catalogue model MORAI's vehicle `data_id` stands for; None for an id the table
+    does not hold (the caller picks a default and says so)."""
+    name = MORAI_VEHICLE_DATA_IDS.get(data_id)
+    return None if name is None else VEHICLE_CATALOGUE[name]
 
 
 def vehicle_model(name: str) -> VehicleModel:

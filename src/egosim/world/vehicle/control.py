@@ -92,6 +92,7 @@ class CommandGate:
         self.timeout = timeout
         self._command = SAFE_BRAKE
         self._received_at: float | None = None
+        self._held: ControlCommand | None = None
 
     def submit(self, command: ControlCommand, sim_time: float) -> CommandVerdict:
         """Accept `command` at sim_time (s), clamped into range, unless it is invalid."""
@@ -112,11 +113,19 @@ class CommandGate:
             mode = LongitudinalMode.PEDALS
         self._command = replace(command, mode=mode, **changes)
         self._received_at = sim_time
+        self._held = None
         return CommandVerdict(True, clamped=tuple(changes))
+
+    def hold(self, command: ControlCommand) -> None:
+        """A command of the simulator's own (a scenario's initial speed) in force until
+        the first one submitted; no dead-man timeout runs on it, as no input sent it."""
+        self._held = command
+        self._received_at = None
 
     def release(self) -> None:
         """Forget the command in force: the brake is held, steering kept, until the next."""
         self._received_at = None
+        self._held = None
 
     def timed_out(self, sim_time: float) -> bool:
         """True before the first command and, with a dead-man timeout, after `timeout` s
@@ -124,7 +133,10 @@ class CommandGate:
         return command_timed_out(self._received_at, self.timeout, sim_time)
 
     def active_command(self, sim_time: float) -> ControlCommand:
-        """The command in force: the last valid one, or a full brake with the steering held."""
+        """The command in force: one held, the last valid one, or a full brake with the
+        steering held."""
+        if self._held is not None:
+            return self._held
         if self.timed_out(sim_time):
             return replace(
                 SAFE_BRAKE,

@@ -17,8 +17,9 @@ from egosim.world.vehicle.gear import Gear
 AIR_DENSITY = 1.225
 """Sea-level ISA air density, kg/m³."""
 
-REVERSE_GOVERNOR_BAND = 1.0
-"""Speed band below max_reverse_speed over which reverse drive fades out, m/s."""
+GOVERNOR_BAND = 1.0
+"""Speed band below max_speed (forwards) or max_reverse_speed over which the drive
+fades out, m/s."""
 
 
 def max_drive_force(model: VehicleModel, speed: float) -> float:
@@ -33,11 +34,9 @@ def drive_force(model: VehicleModel, gear: Gear, accel_pedal: float, vx: float) 
     """Powertrain force along body x (N) for a pedal in 0..1 at body speed vx (m/s)."""
     direction = gear.drive_direction
     force = accel_pedal * max_drive_force(model, vx)
-    if direction < 0:
-        reverse_speed = -vx
-        headroom = (model.max_reverse_speed - reverse_speed) / REVERSE_GOVERNOR_BAND
-        force *= min(max(headroom, 0.0), 1.0)
-    return direction * force
+    limit = model.max_reverse_speed if direction < 0 else model.max_speed
+    headroom = (limit - direction * vx) / GOVERNOR_BAND
+    return direction * force * min(max(headroom, 0.0), 1.0)
 
 
 def aero_drag_force(model: VehicleModel, vx: float) -> float:

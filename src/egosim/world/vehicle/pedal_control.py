@@ -97,8 +97,7 @@ class SpeedController:
     def pedals(self, target: float, gear: Gear, state: VehicleState, dt: float) -> Pedals:
         """Pedals for a target speed (m/s, >= 0) this step."""
         model = self.model
-        if gear is Gear.REVERSE:
-            target = min(target, model.max_reverse_speed)
+        target = min(target, model.max_reverse_speed if gear is Gear.REVERSE else model.max_speed)
         speed = travel_direction(gear) * state.vx
         acceleration = SPEED_GAIN * (target - speed)
         if target == 0.0:

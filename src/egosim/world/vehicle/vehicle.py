@@ -94,7 +94,8 @@ class Vehicle(GatedVehicle[ControlCommand]):
         command_timeout: float | None = DEFAULT_COMMAND_TIMEOUT,
         max_substep: float = DEFAULT_MAX_SUBSTEP,
     ) -> None:
-        super().__init__(CommandGate(model, command_timeout), gear, max_substep)
+        self._commands = CommandGate(model, command_timeout)
+        super().__init__(self._commands, gear, max_substep)
         self.model = model
         self._state = VehicleState()
         self._acceleration_tracker = AccelerationTracker(model)
@@ -111,6 +112,14 @@ class Vehicle(GatedVehicle[ControlCommand]):
     ) -> Vehicle:
         """A vehicle of the catalogue model `name`; options as for the constructor."""
         return cls(vehicle_model(name), pose, **options)
+
+    def hold_speed(self, speed: float) -> None:
+        """Keep `speed` (m/s, negative: in reverse) until the first command (a scenario's
+        initial speed for a stack that has not spoken yet); the dead-man timeout starts
+        with that command."""
+        if speed < 0.0:
+            self.set_gear(Gear.REVERSE)
+        self._commands.hold(ControlCommand(mode=LongitudinalMode.VELOCITY, velocity=abs(speed)))
 
     def set_gear(self, gear: Gear) -> None:
         self.gear = gear

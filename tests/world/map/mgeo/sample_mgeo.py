@@ -202,3 +202,33 @@ def _lights() -> list[dict]:
         }
     )
     return lights
+
+
+TWIN_LATERAL_M = 0.0
+"""A twin head hangs over the middle of the road at its arm's stop line."""
+
+
+def mgeo_files_with_twin_heads() -> dict[str, object]:
+    """The sample map with a second head over each approach, as K-City has: `TL_<arm>2`
+    governs the same links as `TL_<arm>`, shows the other lamp set (a round-green head
+    beside each left-arrow head and the reverse) and is synced with it."""
+    files = mgeo_files()
+    lights: list[dict] = files["traffic_light_set.json"]  # type: ignore[assignment]
+    for light in [light for light in lights if light["type"] == "car"]:
+        arm = light["idx"][-1]
+        d, n = _frame(arm)
+        spot = BOX_M * d + TWIN_LATERAL_M * n
+        twin_lamps = PLAIN_HEAD if light["sub_type"] == LEFT_ARROW_HEAD else LEFT_ARROW_HEAD
+        lights.append(
+            {
+                **light,
+                "idx": f"{light['idx']}2",
+                "point": [float(spot[0]), float(spot[1]), 5.5],
+                "sub_type": twin_lamps,
+            }
+        )
+    for synced in files["synced_traffic_light_set.json"]:  # type: ignore[attr-defined]
+        synced["signal_id_list"] = [
+            head for light in synced["signal_id_list"] for head in (light, f"{light}2")
+        ]
+    return files

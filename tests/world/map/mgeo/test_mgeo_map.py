@@ -74,11 +74,11 @@ def test_stop_lines_and_governing_lights(sample):
     for arm in "ENWS":
         lane = lane_map.lane(f"L_{arm}_in")
         assert lane.stop_line_s == pytest.approx(ARM_M)
-        assert lane.traffic_light_id == f"TL_{arm}"
-    assert lane_map.lane("L_W_in2").traffic_light_id == "TL_W"
+        assert lane.traffic_light_ids == (f"TL_{arm}",)
+    assert lane_map.lane("L_W_in2").traffic_light_ids == ("TL_W",)
     # TL_E lists the connectors past the line: it governs the lane arriving at the line.
     assert lane_map.traffic_lights["TL_E"].lane_ids == ("L_E_in",)
-    assert lane_map.lane("C_EW").traffic_light_id is None
+    assert lane_map.lane("C_EW").traffic_light_ids == ()
 
 
 def test_light_types_and_facing(sample):

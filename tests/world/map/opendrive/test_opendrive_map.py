@@ -102,9 +102,9 @@ def test_signals_govern_the_stop_lines_of_incoming_lanes(junction):
     lane_map, _ = junction
     for road in "1234":
         incoming = lane_map.lane(f"{road}_0_1")
-        assert incoming.traffic_light_id == f"TL{road}"
+        assert incoming.traffic_light_ids == (f"TL{road}",)
         assert incoming.stop_line_s == pytest.approx(incoming.length)
-        assert lane_map.lane(f"{road}_0_-1").traffic_light_id is None
+        assert lane_map.lane(f"{road}_0_-1").traffic_light_ids == ()
 
 
 def test_signal_heads_stand_at_s_t_and_face_their_traffic(junction):
@@ -321,7 +321,7 @@ def test_a_signal_reference_governs_the_referencing_road_too():
     reference = '<signalReference s="0" t="5" id="TL3" orientation="-"/>'
     lane_map, _ = build(JUNCTION_XODR.read_text().replace(signal_line("TL1"), reference))
     assert set(lane_map.traffic_lights["TL3"].lane_ids) == {"1_0_1", "3_0_1"}
-    assert lane_map.lane("1_0_1").traffic_light_id == "TL3"
+    assert lane_map.lane("1_0_1").traffic_light_ids == ("TL3",)
     assert "TL1" not in lane_map.traffic_lights
 
 

@@ -60,7 +60,11 @@ def build_mgeo_map(name: str, files: Mapping[str, object], notes: list[str]) -> 
         _records(files, INTERSECTION_CONTROLLER_SET),
         notes,
     )
-    lanes = _with_stop_lines(lanes, ends, nodes, {i: t.id for t in lights for i in t.lane_ids})
+    lights_of_lane: dict[str, list[str]] = {}
+    for light in lights:
+        for lane_id in light.lane_ids:
+            lights_of_lane.setdefault(lane_id, []).append(light.id)
+    lanes = _with_stop_lines(lanes, ends, nodes, lights_of_lane)
     try:
         lane_map = LaneMap(name, lanes.values(), lights, intersections, (), (), georef)
     except MapGeometryError as error:
@@ -94,17 +98,16 @@ def _with_stop_lines(
     lanes: dict[str, Lane],
     ends: dict[str, LinkEnds],
     nodes: dict[str, Node] | None,
-    light_of_lane: dict[str, str],
+    lights_of_lane: dict[str, list[str]],
 ) -> dict[str, Lane]:
     """Stop lines at the end of lanes reaching a stop-line node or governed by a light."""
     result = {}
     for idx, lane in lanes.items():
         on_line = nodes is not None and nodes[ends[idx].to_node].on_stop_line
-        light = light_of_lane.get(idx)
-        stops = on_line or light is not None
+        heads = tuple(lights_of_lane.get(idx, ()))
         result[idx] = (
-            dataclasses.replace(lane, stop_line_s=lane.length, traffic_light_id=light)
-            if stops
+            dataclasses.replace(lane, stop_line_s=lane.length, traffic_light_ids=heads)
+            if on_line or heads
             else lane
         )
     return result

@@ -2,7 +2,9 @@
 
 A light governs the stop line at the end of the links in its `link_id_list`. When a listed
 link starts at a stop-line node (a connector past the line), the links arriving at that
-node are governed instead: a stop line belongs to the lane that ends at it.
+node are governed instead: a stop line belongs to the lane that ends at it. Several heads
+may govern one stop line (K-City hangs a round-green head and a left-arrow head over the
+same lanes); each keeps every lane it lists.
 """
 
 from __future__ import annotations
@@ -38,9 +40,8 @@ def read_light_heads(
     nodes: dict[str, Node] | None,
     notes: list[str],
 ) -> list[LightHead]:
-    """The vehicle heads in file order; a lane governed twice keeps its first light."""
+    """The vehicle heads in file order."""
     heads = []
-    governed: set[str] = set()
     for idx, record in unique_by_idx(items).items():
         kind = (record.text("type") or "car").lower()
         if kind not in VEHICLE_LIGHT_TYPES:
@@ -54,11 +55,6 @@ def read_light_heads(
             )
             light_type = LightType.RYG
         lane_ids = _stop_line_lanes(record, lanes, ends, nodes, notes)
-        taken = sorted(governed.intersection(lane_ids))
-        if taken:
-            notes.append(f"traffic_light_set.json: {idx}: lanes {taken} keep an earlier light")
-        lane_ids = tuple(i for i in lane_ids if i not in governed)
-        governed.update(lane_ids)
         x, y, z = (float(v) for v in record.point("point"))
         heads.append(LightHead(idx, (x, y, z), _facing(lanes, lane_ids), light_type, lane_ids))
     return heads

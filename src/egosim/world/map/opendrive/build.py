@@ -2,15 +2,17 @@
 
 from __future__ import annotations
 
-from egosim.world.map.builtin_origin import BUILTIN_GEOREF
+from egosim.world.map.builtin_origin import assumed_georeference
 from egosim.world.map.errors import MapGeometryError, MapRecordError
 from egosim.world.map.georef import GeoReference
 from egosim.world.map.lanes import Lane, LaneMap, Sidewalk
 from egosim.world.map.opendrive.crosswalks import road_crosswalks
 from egosim.world.map.opendrive.document import SOURCE, Document, read_document
+from egosim.world.map.opendrive.road_frame import OpenDriveRoads
 from egosim.world.map.opendrive.road_lanes import LaneKey, RoadLane, road_lanes, road_markings
 from egosim.world.map.opendrive.signals import build_signals
 from egosim.world.map.opendrive.topology import lane_links, neighbours
+from egosim.world.map.opendrive.virtual_junctions import cut_at_joins
 
 
 def build_opendrive_map(name: str, xml_text: str, notes: list[str]) -> LaneMap:
@@ -21,6 +23,8 @@ def build_opendrive_map(name: str, xml_text: str, notes: list[str]) -> LaneMap:
     it read but left out.
     """
     document = read_document(xml_text)
+    notes.extend(document.notes)
+    cut_at_joins(document)
     georef = read_georeference(document, notes)
     lanes: dict[LaneKey, RoadLane] = {}
     sidewalks: list[Sidewalk] = []
@@ -53,7 +57,7 @@ def build_opendrive_map(name: str, xml_text: str, notes: list[str]) -> LaneMap:
                     left_neighbor=sides[lane.id][0],
                     right_neighbor=sides[lane.id][1],
                     stop_line_s=None if stop is None else stop.station,
-                    traffic_light_id=None if stop is None else stop.light_id,
+                    traffic_light_ids=() if stop is None else tuple(stop.light_ids),
                     is_junction=lane.in_junction,
                 )
             )
@@ -64,15 +68,19 @@ def build_opendrive_map(name: str, xml_text: str, notes: list[str]) -> LaneMap:
         lane_map = LaneMap(name, built, lights, intersections, crosswalks, sidewalks, georef)
     except MapGeometryError as error:
         raise MapRecordError(SOURCE, "lane graph", str(error)) from None
-    return lane_map.with_markings(markings)
+    lane_map = lane_map.with_markings(markings)
+    return lane_map.with_roads(OpenDriveRoads(document.roads, lanes, lane_map))
 
 
 def read_georeference(document: Document, notes: list[str]) -> GeoReference:
     """The header's geoReference with its <offset> as the local origin in that projection."""
     x, y, z, heading = document.offset
     if document.geo_reference is None:
-        notes.append("header has no geoReference: the built-in maps' georeference is used")
-        return BUILTIN_GEOREF
+        notes.append(
+            "header has no geoReference: placed at the built-in maps' origin (UTM zone 52N, "
+            "Seoul); its GPS latitudes and longitudes are invented"
+        )
+        return assumed_georeference()
     if heading != 0.0:
         notes.append(f"header offset hdg={heading} not applied: the map is read unrotated")
     try:

@@ -31,6 +31,8 @@ class LinkTarget:
     element_id: str
     contact_point: str | None
     """"start" or "end" of the target road."""
+    element_s: float | None = None
+    """Station on the target road a road of a virtual junction joins it at (1.7+), m."""
 
 
 @dataclass(frozen=True)
@@ -125,13 +127,25 @@ class Road:
         return self.junction not in ("", "-1")
 
 
+JUNCTION_TYPES = ("default", "direct", "virtual", "crossing")
+"""Junction types of OpenDRIVE 1.4 (default) to 1.8 (crossing)."""
+
+
 @dataclass(frozen=True)
 class Connection:
     id: str
     incoming_road: str
-    connecting_road: str
-    contact_point: str
+    """"" where a virtual junction's connection names none."""
+    road: str
+    """The road the connection leads into: the connecting road (default and virtual
+    junctions) or the linked road (direct junctions)."""
+    contact_point: str | None
+    """"start" or "end" of `road`; None where a virtual junction's connection gives none."""
     lane_links: tuple[tuple[int, int], ...]
+    predecessor: LinkTarget | None = None
+    successor: LinkTarget | None = None
+    """A 1.7 virtual connection's own links of its connecting road (1.8 puts them on the
+    road)."""
 
 
 @dataclass(frozen=True)
@@ -140,6 +154,14 @@ class Junction:
     connections: tuple[Connection, ...]
     controllers: tuple[str, ...]
     """Controller ids in the order of their `sequence` attribute."""
+    type: str = "default"
+    """One of JUNCTION_TYPES."""
+
+    @property
+    def connecting_roads(self) -> set[str]:
+        """The roads through the junction (a direct junction's linked roads are ordinary
+        roads around it, not through it)."""
+        return set() if self.type == "direct" else {c.road for c in self.connections}
 
 
 @dataclass(frozen=True)
@@ -158,6 +180,8 @@ class Document:
     controllers: dict[str, Controller] = field(default_factory=dict)
     unread: dict[str, int] = field(default_factory=dict)
     """Element tags the loader does not read -> how many."""
+    notes: list[str] = field(default_factory=list)
+    """One line per record read but left out."""
 
 
 class _Element:
@@ -244,7 +268,7 @@ def read_document(xml_text: str) -> Document:
             raise road.fail(f"repeats road id {parsed.id}")
         document.roads[parsed.id] = parsed
     for junction in top.children("junction", "junction"):
-        parsed_junction = _junction(junction)
+        parsed_junction = _junction(junction, document.notes)
         document.junctions[parsed_junction.id] = parsed_junction
     for controller in top.children("controller", "controller"):
         controller.label = f"controller id={controller.text('id')!r}"
@@ -333,7 +357,10 @@ def _link_target(element: _Element | None) -> LinkTarget | None:
     if element is None:
         return None
     contact = element.element.get("contactPoint")
-    return LinkTarget(element.text("elementType", "road"), element.text("elementId"), contact)
+    element_s = element.number("elementS") if element.element.get("elementS") else None
+    return LinkTarget(
+        element.text("elementType", "road"), element.text("elementId"), contact, element_s
+    )
 
 
 def _geometry(element: _Element) -> tuple[float, Pose2, Geometry]:
@@ -448,23 +475,51 @@ def _signal(signal: _Element, is_reference: bool) -> SignalRecord:
     )
 
 
-def _junction(junction: _Element) -> Junction:
+def _junction(junction: _Element, notes: list[str]) -> Junction:
     junction.label = f"junction id={junction.text('id')!r}"
+    kind = junction.text("type", "default")
+    if kind not in JUNCTION_TYPES:
+        notes.append(f"{junction.label}: type {kind!r} is unknown, read as a default junction")
+        kind = "default"
     connections = []
     for connection in junction.children("connection", "connection"):
         connection.label = f"{junction.label} connection id={connection.text('id', '?')!r}"
-        connections.append(
-            Connection(
-                id=connection.text("id", ""),
-                incoming_road=connection.text("incomingRoad"),
-                connecting_road=connection.text("connectingRoad"),
-                contact_point=connection.text("contactPoint", "start"),
-                lane_links=tuple(
-                    (link.integer("from"), link.integer("to"))
-                    for link in connection.children("laneLink", "laneLink")
-                ),
-            )
-        )
+        parsed = _connection(connection, kind, notes)
+        if parsed is not None:
+            connections.append(parsed)
     controls = junction.children("controller", "controller")
     ordered = sorted(controls, key=lambda c: c.number("sequence", 0.0))
-    return Junction(junction.text("id"), tuple(connections), tuple(c.text("id") for c in ordered))
+    return Junction(
+        junction.text("id"), tuple(connections), tuple(c.text("id") for c in ordered), kind
+    )
+
+
+def _contact_point(connection: _Element, kind: str) -> str | None:
+    """A connection's contact point: "start" by default, none in a virtual junction."""
+    contact = connection.element.get("contactPoint")
+    if contact is None:
+        return None if kind == "virtual" else "start"
+    return contact.strip()
+
+
+def _connection(connection: _Element, kind: str, notes: list[str]) -> Connection | None:
+    """A junction's connection; None (noted) for one that names no road to lead into, or
+    no incoming road outside a virtual junction."""
+    road = connection.element.get("connectingRoad") or connection.element.get("linkedRoad")
+    incoming = connection.element.get("incomingRoad", "")
+    if not road or (not incoming and kind != "virtual"):
+        missing = "connectingRoad nor linkedRoad" if not road else "incomingRoad"
+        notes.append(f"{connection.label}: names no {missing}, left out")
+        return None
+    return Connection(
+        id=connection.text("id", ""),
+        incoming_road=incoming.strip(),
+        road=road.strip(),
+        contact_point=_contact_point(connection, kind),
+        lane_links=tuple(
+            (link.integer("from"), link.integer("to"))
+            for link in connection.children("laneLink", "laneLink")
+        ),
+        predecessor=_link_target(connection.child("predecessor", "predecessor")),
+        successor=_link_target(connection.child("successor", "successor")),
+    )

@@ -96,7 +96,7 @@ def road_lanes(road: Road, notes: list[str]) -> tuple[list[RoadLane], list[Sidew
             notes.append(f"road {road.id}: laneSection s={start:g} is too short to drive")
             continue
         poses = reference_poses(road, s)
-        centres, widths = _lateral_layout(road, section.lanes, s - start, s, notes)
+        centres, widths = lateral_layout(road, section.lanes, s - start, s, notes)
         for record in section.lanes:
             walkway = record.type == SIDEWALK_LANE_TYPE
             if not (walkway or record.type in DRIVABLE_LANE_TYPES) or record.id not in centres:
@@ -124,7 +124,7 @@ def road_markings(road: Road, notes: list[str]) -> list[RoadMarking]:
         if len(s) < 2 or not (section.center_marks or any(r.road_marks for r in section.lanes)):
             continue
         poses = reference_poses(road, s)
-        centres, widths = _lateral_layout(road, section.lanes, s - start, s, [])
+        centres, widths = lateral_layout(road, section.lanes, s - start, s, [])
         borders = {0: evaluate_cubics(road.lane_offsets, s)}
         for lane_id, centre in centres.items():
             borders[lane_id] = centre + np.sign(lane_id) * widths[lane_id] / 2.0
@@ -166,7 +166,7 @@ def _marking(
     return RoadMarking(marking_id, points[keep], color, lines, width_m=width)
 
 
-def _lateral_layout(
+def lateral_layout(
     road: Road,
     records: tuple[LaneRecord, ...],
     ds: FloatArray,

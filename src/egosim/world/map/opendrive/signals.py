@@ -5,7 +5,8 @@ the drivable lanes of that road's section at s that travel the way the signal's 
 faces ("+": along +s, "-": against, "none": both), limited to its <validity> lane ranges.
 The stop line sits at s on each such lane; a stop line within STOP_AT_START_M of a lane's
 start moves to the end of the lanes leading into it (the stop line belongs to the lane that
-ends at it). Each controller is an approach group; a junction's controllers make one
+ends at it). Several heads may govern one lane; its stop line is then the first a driver
+reaches. Each controller is an approach group; a junction's controllers make one
 intersection, in their `sequence` order.
 """
 
@@ -27,6 +28,8 @@ from egosim.world.map.opendrive.road_lanes import LaneKey, RoadLane, section_ran
 from egosim.world.map.polyline import stations
 
 STOP_AT_START_M = 1.0
+STOP_LINE_TOLERANCE_M = 0.5
+"""Heads of one lane whose lines lie further apart than this are noted."""
 _INTEGER = re.compile(r"-?\d+")
 
 # An intersection before it is numbered: (junction id or None, centre or None, groups).
@@ -42,10 +45,10 @@ class _Head:
     lane_ids: list[str] = field(default_factory=list)
 
 
-@dataclass(frozen=True)
+@dataclass
 class StopLine:
     station: float
-    light_id: str
+    light_ids: list[str]
 
 
 def build_signals(
@@ -64,10 +67,16 @@ def build_signals(
             if head is None:
                 continue
             for lane_id, station in _governed(road, signal, lanes, by_id, predecessors):
-                if lane_id in stop_lines:
-                    notes.append(f"lane {lane_id}: light {signal.id} ignored, it has one already")
+                line = stop_lines.setdefault(lane_id, StopLine(station, []))
+                if head.id in line.light_ids:
                     continue
-                stop_lines[lane_id] = StopLine(station, signal.id)
+                if abs(station - line.station) > STOP_LINE_TOLERANCE_M:
+                    notes.append(
+                        f"lane {lane_id}: light {head.id} stands at s={station:.1f} m, "
+                        f"the lane stops at its first line, s={min(station, line.station):.1f} m"
+                    )
+                line.station = min(line.station, station)
+                line.light_ids.append(head.id)
                 head.lane_ids.append(lane_id)
     lights, intersections = _intersections(document, heads, lanes, notes)
     return lights, intersections, stop_lines
@@ -162,7 +171,7 @@ def _intersections(
     for junction in document.junctions.values():
         groups = [g for g in (group(c) for c in junction.controllers) if g]
         if groups:
-            roads = {c.connecting_road for c in junction.connections}
+            roads = junction.connecting_roads
             points = [lane.centerline[:, :2] for lane in lanes.values() if lane.key.road in roads]
             mean = np.concatenate(points).mean(axis=0) if points else None
             center = None if mean is None else (float(mean[0]), float(mean[1]))
