@@ -12,11 +12,12 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from egosim.bridge import ClockMode, camera_rows, sensor_files, sensor_rows, simulation_context
-from egosim.bridge.camera_rig import open_camera_rig
+from egosim.bridge import ClockMode, simulation_context
 from egosim.bridge.context import BridgeContext
-from egosim.bridge.network import parse_network_settings
-from egosim.bridge.sensor_rig import SensorRig
+from egosim.bridge.protocol.network import parse_network_settings
+from egosim.bridge.sensors import camera_rows, sensor_files, sensor_rows
+from egosim.bridge.sensors.camera_rig import open_camera_rig
+from egosim.bridge.sensors.sensor_rig import SensorRig
 from egosim.msgs import get_profile
 from egosim.sensors import RendererUnavailableError
 from egosim.world import World

@@ -23,19 +23,19 @@ from ..replay import ReplaySession
 from ..sensors.camera_render import CameraRenderer
 from ..world import World
 from .bindings import HANDLERS
-from .camera_rig import open_camera_rig
 from .clock import ClockMode, HeaderClock
-from .codes import ControlMode
 from .context import BridgeContext, SessionState
 from .core import Bridge, Handlers, Tap
-from .network import NetworkSettings, default_network_settings, load_network_settings
 from .pipeline import Stage, Tick, TickPipeline
-from .releases import CANONICAL_PROFILE
-from .replay_rows import replay_topics
-from .sensor_rig import sensor_rig_of
+from .protocol.codes import ControlMode
+from .protocol.network import NetworkSettings, default_network_settings, load_network_settings
+from .protocol.releases import CANONICAL_PROFILE
+from .protocol.table import Direction, Row
+from .replay.replay_rows import replay_topics
+from .sensors.camera_rig import open_camera_rig
+from .sensors.sensor_rig import sensor_rig_of
 from .stages import standard_pipeline
-from .sync_session import SyncSession
-from .table import Direction, Row
+from .sync.sync_session import SyncSession
 
 __all__ = [
     "CANONICAL_PROFILE",

@@ -17,9 +17,9 @@ from __future__ import annotations
 from ..world.traffic import LightsView
 from ..world.traffic.road_users import lane_occupants_of
 from ..world.vehicle import Vehicle
-from .codes import ControlMode
 from .context import BridgeContext
 from .ego_session import EgoSession
+from .protocol.codes import ControlMode
 
 
 def drive_autopilots(context: BridgeContext) -> None:

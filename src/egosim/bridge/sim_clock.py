@@ -10,9 +10,9 @@ from __future__ import annotations
 from typing import Any
 
 from .context import BridgeContext
-from .messages import time_msg
-from .sensor_messages import clock_message
-from .table import Row
+from .protocol.messages import time_msg
+from .protocol.table import Row
+from .sensors.sensor_messages import clock_message
 
 
 def publish_clock(context: BridgeContext, row: Row) -> Any:

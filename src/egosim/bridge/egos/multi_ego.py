@@ -21,13 +21,13 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-from ..world.vehicle import Gear, Pose
-from .codes import ControlMode
-from .context import BridgeContext, RowBinder
+from ...world.vehicle import Gear, Pose
+from ..context import BridgeContext, RowBinder
+from ..ego_session import Lamps
+from ..protocol.codes import ControlMode
+from ..protocol.table import Row
+from ..protocol.units import mps, rad
 from .ego import drive_with_ctrl_cmd, ego_status_of
-from .ego_session import Lamps
-from .table import Row
-from .units import mps, rad
 
 log = logging.getLogger(__name__)
 

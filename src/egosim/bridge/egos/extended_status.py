@@ -15,15 +15,15 @@ from typing import Any
 
 import numpy as np
 
-from ..sensors.rotation import quaternion_from_euler
-from ..world.traffic import ObjectState
-from ..world.vehicle import Vehicle, VehicleStatus
-from .context import BridgeContext
+from ...sensors.rotation import quaternion_from_euler
+from ...world.traffic import ObjectState
+from ...world.vehicle import Vehicle, VehicleStatus
+from ..context import BridgeContext
+from ..protocol.messages import quaternion
+from ..protocol.table import Row
+from ..protocol.units import deg
+from ..scene.objects import object_status_fields
 from .ego import ego_motion_fields
-from .messages import quaternion
-from .objects import object_status_fields
-from .table import Row
-from .units import deg
 
 FRONT, REAR = 0, 1
 

@@ -13,13 +13,13 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ..replay import EgoState, ReplayFrame, ReplayTargets
-from ..replay import ObjectState as RecordedObject
-from ..world.recorded_scene import RecordedEgo, RecordedScene
-from ..world.traffic import ObjectState, ObjectTable, ObjectType
-from ..world.vehicle import Pose
-from .objects import to_object_frame
-from .units import swap_length_width
+from ...replay import EgoState, ReplayFrame, ReplayTargets
+from ...replay import ObjectState as RecordedObject
+from ...world.recorded_scene import RecordedEgo, RecordedScene
+from ...world.traffic import ObjectState, ObjectTable, ObjectType
+from ...world.vehicle import Pose
+from ..protocol.units import swap_length_width
+from ..scene.objects import to_object_frame
 
 
 def world_object(recorded: RecordedObject, kind: ObjectType) -> ObjectState:

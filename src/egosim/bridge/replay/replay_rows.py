@@ -13,16 +13,16 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from ..replay import BagTimeline, CommandResult, Mode, ObjectState, ReplayTopics
-from ..sensors.rotation import quaternion_from_euler
-from ..world.traffic import ObjectType
-from .context import BridgeContext
-from .messages import quaternion, time_msg, vector3
-from .network import NetworkSettings
-from .objects import object_status
+from ...replay import BagTimeline, CommandResult, Mode, ObjectState, ReplayTopics
+from ...sensors.rotation import quaternion_from_euler
+from ...world.traffic import ObjectType
+from ..context import BridgeContext
+from ..protocol.messages import quaternion, time_msg, vector3
+from ..protocol.network import NetworkSettings
+from ..protocol.table import Row
+from ..protocol.units import deg
+from ..scene.objects import object_status
 from .replayed_scene import recorded_scene, world_objects
-from .table import Row
-from .units import deg
 
 # The yaw rate ReplayInfo reports is the slope of the recorded heading over this span (s).
 YAW_RATE_SPAN_S = 0.002

@@ -18,8 +18,8 @@ import logging
 import math
 from typing import Any
 
-from ..world.traffic.ghosts import GhostPlacement, NpcGhosts, TurnSignal
-from ..world.vehicle import (
+from ...world.traffic.ghosts import GhostPlacement, NpcGhosts, TurnSignal
+from ...world.vehicle import (
     ControlCommand,
     LongitudinalMode,
     Pose,
@@ -27,10 +27,10 @@ from ..world.vehicle import (
     Vehicle,
     vehicle_model,
 )
-from .context import BridgeContext
+from ..context import BridgeContext
+from ..protocol.table import Row
+from ..protocol.units import mps, rad
 from .ground_vehicle import commanded_main_ego
-from .table import Row
-from .units import mps, rad
 
 log = logging.getLogger(__name__)
 

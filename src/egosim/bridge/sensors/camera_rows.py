@@ -23,13 +23,13 @@ from typing import Any
 
 import numpy as np
 
-from ..sensors.camera import CameraMode
-from ..sensors.image_encoding import depth_bytes, encode_image
-from .context import BridgeContext
-from .network import NetworkSettings
+from ...sensors.camera import CameraMode
+from ...sensors.image_encoding import depth_bytes, encode_image
+from ..context import BridgeContext
+from ..protocol.network import NetworkSettings
+from ..protocol.sensor_settings import camera_topic
+from ..protocol.table import Row
 from .sensor_rig import optical_frame
-from .sensor_settings import camera_topic
-from .table import Row
 
 log = logging.getLogger(__name__)
 

@@ -17,7 +17,7 @@ import re
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from ..yamltext import Problems, YamlDocument, YamlFileError, parse_yaml
+from ...yamltext import Problems, YamlDocument, YamlFileError, parse_yaml
 from .sensor_settings import SensorSettings, parse_sensor_settings
 from .table import DEFAULT_EGO_INPUT, EGO_INPUT_ROWS, ROWS, ROWS_BY_KEY, Direction, Row
 

@@ -10,16 +10,16 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..world import Ego
-from ..world.vehicle import (
+from ...world import Ego
+from ...world.vehicle import (
     BodyVelocityCommand,
     SideEffortCommand,
     SkidSteerVehicle,
     Vehicle,
 )
-from .codes import ControlMode
-from .context import BridgeContext
-from .table import Row
+from ..context import BridgeContext
+from ..protocol.codes import ControlMode
+from ..protocol.table import Row
 
 # GVDirectCmd.steerType (the protocol document's "Table 1" is missing; these are egosim's).
 STEER_TYPE_SKID = 0  # throttle and skidSteering drive the two sides

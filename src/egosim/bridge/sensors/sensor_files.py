@@ -17,12 +17,12 @@ import logging
 from pathlib import Path
 from typing import Any
 
-from ..datapaths import PathOutsideRootsError, resolve_in_roots
-from ..sensors import encode_pcd, gps_imu_snapshot
-from ..sensors.camera import CameraMode
-from ..sensors.image_encoding import ImageFormat, encode_depth_tiff, encode_image
-from .context import BridgeContext
-from .table import Row
+from ...datapaths import PathOutsideRootsError, resolve_in_roots
+from ...sensors import encode_pcd, gps_imu_snapshot
+from ...sensors.camera import CameraMode
+from ...sensors.image_encoding import ImageFormat, encode_depth_tiff, encode_image
+from ..context import BridgeContext
+from ..protocol.table import Row
 
 log = logging.getLogger(__name__)
 

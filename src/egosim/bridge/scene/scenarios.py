@@ -16,15 +16,15 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
-from ..datapaths import PathOutsideRootsError, resolve_in_roots
-from ..scenario_files import SCENARIO_SUFFIXES, read_scenario_file
-from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, ScenarioLoadReport
-from ..yamltext import YamlFileError
-from .context import BridgeContext
-from .network import network_settings_of, section_of
-from .sensor_rig import sensor_rig_of
+from ...datapaths import PathOutsideRootsError, resolve_in_roots
+from ...scenario_files import SCENARIO_SUFFIXES, read_scenario_file
+from ...world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, ScenarioLoadReport
+from ...yamltext import YamlFileError
+from ..context import BridgeContext
+from ..protocol.network import network_settings_of, section_of
+from ..protocol.table import Row
+from ..sensors.sensor_rig import sensor_rig_of
 from .storyboard import scenario_drives_ego
-from .table import Row
 
 log = logging.getLogger(__name__)
 

@@ -12,10 +12,10 @@ from __future__ import annotations
 import logging
 from typing import Any
 
-from .context import BridgeContext
+from ..context import BridgeContext
+from ..protocol.table import Row
 from .sensor_messages import gps_message, imu_message, point_cloud, radar_message, tf_message
 from .sensor_rig import GPS_INDEX, IMU_INDEX, LIDAR_INDEX, finite_mount
-from .table import Row
 
 log = logging.getLogger(__name__)
 

@@ -7,15 +7,15 @@ from typing import Any
 
 import numpy as np
 
-from ..msgs import Profile
-from ..world import World
-from ..world.map.georef import GeoReference
-from ..world.traffic import ObjectType
-from ..world.vehicle import VEHICLE_CATALOGUE, VehicleModel
-from .context import BridgeContext
-from .messages import vector3
-from .table import Row
-from .units import deg
+from ...msgs import Profile
+from ...world import World
+from ...world.map.georef import GeoReference
+from ...world.traffic import ObjectType
+from ...world.vehicle import VEHICLE_CATALOGUE, VehicleModel
+from ..context import BridgeContext
+from ..protocol.messages import vector3
+from ..protocol.table import Row
+from ..protocol.units import deg
 
 log = logging.getLogger(__name__)
 

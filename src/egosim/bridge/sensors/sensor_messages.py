@@ -7,12 +7,12 @@ from typing import Any
 
 import numpy as np
 
-from ..msgs import Profile
-from ..sensors import GpsFix, ImuReading, Transform
-from ..sensors.radar import RadarDetections
-from .messages import header as make_header
-from .messages import quaternion, vector3
-from .units import deg
+from ...msgs import Profile
+from ...sensors import GpsFix, ImuReading, Transform
+from ...sensors.radar import RadarDetections
+from ..protocol.messages import header as make_header
+from ..protocol.messages import quaternion, vector3
+from ..protocol.units import deg
 
 POINT_FIELDS = ("x", "y", "z", "intensity")
 FLOAT32 = 7  # sensor_msgs/PointField datatype code

@@ -36,14 +36,14 @@ import logging
 from contextlib import nullcontext
 from typing import Any
 
-from ..msgs import get_profile
-from ..world.vehicle import Gear
-from .context import BridgeContext
-from .ego import ego_status_of, on_ctrl_cmd
-from .releases import canonical, convert
-from .scenarios import ScenarioRequest, ScenarioRequestError, load_requested_scenario
+from ...msgs import get_profile
+from ...world.vehicle import Gear
+from ..context import BridgeContext
+from ..egos.ego import ego_status_of, on_ctrl_cmd
+from ..protocol.releases import canonical, convert
+from ..protocol.table import Row
+from ..scene.scenarios import ScenarioRequest, ScenarioRequestError, load_requested_scenario
 from .sync_session import MAX_PENDING_ACTIONS, Action, SyncSession
-from .table import Row
 
 log = logging.getLogger(__name__)
 

@@ -56,11 +56,11 @@ from dataclasses import dataclass, field, fields, replace
 from enum import Enum
 from typing import Any, TypeVar, cast
 
-from ..sensors import GpsNoise, ImuNoise, LidarConfig, MountPose, SensorConfigError
-from ..sensors.camera import CameraConfig, CameraMode, FovAxis
-from ..sensors.image_encoding import ImageFormat
-from ..sensors.radar import RadarConfig, RadarNoise
-from ..yamltext import Problems, YamlDocument, YamlFileError
+from ...sensors import GpsNoise, ImuNoise, LidarConfig, MountPose, SensorConfigError
+from ...sensors.camera import CameraConfig, CameraMode, FovAxis
+from ...sensors.image_encoding import ImageFormat
+from ...sensors.radar import RadarConfig, RadarNoise
+from ...yamltext import Problems, YamlDocument, YamlFileError
 from .units import rad
 
 T = TypeVar("T")

@@ -13,11 +13,11 @@ import logging
 import math
 from typing import Any
 
-from ..world import UnknownObjectModelError
-from .context import BridgeContext
+from ...world import UnknownObjectModelError
+from ..context import BridgeContext
+from ..protocol.table import Row
+from ..protocol.units import rad
 from .sync_mode import at_frame, result_message, service_response
-from .table import Row
-from .units import rad
 
 log = logging.getLogger(__name__)
 

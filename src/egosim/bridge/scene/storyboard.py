@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import logging
 
-from .codes import ControlMode
-from .context import BridgeContext
+from ..context import BridgeContext
+from ..protocol.codes import ControlMode
 
 log = logging.getLogger("egosim.openscenario")
 

@@ -13,12 +13,12 @@ from collections.abc import Callable
 from dataclasses import replace
 from functools import lru_cache
 
-from ..sensors import RendererUnavailableError
-from ..sensors.camera_capture import Image, capture
-from ..sensors.camera_render import CameraRenderer
-from ..sensors.camera_scene import StaticScene, build_static_scene
-from ..world import World
-from ..world.map import LaneMap
+from ...sensors import RendererUnavailableError
+from ...sensors.camera_capture import Image, capture
+from ...sensors.camera_render import CameraRenderer
+from ...sensors.camera_scene import StaticScene, build_static_scene
+from ...world import World
+from ...world.map import LaneMap
 from .sensor_rig import MAIN_EGO, SensorRig
 
 log = logging.getLogger(__name__)

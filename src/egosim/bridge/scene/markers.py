@@ -17,15 +17,15 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from ..msgs import Profile
-from ..sensors.rotation import quaternion_from_euler
-from ..world.map import LaneMap
-from ..world.map.sections import lane_cross_section
-from ..world.signals.aspects import shown_colour
-from ..world.traffic import ObjectType
-from .context import BridgeContext
-from .messages import quaternion, vector3
-from .table import Row
+from ...msgs import Profile
+from ...sensors.rotation import quaternion_from_euler
+from ...world.map import LaneMap
+from ...world.map.sections import lane_cross_section
+from ...world.signals.aspects import shown_colour
+from ...world.traffic import ObjectType
+from ..context import BridgeContext
+from ..protocol.messages import quaternion, vector3
+from ..protocol.table import Row
 
 LIFETIME_PERIODS = 5
 """Moving markers live this many periods of the row (0.5 s at 10 Hz): a missed message does

@@ -12,9 +12,9 @@ from __future__ import annotations
 import logging
 from typing import Any
 
-from ..world.signals import OFF, SignalError
-from .context import BridgeContext
-from .table import Row
+from ...world.signals import OFF, SignalError
+from ..context import BridgeContext
+from ..protocol.table import Row
 
 log = logging.getLogger(__name__)
 

@@ -18,9 +18,9 @@ from typing import Any
 from rosbags.interfaces import Nodetype
 from rosbags.typesys.store import Typestore
 
-from ..msgs import PROFILES, MessageType, ServiceType, UnknownTypeError, get_profile
-from ..msgs.defaults import default_message
-from ..msgs.fulltext import BUILTIN_TIME_TYPES, element_desc
+from ...msgs import PROFILES, MessageType, ServiceType, UnknownTypeError, get_profile
+from ...msgs.defaults import default_message
+from ...msgs.fulltext import BUILTIN_TIME_TYPES, element_desc
 
 CANONICAL_PROFILE = "26.r1"
 

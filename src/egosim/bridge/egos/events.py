@@ -13,11 +13,11 @@ import logging
 from dataclasses import replace
 from typing import Any
 
-from ..world.vehicle import Gear
-from .codes import ControlMode
-from .context import BridgeContext
-from .ego_session import Lamps
-from .table import Row
+from ...world.vehicle import Gear
+from ..context import BridgeContext
+from ..ego_session import Lamps
+from ..protocol.codes import ControlMode
+from ..protocol.table import Row
 
 log = logging.getLogger(__name__)
 

@@ -16,7 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..sensors import (
+from ...sensors import (
     EgoKinematics,
     GpsFix,
     GpsModel,
@@ -29,15 +29,15 @@ from ..sensors import (
     base_link_to_sensor,
     map_to_base_link,
 )
-from ..sensors.camera import OPTICAL_IN_BODY
-from ..sensors.radar import RadarDetections, RadarModel
-from ..sensors.rotation import quaternion_from_matrix
-from ..world import World
-from ..world.map import GeoReference
-from ..world.vehicle import VehicleStatus, sensor_mount_origin
-from .network import NetworkSettings
-from .sensor_settings import SENSOR_KINDS, CameraSettings, SensorSettings, camera_topic
-from .table import DEFAULT_CAMERA_TOPIC
+from ...sensors.camera import OPTICAL_IN_BODY
+from ...sensors.radar import RadarDetections, RadarModel
+from ...sensors.rotation import quaternion_from_matrix
+from ...world import World
+from ...world.map import GeoReference
+from ...world.vehicle import VehicleStatus, sensor_mount_origin
+from ..protocol.network import NetworkSettings
+from ..protocol.sensor_settings import SENSOR_KINDS, CameraSettings, SensorSettings, camera_topic
+from ..protocol.table import DEFAULT_CAMERA_TOPIC
 
 GPS_INDEX, IMU_INDEX, LIDAR_INDEX = (SENSOR_KINDS.index(kind) for kind in ("gps", "imu", "lidar"))
 MAIN_EGO = 0

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from ..msgs import Profile
+from ...msgs import Profile
 
 
 def vector3(profile: Profile, xyz: Sequence[float]) -> Any:

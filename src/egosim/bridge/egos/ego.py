@@ -7,14 +7,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..msgs import Profile
-from ..world import EgoLaneState
-from ..world.vehicle import ControlCommand, Vehicle, VehicleStatus
-from .context import BridgeContext
+from ...msgs import Profile
+from ...world import EgoLaneState
+from ...world.vehicle import ControlCommand, Vehicle, VehicleStatus
+from ..context import BridgeContext
+from ..protocol.messages import vector3
+from ..protocol.table import Row
+from ..protocol.units import deg, heading_deg, mps
 from .ground_vehicle import commanded_ego
-from .messages import vector3
-from .table import Row
-from .units import deg, heading_deg, mps
 
 WHEEL_SUFFIXES = (
     ("fl", "front_left"),

@@ -12,13 +12,13 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from ..msgs import Profile
-from ..world.collision import VehicleCollision
-from ..world.traffic import ObjectState
-from .context import BridgeContext
-from .messages import vector3
-from .table import Row
-from .units import heading_deg, kmh, swap_length_width
+from ...msgs import Profile
+from ...world.collision import VehicleCollision
+from ...world.traffic import ObjectState
+from ..context import BridgeContext
+from ..protocol.messages import vector3
+from ..protocol.table import Row
+from ..protocol.units import heading_deg, kmh, swap_length_width
 
 
 def to_object_frame(vector: Sequence[float], heading: float) -> tuple[float, float, float]:
