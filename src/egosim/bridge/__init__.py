@@ -10,6 +10,15 @@ to a ROS node; `context.tick(dt)` advances the simulation through the pipeline::
 
 Without a node (tests, benchmarks), leave `bridge` out: the pipeline has no publish
 stage and handlers can be called directly with `context.row(key)`.
+
+Two storeys. At the bottom, protocol/: the table, the network and sensor settings that
+override it, the protocol's codes, units and releases. Above it, the engine in this
+folder: the context handlers see (context.py), the binding of rows to the node
+(core.py), which handler serves each row (bindings.py), the tick pipeline and its
+stages (pipeline.py, stages.py), the header clock and /clock (clock.py, sim_clock.py),
+and each ego's session with what its control mode means (ego_session.py,
+control_modes.py). The handlers are grouped by what they serve: egos/, scene/,
+sensors/ (cameras too), sync/ and replay/.
 """
 
 from __future__ import annotations

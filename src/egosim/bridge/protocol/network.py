@@ -5,7 +5,7 @@ ego_input: MoraiCmdController      # or WeBOTCmdController, GVDirectCmd, GVState
 rows:
   ego_status: {name: /Ego_topic, rate_hz: 100}
   collision: {enabled: false}
-sensors:                           # mounts, noise, LiDAR geometry (bridge/sensor_settings.py)
+sensors:                           # mounts, noise, LiDAR geometry (sensor_settings.py)
   lidar: {channels: 32}
 command_timeout_s: 0.5             # dead-man brake after this silence; off when absent
 """

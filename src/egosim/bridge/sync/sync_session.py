@@ -1,5 +1,5 @@
 """The state of MORAI's synchronous mode: who runs it, the frame, the tick length, and the
-requests kept for later frames (the services are in bridge/sync_mode.py).
+requests kept for later frames (the services are in bridge/sync/sync_mode.py).
 
 Any run can be switched into synchronous mode (SyncModeCmd start) and back out of it
 (stop); while it is on, the world advances only on WaitForTick and the loop does not
