@@ -12,10 +12,10 @@ from typing import Any
 from .context import BridgeContext
 from .protocol.messages import time_msg
 from .protocol.table import Row
-from .sensors.sensor_messages import clock_message
 
 
 def publish_clock(context: BridgeContext, row: Row) -> Any:
     if not context.clock.publishes_clock:
         return None
-    return clock_message(context.profile, time_msg(context.profile, context.stamp_ns()))
+    profile = context.profile
+    return profile.message("rosgraph_msgs/Clock").new(clock=time_msg(profile, context.stamp_ns()))

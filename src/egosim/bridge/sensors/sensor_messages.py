@@ -83,10 +83,6 @@ def tf_message(profile: Profile, stamp_ns: int, transforms: Iterable[Transform])
     )
 
 
-def clock_message(profile: Profile, stamp: Any) -> Any:
-    return profile.message("rosgraph_msgs/Clock").new(clock=stamp)
-
-
 def radar_message(profile: Profile, header: Any, detections: RadarDetections) -> Any:
     """morai_msgs/RadarDetections: azimuth in degrees, detection_id the object's id (16 bit)."""
     detection = profile.message("morai_msgs/RadarDetection")
