@@ -1,9 +1,12 @@
-"""The main ego's cameras at run time: the renderer, the map's scene, one image per camera.
+"""The main ego's cameras at run time: the renderer, the map's static scene, one image per
+camera.
 
-The static scene is built once per map (again after a scenario load changes the map),
-and kept for the next rig on the same map (maps are immutable, and egosim.maps hands out
-the map it read before for the same source: a batch worker builds each scene once).
-A camera's mount comes from the SensorRig (SensorPosControl moves it there).
+The static scene is built where the rig is, from the world's map (a world keeps its map:
+a scenario load must name the one running), and loaded into the renderer there, so the
+first frame costs what the next ones do. It is kept for the next rig on the same map
+(maps are immutable, and egosim.maps hands out the map it read before for the same
+source: a batch worker builds each scene once). A camera's mount comes from the
+SensorRig (SensorPosControl moves it there).
 """
 
 from __future__ import annotations
@@ -29,11 +32,13 @@ static_scene = lru_cache(maxsize=SCENES_KEPT)(build_static_scene)
 
 
 class CameraRig:
-    def __init__(self, renderer: CameraRenderer) -> None:
-        self.renderer = renderer
+    """The main ego's cameras on `renderer`, over the static scene of the world's map
+    (loaded into the renderer here)."""
 
-    def scene(self, lane_map: LaneMap) -> StaticScene:
-        return static_scene(lane_map)
+    def __init__(self, renderer: CameraRenderer, scene: StaticScene) -> None:
+        self.renderer = renderer
+        self.scene = scene
+        renderer.load(scene)
 
     def image(self, sensors: SensorRig, world: World, k: int) -> Image:
         """Camera k's image of the world as it is now; the main ego does not see itself."""
@@ -45,7 +50,7 @@ class CameraRig:
         return capture(
             config,
             self.renderer,
-            self.scene(world.map),
+            self.scene,
             world.ego_status(MAIN_EGO).pose,
             world.objects(),
             world.signals.aspects(),
@@ -56,9 +61,9 @@ class CameraRig:
 def open_camera_rig(
     sensors: SensorRig, open_renderer: Callable[[], CameraRenderer], lane_map: LaneMap
 ) -> CameraRig | None:
-    """A CameraRig on the renderer `open_renderer` gives, its scene of `lane_map` built
-    (so the first frame does not stall the loop), or None (logged in one line) when no
-    camera is configured or no renderer can run here."""
+    """A CameraRig on the renderer `open_renderer` gives, over the static scene of
+    `lane_map` (built and loaded now, so the first frame does not stall the loop), or
+    None (logged in one line) when no camera is configured or no renderer can run here."""
     if not sensors.cameras:
         return None
     try:
@@ -68,6 +73,4 @@ def open_camera_rig(
         return None
     described = getattr(renderer, "description", type(renderer).__name__)
     log.info("cameras: %d, rendered with %s", len(sensors.cameras), described)
-    rig = CameraRig(renderer)
-    rig.scene(lane_map)
-    return rig
+    return CameraRig(renderer, static_scene(lane_map))
