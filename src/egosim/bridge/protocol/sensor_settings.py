@@ -61,6 +61,7 @@ from ...sensors.camera import CameraConfig, CameraMode, FovAxis
 from ...sensors.image_encoding import ImageFormat
 from ...sensors.radar import RadarConfig, RadarNoise
 from ...yamltext import Problems, YamlDocument, YamlFileError
+from .table import DEPTH_TOPIC
 from .units import rad
 
 T = TypeVar("T")
@@ -79,8 +80,6 @@ RADAR_NUMBERS = (
     "max_range_m",
     "max_detections",
 )
-DEPTH_TOPIC = "/image"
-"""MORAI's default topic of a depth camera (sensor_msgs/Image)."""
 
 MOUNT_FIELDS = {
     "x": "x",

@@ -40,6 +40,9 @@ EGO_INPUT_ROWS: dict[str, str] = {
 }
 DEFAULT_EGO_INPUT = "MoraiCmdController"
 DEFAULT_CAMERA_TOPIC = "/image_jpeg/compressed"
+DEPTH_TOPIC = "/image"
+"""MORAI's default topic of a depth camera (sensor_msgs/Image); the camera row's is a
+colour camera's."""
 
 ROWS: tuple[Row, ...] = (
     # Ego network: command inputs (user -> sim)
