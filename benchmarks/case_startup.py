@@ -48,7 +48,7 @@ from egosim.app.inbox import Inbox
 from egosim.app.options import RunOptions
 from egosim.app.runner import build_world
 from egosim.bridge import HANDLERS, Bridge, ClockMode, simulation_context
-from egosim.bridge.network import load_network_settings
+from egosim.bridge.protocol.network import load_network_settings
 from egosim.render import open_renderer
 from egosim.ros1 import Master, Node
 part("import")

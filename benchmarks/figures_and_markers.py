@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from egosim.bridge import simulation_context
-from egosim.bridge.markers import build_map_markers, build_scene_markers
+from egosim.bridge.scene.markers import build_map_markers, build_scene_markers
 from egosim.msgs import get_profile
 from egosim.plots import figure_png, map_figure, write_report
 from egosim.report import RecordedDrive, drive_report_blocks

@@ -18,9 +18,9 @@ from pathlib import Path
 from egosim.app.recording import TopicRecorder, open_recorder
 from egosim.bridge import simulation_context
 from egosim.bridge.context import BridgeContext
-from egosim.bridge.ego import publish_ego_status
-from egosim.bridge.objects import publish_object_list
-from egosim.bridge.replay_rows import advance_replay, publish_replay_info, serve_sim_proc
+from egosim.bridge.egos.ego import publish_ego_status
+from egosim.bridge.replay.replay_rows import advance_replay, publish_replay_info, serve_sim_proc
+from egosim.bridge.scene.objects import publish_object_list
 from egosim.msgs import get_profile
 from egosim.world import World
 from egosim.world.map import build_builtin_map

@@ -22,8 +22,8 @@ from contextlib import contextmanager
 
 from loopback import free_port, start_simulator
 
-from egosim.bridge.network import default_network_settings
-from egosim.bridge.table import Direction
+from egosim.bridge.protocol.network import default_network_settings
+from egosim.bridge.protocol.table import Direction
 from egosim.msgs import Profile, ServiceType, get_profile
 from egosim.ros1 import Node
 

@@ -13,7 +13,7 @@ import time
 
 from egosim.bridge import simulation_context
 from egosim.bridge.context import BridgeContext
-from egosim.bridge.sync_mode import at_frame
+from egosim.bridge.sync.sync_mode import at_frame
 from egosim.world import World
 from egosim.world.map import build_builtin_map
 

@@ -1,5 +1,6 @@
 """The architecture's import rules (docs/ARCHITECTURE.md): imports point down the layers,
-the pure core never reaches the ROS side, and no modules import each other in a circle.
+the pure core never reaches the ROS side, the bridge's protocol storey stands on nothing
+else of the bridge, and no modules import each other in a circle.
 
 Every import counts, those under `if TYPE_CHECKING:` and inside functions too.
 """
@@ -36,6 +37,8 @@ LAYERS = (
 # Below in the order, yet out of reach: the pure core knows no ROS, ROS knows no driving.
 PURE = ("evaluation", "scenario_files", "maps", "sensors", "world")
 ROS_SIDE = ("ros1", "msgs")
+# The bridge's bottom storey: the table, its settings, codes, units and releases.
+BRIDGE_PROTOCOL = "egosim.bridge.protocol"
 
 
 @pytest.fixture(scope="module")
@@ -79,6 +82,23 @@ def test_the_pure_core_and_the_ros_side_do_not_know_each_other(
         or (layer_of(module) in ROS_SIDE and layer_of(imported) in PURE)
     )
     assert crossing == [], "imports between the pure core and ROS:\n" + "\n".join(crossing)
+
+
+def in_package(module: str, package: str) -> bool:
+    return module == package or module.startswith(package + ".")
+
+
+def test_the_bridge_protocol_storey_stands_on_nothing_above_it(
+    imports: dict[str, set[str]],
+) -> None:
+    upward = sorted(
+        f"{module} -> {imported}"
+        for module, targets in imports.items()
+        if in_package(module, BRIDGE_PROTOCOL)
+        for imported in targets
+        if in_package(imported, "egosim.bridge") and not in_package(imported, BRIDGE_PROTOCOL)
+    )
+    assert upward == [], "bridge/protocol/ imports the storey above it:\n" + "\n".join(upward)
 
 
 def test_no_modules_import_each_other_in_a_circle(imports: dict[str, set[str]]) -> None:

@@ -7,18 +7,22 @@ import logging
 import math
 from pathlib import Path
 from types import SimpleNamespace
+from typing import Any
 
 import numpy as np
 import pytest
 from PIL import Image
 
-from egosim.bridge import ClockMode, camera_rows, sensor_files, sensor_rows, simulation_context
-from egosim.bridge.camera_rig import open_camera_rig
+from egosim.bridge import ClockMode, simulation_context
 from egosim.bridge.context import BridgeContext
-from egosim.bridge.network import parse_network_settings
-from egosim.bridge.sensor_rig import SensorRig
+from egosim.bridge.protocol.network import parse_network_settings
+from egosim.bridge.sensors import camera_rows, sensor_files, sensor_rows
+from egosim.bridge.sensors.camera_rig import open_camera_rig
+from egosim.bridge.sensors.sensor_rig import SensorRig
 from egosim.msgs import get_profile
 from egosim.sensors import RendererUnavailableError
+from egosim.sensors.camera_render import RenderRequest
+from egosim.sensors.camera_scene import StaticScene
 from egosim.world import World
 from egosim.world.map import build_builtin_map
 from egosim.world.vehicle import DEFAULT_EGO_MODEL, sensor_mount_origin, vehicle_model
@@ -165,6 +169,38 @@ def test_save_sensor_data_writes_each_camera_frame(tmp_path: Path) -> None:
     assert names == ["f.json", "f.pcd", "f_Camera-1.jpg", "f_Camera-2.png", "f_Camera.tiff"]
     depth = np.asarray(Image.open(tmp_path / "f_Camera.tiff"))
     assert depth.dtype == np.float32 and depth.shape == (120, 160)
+
+
+class WatchedRenderer:
+    """The real renderer, noting each scene it is asked to load and each it draws."""
+
+    def __init__(self, inner: Any) -> None:
+        self.inner = inner
+        self.loaded: list[StaticScene] = []
+        self.drawn: list[StaticScene] = []
+
+    def load(self, scene: StaticScene) -> None:
+        self.loaded.append(scene)
+        self.inner.load(scene)
+
+    def render(self, request: RenderRequest) -> Any:
+        self.drawn.append(request.scene)
+        return self.inner.render(request)
+
+
+def test_the_map_scene_is_built_and_loaded_with_the_rig_not_in_a_frame() -> None:
+    watched = WatchedRenderer(renderer())
+    world = World(build_builtin_map("straight"))
+    context = simulation_context(world, open_renderer=lambda: watched)
+    assert context.cameras is not None
+    scene = context.cameras.scene
+    assert watched.loaded == [scene] and watched.drawn == []
+    for _ in range(3):
+        camera_rows.camera_image_message(context, 0)
+    assert watched.loaded == [scene] and watched.drawn == [scene] * 3
+    # The next simulator on the same map (a batch worker's next case) reuses the scene.
+    again = simulation_context(World(world.map), open_renderer=lambda: watched)
+    assert again.cameras is not None and again.cameras.scene is scene
 
 
 def test_without_a_renderer_the_cameras_are_off_in_one_line(caplog) -> None:

@@ -7,8 +7,8 @@ import pytest
 
 from egosim.bridge import HANDLERS, ControlMode, simulation_context
 from egosim.bridge.context import BridgeContext
-from egosim.bridge.events import OPTION_CTRL_MODE
-from egosim.bridge.scenarios import apply_network_settings
+from egosim.bridge.egos.events import OPTION_CTRL_MODE
+from egosim.bridge.scene.scenarios import apply_network_settings
 from egosim.world import World
 from egosim.world.map import build_builtin_map
 from egosim.world.scenario import parse_scenario

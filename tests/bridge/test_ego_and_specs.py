@@ -7,10 +7,10 @@ import math
 import pytest
 
 from egosim.bridge import simulation_context
-from egosim.bridge.ego import control_command, ego_vehicle_status, on_ctrl_cmd
-from egosim.bridge.messages import header
-from egosim.bridge.specs import map_spec, vehicle_spec
-from egosim.bridge.units import heading_deg
+from egosim.bridge.egos.ego import control_command, ego_vehicle_status, on_ctrl_cmd
+from egosim.bridge.protocol.messages import header
+from egosim.bridge.protocol.units import heading_deg
+from egosim.bridge.scene.specs import map_spec, vehicle_spec
 from egosim.msgs import get_profile
 from egosim.world import World
 from egosim.world.map import build_builtin_map

@@ -16,9 +16,9 @@ from egosim.bridge.context import (
     BridgeContext,
 )
 from egosim.bridge.control_modes import drive_autopilots
-from egosim.bridge.ghost import on_ghost_ctrl_cmd, on_npc_ghost
-from egosim.bridge.multi_ego import on_multi_ego_setting
-from egosim.bridge.specs import vehicle_model_of
+from egosim.bridge.egos.ghost import on_ghost_ctrl_cmd, on_npc_ghost
+from egosim.bridge.egos.multi_ego import on_multi_ego_setting
+from egosim.bridge.scene.specs import vehicle_model_of
 from egosim.msgs import get_profile
 from egosim.world import World
 from egosim.world.map import build_builtin_map

@@ -9,7 +9,7 @@ import pytest
 
 from egosim.bridge import HANDLERS, ControlMode, simulation_context
 from egosim.bridge.context import BridgeContext
-from egosim.bridge.specs import serve_vehicle_spec
+from egosim.bridge.scene.specs import serve_vehicle_spec
 from egosim.msgs import get_profile
 from egosim.world import World
 from egosim.world.map import build_builtin_map

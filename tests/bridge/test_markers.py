@@ -8,8 +8,8 @@ import math
 import pytest
 
 from egosim.bridge import BridgeContext, simulation_context
-from egosim.bridge.markers import build_map_markers, build_scene_markers
-from egosim.bridge.network import parse_network_settings
+from egosim.bridge.protocol.network import parse_network_settings
+from egosim.bridge.scene.markers import build_map_markers, build_scene_markers
 from egosim.msgs import get_profile
 from egosim.world import World
 from egosim.world.map import build_builtin_map

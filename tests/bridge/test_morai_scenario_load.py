@@ -12,7 +12,7 @@ import pytest
 
 from egosim.bridge import simulation_context
 from egosim.bridge.context import BridgeContext
-from egosim.bridge.scenarios import (
+from egosim.bridge.scene.scenarios import (
     on_scenario_load,
     prepare_scenario,
     prepare_scenario_service,

@@ -6,9 +6,9 @@ import pytest
 
 from egosim.bridge import simulation_context
 from egosim.bridge.bindings import HANDLERS
-from egosim.bridge.network import default_network_settings, parse_network_settings
-from egosim.bridge.scenarios import apply_network_settings
-from egosim.bridge.table import EGO_INPUT_ROWS, ROWS, Direction
+from egosim.bridge.protocol.network import default_network_settings, parse_network_settings
+from egosim.bridge.protocol.table import EGO_INPUT_ROWS, ROWS, Direction
+from egosim.bridge.scene.scenarios import apply_network_settings
 from egosim.cli import main
 from egosim.msgs import get_profile
 from egosim.world import World

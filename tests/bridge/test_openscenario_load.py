@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 
 from egosim.bridge import simulation_context
-from egosim.bridge.codes import ControlMode
-from egosim.bridge.scenarios import on_scenario_load, prepare_scenario
+from egosim.bridge.protocol.codes import ControlMode
+from egosim.bridge.scene.scenarios import on_scenario_load, prepare_scenario
 from egosim.maps import load_map
 from egosim.msgs import get_profile
 from egosim.world import World

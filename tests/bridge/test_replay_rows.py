@@ -11,15 +11,15 @@ import pytest
 
 from egosim.bridge import simulation_context
 from egosim.bridge.context import BridgeContext
-from egosim.bridge.ego import publish_ego_status
-from egosim.bridge.objects import object_status, publish_object_list
-from egosim.bridge.replay_rows import (
+from egosim.bridge.egos.ego import publish_ego_status
+from egosim.bridge.replay.replay_rows import (
     advance_replay,
     publish_replay_info,
     publish_sim_proc_status,
     serve_sim_proc,
 )
-from egosim.bridge.replayed_scene import world_object
+from egosim.bridge.replay.replayed_scene import world_object
+from egosim.bridge.scene.objects import object_status, publish_object_list
 from egosim.msgs import get_profile
 from egosim.replay import ObjectState
 from egosim.world import World

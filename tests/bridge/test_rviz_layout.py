@@ -6,7 +6,7 @@ from pathlib import Path
 
 import yaml
 
-from egosim.bridge.table import ROWS_BY_KEY
+from egosim.bridge.protocol.table import ROWS_BY_KEY
 
 LAYOUT = Path(__file__).parents[2] / "examples" / "egosim.rviz"
 # RViz display classes and the message types they read.

@@ -8,7 +8,7 @@ import threading
 from pathlib import Path
 
 from egosim.bridge import simulation_context
-from egosim.bridge.scenarios import ScenarioRequest, on_scenario_load, prepare_scenario
+from egosim.bridge.scene.scenarios import ScenarioRequest, on_scenario_load, prepare_scenario
 from egosim.msgs import get_profile
 from egosim.world import World
 from egosim.world.map import build_builtin_map

@@ -12,16 +12,11 @@ from typing import Any
 import numpy as np
 import pytest
 
-from egosim.bridge import (
-    HANDLERS,
-    default_network_settings,
-    sensor_files,
-    sensor_rows,
-    simulation_context,
-)
+from egosim.bridge import HANDLERS, default_network_settings, simulation_context
 from egosim.bridge.context import BridgeContext
-from egosim.bridge.sensor_rig import LIDAR_INDEX
-from egosim.bridge.sensor_settings import LidarSettings, SensorSettings
+from egosim.bridge.protocol.sensor_settings import LidarSettings, SensorSettings
+from egosim.bridge.sensors import sensor_files, sensor_rows
+from egosim.bridge.sensors.sensor_rig import LIDAR_INDEX
 from egosim.msgs import get_profile
 from egosim.sensors import LidarConfig
 from egosim.world import World

@@ -6,8 +6,8 @@ import math
 
 import pytest
 
-from egosim.bridge.network import default_network_settings, parse_network_settings
-from egosim.bridge.sensor_settings import SensorSettings
+from egosim.bridge.protocol.network import default_network_settings, parse_network_settings
+from egosim.bridge.protocol.sensor_settings import SensorSettings
 from egosim.sensors import GpsNoise, LidarConfig, MountPose
 from egosim.yamltext import YamlFileError
 

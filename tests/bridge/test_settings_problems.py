@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from egosim.bridge.network import parse_network_settings
+from egosim.bridge.protocol.network import parse_network_settings
 from egosim.yamltext import YamlFileError
 
 MISTAKES = """\

@@ -9,8 +9,8 @@ import itertools
 from typing import Any
 
 from egosim.bridge import BridgeContext, ClockMode, simulation_context
-from egosim.bridge.releases import canonical, convert
-from egosim.bridge.sync_mode import serve_sync_mode_cmd, serve_wait_for_tick
+from egosim.bridge.protocol.releases import canonical, convert
+from egosim.bridge.sync.sync_mode import serve_sync_mode_cmd, serve_wait_for_tick
 from egosim.msgs import get_profile
 from egosim.world import World
 from egosim.world.map import build_builtin_map

@@ -7,8 +7,8 @@ from __future__ import annotations
 from typing import Any
 
 from egosim.bridge import BridgeContext, simulation_context
-from egosim.bridge.sync_mode import MAX_PENDING_ACTIONS, at_frame, serve_wait_for_tick
-from egosim.bridge.table import ROWS_BY_KEY
+from egosim.bridge.protocol.table import ROWS_BY_KEY
+from egosim.bridge.sync.sync_mode import MAX_PENDING_ACTIONS, at_frame, serve_wait_for_tick
 from egosim.world import World
 from egosim.world.map import build_builtin_map
 

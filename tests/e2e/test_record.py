@@ -14,9 +14,9 @@ from typing import Any
 import pytest
 
 from egosim.bridge.bindings import HANDLERS
-from egosim.bridge.camera_rows import camera_topic_names
-from egosim.bridge.network import load_network_settings
-from egosim.bridge.table import Direction
+from egosim.bridge.protocol.network import load_network_settings
+from egosim.bridge.protocol.table import Direction
+from egosim.bridge.sensors.camera_rows import camera_topic_names
 from egosim.replay import needs_repair
 from tests.conftest import EVENT_TIMEOUT_S
 from tests.e2e.driver import RospyDriver

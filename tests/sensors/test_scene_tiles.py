@@ -11,8 +11,9 @@ import numpy as np
 
 from egosim.sensors.camera import CameraConfig, CameraView, project, scene_matrices
 from egosim.sensors.camera_capture import capture
+from egosim.sensors.camera_frame_mesh import build_frame_mesh
 from egosim.sensors.camera_render import RenderRequest
-from egosim.sensors.camera_scene import StaticScene, build_frame_mesh
+from egosim.sensors.camera_scene import StaticScene
 from egosim.sensors.scene_tiles import SceneTiles, coarse_beyond_m, visible_ranges
 from egosim.world import World
 from egosim.world.map import build_builtin_map

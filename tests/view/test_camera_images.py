@@ -8,7 +8,7 @@ import numpy as np
 from PIL import Image
 
 from egosim.bridge import ClockMode, simulation_context
-from egosim.bridge.network import parse_network_settings
+from egosim.bridge.protocol.network import parse_network_settings
 from egosim.view.camera_images import IMAGE_RATE_HZ, camera_image_sources
 from egosim.world import World
 from egosim.world.map import build_builtin_map

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..bridge.clock import ClockMode
-from ..bridge.codes import ControlMode
+from ..bridge.protocol.codes import ControlMode
 
 
 @dataclass(frozen=True)

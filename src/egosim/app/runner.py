@@ -10,8 +10,8 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from ..bridge import HANDLERS, Bridge, ClockMode, simulation_context
-from ..bridge.codes import ControlMode
-from ..bridge.network import load_network_settings
+from ..bridge.protocol.codes import ControlMode
+from ..bridge.protocol.network import load_network_settings
 from ..maps import MapLoadError, load_map, scenario_map_location
 from ..render import open_renderer
 from ..replay import RecorderError

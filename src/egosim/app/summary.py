@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..bridge.units import heading_deg
+from ..bridge.protocol.units import heading_deg
 from ..world import World
 from ..world.traffic import ObjectType
 from .options import ClockMode, RunOptions

@@ -10,6 +10,15 @@ to a ROS node; `context.tick(dt)` advances the simulation through the pipeline::
 
 Without a node (tests, benchmarks), leave `bridge` out: the pipeline has no publish
 stage and handlers can be called directly with `context.row(key)`.
+
+Two storeys. At the bottom, protocol/: the table, the network and sensor settings that
+override it, the protocol's codes, units and releases. Above it, the engine in this
+folder: the context handlers see (context.py), the binding of rows to the node
+(core.py), which handler serves each row (bindings.py), the tick pipeline and its
+stages (pipeline.py, stages.py), the header clock and /clock (clock.py, sim_clock.py),
+and each ego's session with what its control mode means (ego_session.py,
+control_modes.py). The handlers are grouped by what they serve: egos/, scene/,
+sensors/ (cameras too), sync/ and replay/.
 """
 
 from __future__ import annotations
@@ -23,19 +32,19 @@ from ..replay import ReplaySession
 from ..sensors.camera_render import CameraRenderer
 from ..world import World
 from .bindings import HANDLERS
-from .camera_rig import open_camera_rig
 from .clock import ClockMode, HeaderClock
-from .codes import ControlMode
 from .context import BridgeContext, SessionState
 from .core import Bridge, Handlers, Tap
-from .network import NetworkSettings, default_network_settings, load_network_settings
 from .pipeline import Stage, Tick, TickPipeline
-from .releases import CANONICAL_PROFILE
-from .replay_rows import replay_topics
-from .sensor_rig import sensor_rig_of
+from .protocol.codes import ControlMode
+from .protocol.network import NetworkSettings, default_network_settings, load_network_settings
+from .protocol.releases import CANONICAL_PROFILE
+from .protocol.table import Direction, Row
+from .replay.replay_rows import replay_topics
+from .sensors.camera_rig import open_camera_rig
+from .sensors.sensor_rig import sensor_rig_of
 from .stages import standard_pipeline
-from .sync_session import SyncSession
-from .table import Direction, Row
+from .sync.sync_session import SyncSession
 
 __all__ = [
     "CANONICAL_PROFILE",

@@ -2,27 +2,13 @@
 
 from __future__ import annotations
 
-from . import (
-    camera_rows,
-    ego,
-    events,
-    extended_status,
-    ghost,
-    ground_vehicle,
-    lights,
-    markers,
-    multi_ego,
-    objects,
-    replay_rows,
-    scenarios,
-    sensor_files,
-    sensor_rows,
-    sim_clock,
-    specs,
-    sync_mode,
-    sync_objects,
-)
+from . import sim_clock
 from .core import Handlers
+from .egos import ego, events, extended_status, ghost, ground_vehicle, multi_ego
+from .replay import replay_rows
+from .scene import lights, markers, objects, scenarios, specs
+from .sensors import camera_rows, sensor_files, sensor_rows
+from .sync import sync_mode, sync_objects
 
 HANDLERS = Handlers(
     publishers={

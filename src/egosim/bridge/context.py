@@ -19,19 +19,19 @@ from ..logthrottle import LogThrottle
 from ..msgs import Profile
 from ..replay import ReplaySession
 from ..world import World
-from .angle_rates import AngleRates
 from .clock import HeaderClock
 from .ego_session import EgoSession, EgoSessions
-from .messages import header
-from .network import NetworkSettings
+from .egos.angle_rates import AngleRates
 from .pipeline import Tick, TickPipeline
-from .sensor_rig import SensorRig
-from .sync_session import SyncSession
-from .table import Row
+from .protocol.messages import header
+from .protocol.network import NetworkSettings
+from .protocol.table import Row
+from .sensors.sensor_rig import SensorRig
+from .sync.sync_session import SyncSession
 
 if TYPE_CHECKING:
     from ..world import Ego
-    from .camera_rig import CameraRig
+    from .sensors.camera_rig import CameraRig
 
 log = logging.getLogger(__name__)
 throttle = LogThrottle(log)

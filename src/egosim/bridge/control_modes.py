@@ -6,10 +6,9 @@ a headless simulator has no human input, so the ego gets no command at all and h
 its brake (the live view's keyboard driving is the exception: it drives an ego in
 keyboard mode). 4 auto: MORAI's internal controller drives, here the lane-following
 autopilot of world.traffic.autopilot, commanded before every step (with an OpenSCENARIO
-storyboard running, the storyboard drives the main ego instead: bridge/storyboard.py).
-Commands hold
-until the next one, so a change of mode drops the command the old input left in
-force: the ego brakes until its new input commands it.
+storyboard running, the storyboard drives the main ego instead: bridge/scene/storyboard.py).
+Commands hold until the next one, so a change of mode drops the command the old input
+left in force: the ego brakes until its new input commands it.
 """
 
 from __future__ import annotations
@@ -17,9 +16,9 @@ from __future__ import annotations
 from ..world.traffic import LightsView
 from ..world.traffic.road_users import lane_occupants_of
 from ..world.vehicle import Vehicle
-from .codes import ControlMode
 from .context import BridgeContext
 from .ego_session import EgoSession
+from .protocol.codes import ControlMode
 
 
 def drive_autopilots(context: BridgeContext) -> None:

@@ -29,8 +29,8 @@ from ..ros1 import (
 )
 from ..ros1.types import TopicType
 from .context import BridgeContext
-from .network import NetworkSettings
-from .releases import (
+from .protocol.network import NetworkSettings
+from .protocol.releases import (
     CANONICAL_PROFILE,
     Release,
     ServiceRelease,
@@ -41,7 +41,7 @@ from .releases import (
     service_release_for_md5,
     service_releases_of,
 )
-from .table import Direction, Row
+from .protocol.table import Direction, Row
 
 log = logging.getLogger(__name__)
 throttle = LogThrottle(log)

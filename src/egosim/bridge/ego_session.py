@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from ..world import Ego
 from ..world.traffic import LaneGraph
 from ..world.traffic.autopilot import LaneAutopilot
-from .codes import ControlMode
+from .protocol.codes import ControlMode
 
 log = logging.getLogger(__name__)
 

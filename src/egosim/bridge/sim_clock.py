@@ -10,12 +10,12 @@ from __future__ import annotations
 from typing import Any
 
 from .context import BridgeContext
-from .messages import time_msg
-from .sensor_messages import clock_message
-from .table import Row
+from .protocol.messages import time_msg
+from .protocol.table import Row
 
 
 def publish_clock(context: BridgeContext, row: Row) -> Any:
     if not context.clock.publishes_clock:
         return None
-    return clock_message(context.profile, time_msg(context.profile, context.stamp_ns()))
+    profile = context.profile
+    return profile.message("rosgraph_msgs/Clock").new(clock=time_msg(profile, context.stamp_ns()))

@@ -12,8 +12,8 @@ from .context import BridgeContext
 from .control_modes import drive_autopilots
 from .core import Bridge
 from .pipeline import Stage, Tick, TickPipeline
-from .replay_rows import advance_replay
-from .storyboard import step_storyboard
+from .replay.replay_rows import advance_replay
+from .scene.storyboard import step_storyboard
 
 REPLAY = Stage[BridgeContext]("replay", lambda context, tick: advance_replay(context, tick.dt))
 AUTOPILOTS = Stage[BridgeContext]("autopilots", lambda context, tick: drive_autopilots(context))

@@ -11,9 +11,9 @@ from pathlib import Path
 from ..app.exit_codes import EXIT_BAD_INPUT, EXIT_ROS_FAILED
 from ..app.recording import TopicRecorder, open_recorder, record_from_network
 from ..app.signals import CLEAN_STOP_DEADLINE_S, stop_on_signals
-from ..bridge.camera_rows import camera_topic_names
-from ..bridge.network import load_network_settings
-from ..bridge.table import Direction
+from ..bridge.protocol.network import load_network_settings
+from ..bridge.protocol.table import Direction
+from ..bridge.sensors.camera_rows import camera_topic_names
 from ..replay import RecorderError
 from ..ros1 import Ros1Error
 from ..yamltext import YamlFileError

@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 from ..app.exit_codes import EXIT_BAD_INPUT
+from ..bridge.protocol.table import ROWS_BY_KEY
 from ..maps import MapLoadError, load_map, map_names
 from ..replay import BagError, ReplayTopics
 
@@ -31,7 +32,10 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
         "trajectory fits best)",
     )
     parser.add_argument(
-        "--ego-topic", default="/Ego_topic", metavar="TOPIC", help="the ego's status topic"
+        "--ego-topic",
+        default=ROWS_BY_KEY["ego_status"].name,
+        metavar="TOPIC",
+        help="the ego's status topic (default: %(default)s)",
     )
     parser.set_defaults(handler=run)
 

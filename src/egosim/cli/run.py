@@ -11,7 +11,7 @@ from pathlib import Path
 from ..app.options import ClockMode, RunOptions
 from ..app.runner import run as run_simulator
 from ..app.signals import CLEAN_STOP_DEADLINE_S, exit_now
-from ..bridge.codes import ControlMode
+from ..bridge.protocol.codes import ControlMode
 from ..msgs import DEFAULT_PROFILE, PROFILES
 from ..view import DEFAULT_HOST, DEFAULT_PORT, ViewOptions, live_view
 

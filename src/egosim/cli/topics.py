@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..bridge.network import load_network_settings
+from ..bridge.protocol.network import load_network_settings
 from ..yamltext import YamlFileError
 
 

@@ -1,12 +1,12 @@
 """The camera renderer on OpenGL 3.3 through moderngl, in a headless EGL context.
 
 No display server is needed: EGL's surfaceless platform with Mesa renders on the CPU
-(llvmpipe). The static scene is uploaded once per map; a frame's moving triangles are
-written to a buffer reused across frames. A vertex carries its shaded, semantic and
-instance colours; each colour mode's vertex array reads only its own, and depth mode's
-program writes the distance along the optical axis to a float32 target. Only the
-static scene's tiles inside the view frustum are drawn, far ones at their coarse level
-(egosim.sensors.scene_tiles).
+(llvmpipe). The static scene is uploaded once per map (`load`, before its first frame); a
+frame's moving triangles are written to a buffer reused across frames. A vertex carries
+its shaded, semantic and instance colours; each colour mode's vertex array reads only its
+own, and depth mode's program writes the distance along the optical axis to a float32
+target. Only the static scene's tiles inside the view frustum are drawn, far ones at
+their coarse level (egosim.sensors.scene_tiles).
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ from egosim.sensors.camera import CameraMode, scene_matrices
 from egosim.sensors.camera_labels import SEMANTIC_COLORS, SemanticClass
 from egosim.sensors.camera_mesh import Mesh
 from egosim.sensors.camera_render import SKY_RGB, RenderRequest
+from egosim.sensors.camera_scene import StaticScene
 from egosim.sensors.errors import RendererUnavailableError
 from egosim.sensors.scene_tiles import visible_ranges
 
@@ -109,7 +110,7 @@ class GlRenderer:
             vertex_shader=DEPTH_VERTEX_SHADER, fragment_shader=DEPTH_FRAGMENT_SHADER
         )
         self._programs = {mode: depth if mode is CameraMode.DEPTH else color for mode in CameraMode}
-        self._scene: object | None = None
+        self._scene: StaticScene | None = None
         self._static: tuple[Any, dict[CameraMode, Any]] | None = None
         self._dynamic_buffer = context.buffer(reserve=VERTEX.itemsize * 3, dynamic=True)
         self._dynamic_arrays = self._vertex_arrays(self._dynamic_buffer)
@@ -139,16 +140,21 @@ class GlRenderer:
             self._targets[key] = ctx.framebuffer(color_attachments=[colour], depth_attachment=depth)
         return self._targets[key]
 
-    def _static_arrays(self, request: RenderRequest) -> dict[CameraMode, Any]:
-        if self._scene is not request.scene:
-            if self._static is not None:
-                buffer, arrays = self._static
-                for array in arrays.values():
-                    array.release()
-                buffer.release()
-            buffer = self._ctx.buffer(vertex_bytes(request.scene.mesh))
-            self._static = (buffer, self._vertex_arrays(buffer))
-            self._scene = request.scene
+    def load(self, scene: StaticScene) -> None:
+        """Upload `scene`'s vertices, in place of the scene loaded before (if another)."""
+        if self._scene is scene:
+            return
+        if self._static is not None:
+            buffer, arrays = self._static
+            for array in arrays.values():
+                array.release()
+            buffer.release()
+        buffer = self._ctx.buffer(vertex_bytes(scene.mesh))
+        self._static = (buffer, self._vertex_arrays(buffer))
+        self._scene = scene
+
+    def _static_arrays(self, scene: StaticScene) -> dict[CameraMode, Any]:
+        self.load(scene)
         assert self._static is not None
         return self._static[1]
 
@@ -176,7 +182,7 @@ class GlRenderer:
         if depth_mode:
             program["eye_from_scene"].write(eye.T.astype("f4").tobytes())
 
-        static = self._static_arrays(request)[mode]
+        static = self._static_arrays(request.scene)[mode]
         eye_in_scene = request.view.origin - request.scene.origin
         focal_px = max(intrinsics.fx, intrinsics.fy)
         for first, count in visible_ranges(request.scene.tiles, clip, eye_in_scene, focal_px):

@@ -12,8 +12,9 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.sensors.camera import CameraConfig, CameraView, scene_matrices
+from egosim.sensors.camera_frame_mesh import build_frame_mesh
 from egosim.sensors.camera_render import CameraRenderer, RenderRequest
-from egosim.sensors.camera_scene import StaticScene, build_frame_mesh
+from egosim.sensors.camera_scene import StaticScene
 from egosim.world.traffic.objects import ObjectTable
 from egosim.world.vehicle import Pose
 

@@ -34,6 +34,11 @@ class RenderRequest:
 
 
 class CameraRenderer(Protocol):
+    def load(self, scene: StaticScene) -> None:
+        """Make `scene` ready to draw (an engine uploads it here), so that its first frame
+        costs no more than the next. A request for a scene not loaded loads it first."""
+        ...
+
     def render(self, request: RenderRequest) -> npt.NDArray[np.uint8] | npt.NDArray[np.float32]:
         """The image of `request` (see the module docstring)."""
         ...

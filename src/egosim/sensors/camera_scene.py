@@ -1,10 +1,9 @@
-"""What a camera sees, as triangles: the map's static scene and each frame's moving parts.
+"""What a camera sees that stands still, as triangles: a map's static scene.
 
-The static scene is built once per map: terrain, every lane's road surface (following
-the centreline's elevation), raised sidewalks, lane lines and stop lines
-(egosim.world.map.markings), zebra crosswalks, and traffic-light poles and heads. A frame
-adds the objects (vehicles as a body and a cabin, pedestrians and obstacles as boxes,
-each of its real size) and the lamps of every head, lit in the colour of its aspect.
+Built once per map: terrain, every lane's road surface (following the centreline's
+elevation), raised sidewalks, lane lines and stop lines (egosim.world.map.markings),
+zebra crosswalks, and traffic-light poles and heads, with the lamps' geometry that each
+frame colours (egosim.sensors.camera_frame_mesh adds what moves).
 
 Paint is 2 cm above the asphalt and terrain 5 cm below it, so depth testing alone
 orders the layers.
@@ -13,17 +12,16 @@ orders the layers.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
 
-from egosim.sensors.camera import boxes_in_view
 from egosim.sensors.camera_labels import SemanticClass
 from egosim.sensors.camera_mesh import Detail, Mesh, MeshBuilder, add_boxes, flat_color, ribbon
 from egosim.sensors.scene_tiles import COARSE_TOLERANCE_M, SceneTiles, tile_order
-from egosim.world.arrays import BoolArray, FloatArray
+from egosim.world.arrays import FloatArray
 from egosim.world.map import Crosswalk, LaneMap, TrafficLightSite
 from egosim.world.map.light_type import LightType
 from egosim.world.map.markings import (
@@ -35,8 +33,7 @@ from egosim.world.map.markings import (
     map_markings,
 )
 from egosim.world.map.polyline import kept_vertices, offset_left
-from egosim.world.signals.aspects import GREEN, GREEN_LEFT, OFF, RED, YELLOW
-from egosim.world.traffic.objects import ObjectTable, ObjectType
+from egosim.world.signals.aspects import GREEN, GREEN_LEFT, RED, YELLOW
 
 ASPHALT = (64, 64, 64)
 TERRAIN = (96, 118, 72)
@@ -50,11 +47,6 @@ PAINT = {
 }
 POLE = (110, 110, 110)
 HEAD = (25, 25, 25)
-LAMP_OFF = (45, 45, 45)
-LAMP_ON = {RED: (255, 30, 20), YELLOW: (255, 190, 0), GREEN: (0, 220, 90), GREEN_LEFT: (0, 220, 90)}
-PEDESTRIAN = (190, 110, 80)
-OBSTACLE = (230, 120, 30)
-VEHICLE_PAINTS = ((200, 30, 30), (40, 70, 160), (220, 220, 215), (30, 30, 30), (120, 125, 130))
 
 # Asphalt reaches this far past each lane's edge, so an edge line lies on the road.
 SHOULDER_M = 0.5
@@ -80,10 +72,6 @@ LAMP_ORDER: dict[int, tuple[int, ...]] = {
     LightType.RYG_LEFT_GREEN: (RED, YELLOW, GREEN_LEFT, GREEN),
     LightType.FLASHING_YELLOW: (YELLOW, YELLOW, YELLOW),
 }
-# Vehicles: a body of the full footprint this share of the height, a narrower cabin above.
-BODY_SHARE = 0.55
-CABIN_LENGTH_SHARE = 0.55
-CABIN_WIDTH_SHARE = 0.9
 
 
 def _add_strip(
@@ -335,23 +323,6 @@ def _lamp_geometry(lights: Sequence[TrafficLightSite]) -> LampGeometry:
     )
 
 
-def _add_lamps(
-    builder: MeshBuilder, lamps: LampGeometry, aspects: npt.ArrayLike, shown: BoolArray
-) -> None:
-    """The lamps of the lights `shown` (a mask over the scene's lights)."""
-    rows = shown[lamps.light_index]
-    if not rows.any():
-        return
-    bits = lamps.lamp_bit[rows]
-    aspect = np.asarray(aspects, dtype=np.int64)[lamps.light_index[rows]]
-    lit = (aspect != OFF) & ((aspect & bits) != 0)
-    colors = np.empty((len(lit), 3))
-    colors[:] = LAMP_OFF
-    for bit, colour in LAMP_ON.items():
-        colors[lit & (bits == bit)] = colour
-    builder.add(lamps.triangles[rows], colors, SemanticClass.TRAFFIC_LIGHT)
-
-
 def _square(centre: FloatArray, right: FloatArray, up: FloatArray) -> FloatArray:
     h = LAMP_SIZE_M / 2.0
     quad = np.array(
@@ -376,67 +347,3 @@ def _arrow(centre: FloatArray, right: FloatArray, up: FloatArray) -> FloatArray:
         [0, 1, 2, 0, 2, 3]
     ]
     return np.concatenate([head, shaft])
-
-
-def build_frame_mesh(
-    scene: StaticScene,
-    objects: ObjectTable,
-    aspects: npt.ArrayLike,
-    hidden_ids: Iterable[int] = (),
-    clip_from_scene: FloatArray | None = None,
-) -> Mesh:
-    """The moving part of a frame: every object but `hidden_ids`, and the lamps; with a
-    view's `clip_from_scene`, only the objects and lights that may show in it."""
-    builder = MeshBuilder(scene.origin)
-    keep = ~np.isin(objects.unique_ids, np.fromiter(hidden_ids, dtype=np.int64))
-    shown_lights = np.ones(len(scene.lights), dtype=bool)
-    if clip_from_scene is not None:
-        # Upright boxes on their footprint centre, yaw-free: the circle round the footprint.
-        feet = objects.positions - scene.origin
-        reach = np.hypot(objects.sizes[:, 0], objects.sizes[:, 1]) / 2.0
-        lower = feet - np.column_stack((reach, reach, np.zeros_like(reach)))
-        upper = feet + np.column_stack((reach, reach, objects.sizes[:, 2]))
-        keep &= boxes_in_view(lower, upper, clip_from_scene)
-        lamps = scene.lamps
-        shown_lights = boxes_in_view(
-            lamps.lower - scene.origin, lamps.upper - scene.origin, clip_from_scene
-        )
-    types = objects.object_types[keep]
-    ids = objects.unique_ids[keep]
-    positions = objects.positions[keep]
-    sizes = objects.sizes[keep]
-    yaws = objects.headings[keep]
-    vehicle = (types == ObjectType.NPC_VEHICLE) | (types == ObjectType.EGO)
-    _add_vehicles(builder, positions[vehicle], sizes[vehicle], yaws[vehicle], ids[vehicle])
-    for kind, label, colour in (
-        (ObjectType.PEDESTRIAN, SemanticClass.PEDESTRIAN, PEDESTRIAN),
-        (ObjectType.OBSTACLE, SemanticClass.OBSTACLE, OBSTACLE),
-    ):
-        rows = types == kind
-        centres = positions[rows] + np.column_stack(
-            (np.zeros((rows.sum(), 2)), sizes[rows, 2] / 2.0)
-        )
-        add_boxes(builder, centres, sizes[rows], yaws[rows], colour, label, ids[rows])
-    _add_lamps(builder, scene.lamps, aspects, shown_lights)
-    return builder.mesh()
-
-
-def _add_vehicles(
-    builder: MeshBuilder,
-    feet: FloatArray,
-    sizes: FloatArray,
-    yaws: FloatArray,
-    ids: npt.NDArray[np.int64],
-) -> None:
-    if len(feet) == 0:
-        return
-    paints = np.array(VEHICLE_PAINTS, dtype=np.float64)[ids % len(VEHICLE_PAINTS)]
-    body = sizes * np.array([1.0, 1.0, BODY_SHARE])
-    body_centres = feet + np.column_stack((np.zeros((len(feet), 2)), body[:, 2] / 2.0))
-    add_boxes(builder, body_centres, body, yaws, paints, SemanticClass.VEHICLE, ids)
-    cabin = sizes * np.array([CABIN_LENGTH_SHARE, CABIN_WIDTH_SHARE, 1.0 - BODY_SHARE])
-    cabin_centres = feet + np.column_stack(
-        (np.zeros((len(feet), 2)), body[:, 2] + cabin[:, 2] / 2.0)
-    )
-    glass = paints * 0.45
-    add_boxes(builder, cabin_centres, cabin, yaws, glass, SemanticClass.VEHICLE, ids)

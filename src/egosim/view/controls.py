@@ -14,8 +14,8 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from ..bridge import BridgeContext, ControlMode
-from ..bridge.scenarios import log_scenario_loaded, scenario_path
-from ..bridge.storyboard import scenario_drives_ego
+from ..bridge.scene.scenarios import log_scenario_loaded, scenario_path
+from ..bridge.scene.storyboard import scenario_drives_ego
 from ..datapaths import PathOutsideRootsError
 from ..replay.codes import SET_START_TIME, CommandResult, PlaybackStatus, ProcessCommand
 from ..scenario_files import looks_like_scenario, read_scenario_file

@@ -1,0 +1,154 @@
+"""Serving every morai_msgs release at once: which release a peer speaks, and how a
+message reads in another release.
+
+The bridge builds and handles every message in the newest release (26.r1, the
+superset). A peer compiled against another release is recognised by the md5sum in
+its connection header, and its messages are converted field by field: same-named
+fields are copied (recursively, through nested types), renamed fields follow
+RENAMED_FIELDS, moved fields follow MOVED_FIELDS, and a field the other side lacks
+is dropped on the way out and, on the way in, takes the value IMPLIED_FIELDS gives
+(what the older release meant without it) or else its ROS default.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from rosbags.interfaces import Nodetype
+from rosbags.typesys.store import Typestore
+
+from ...msgs import PROFILES, MessageType, ServiceType, UnknownTypeError, get_profile
+from ...msgs.defaults import default_message
+from ...msgs.fulltext import BUILTIN_TIME_TYPES, element_desc
+
+CANONICAL_PROFILE = "26.r1"
+
+# type -> {field in 26.r1: the same field's name in older releases}
+RENAMED_FIELDS: dict[str, dict[str, str]] = {
+    "morai_msgs/CtrlCmd": {"front_steer": "steering"},
+    "morai_msgs/EgoVehicleStatus": {"front_steer_angle": "wheel_angle"},
+    "morai_msgs/SaveSensorData": {"custom_file_name": "custum_file_name"},
+}
+# type -> {field of an older release: dotted path of the same quantity in 26.r1}
+MOVED_FIELDS: dict[str, dict[str, str]] = {
+    "morai_msgs/GhostMessage": {"heading": "rotation.z"},  # 2021.08: yaw, deg
+}
+
+# type -> {field later releases added: its value in a message of a release without it}
+IMPLIED_FIELDS: dict[str, dict[str, Any]] = {
+    # 2021.08 cannot choose the tick length: MORAI SIM ticks its fixed 20 ms step.
+    "morai_msgs/SyncModeCmd": {"time_step": 20},
+}
+
+
+# service type -> {release: its name there} where a release named it differently
+SERVICE_NAMES: dict[str, dict[str, str]] = {
+    "morai_msgs/MoraiSimProcSrv": {"2021.08": "morai_msgs/MoraiSimpProcSrv"},
+}
+
+
+@dataclass(frozen=True)
+class ServiceRelease:
+    """One release's view of one service type."""
+
+    profile_name: str
+    service_type: ServiceType
+
+
+def service_releases_of(type_name: str, default: str) -> tuple[ServiceRelease, ...]:
+    """Every release that has the service `type_name` (under its name there), default first."""
+    found = []
+    for name in (default, *(p for p in PROFILES if p != default)):
+        local_name = SERVICE_NAMES.get(type_name, {}).get(name, type_name)
+        try:
+            found.append(ServiceRelease(name, get_profile(name).service(local_name)))
+        except UnknownTypeError:
+            continue
+    return tuple(found)
+
+
+def service_release_for_md5(
+    releases: tuple[ServiceRelease, ...], md5sum: str
+) -> ServiceRelease | None:
+    """The release a client's md5sum asks for (`*`: the default, first one)."""
+    if md5sum == "*":
+        return releases[0]
+    return next((r for r in releases if r.service_type.md5sum == md5sum), None)
+
+
+@dataclass(frozen=True)
+class Release:
+    """One release's view of one type."""
+
+    profile_name: str
+    message_type: MessageType
+
+
+def releases_of(type_name: str, default: str) -> tuple[Release, ...]:
+    """Every release that has `type_name`, `default` first."""
+    found = []
+    for name in (default, *(p for p in PROFILES if p != default)):
+        try:
+            found.append(Release(name, get_profile(name).message(type_name)))
+        except UnknownTypeError:
+            continue
+    return tuple(found)
+
+
+def release_for_md5(releases: tuple[Release, ...], md5sum: str) -> Release | None:
+    """The first release whose type has `md5sum` (the default wins when several share it)."""
+    return next((r for r in releases if r.message_type.md5sum == md5sum), None)
+
+
+def convert(message: Any, source: MessageType, target: MessageType) -> Any:
+    """`message`, of type `source`, as a message of `target` (same type, other release)."""
+    if source.md5sum == target.md5sum and source.name == target.name:
+        return message
+    return _convert(message, target.store, target.store_name)
+
+
+def _convert(message: Any, store: Typestore, store_name: str) -> Any:
+    ros_name = store_name.replace("/msg/", "/", 1)
+    renamed = RENAMED_FIELDS.get(ros_name, {})
+    aliases = {**renamed, **{old: new for new, old in renamed.items()}}
+    values = {}
+    for name, desc in store.fielddefs[store_name][1]:
+        source_name = name if hasattr(message, name) else aliases.get(name)
+        if source_name is not None and hasattr(message, source_name):
+            values[name] = _convert_value(getattr(message, source_name), desc, store)
+        elif name in IMPLIED_FIELDS.get(ros_name, {}):
+            values[name] = IMPLIED_FIELDS[ros_name][name]
+    result = default_message(store, store_name, **values)
+    for old_field, path in MOVED_FIELDS.get(ros_name, {}).items():
+        if hasattr(result, old_field) and not hasattr(message, old_field):
+            setattr(result, old_field, _get_path(message, path))
+        elif hasattr(message, old_field) and not hasattr(result, old_field):
+            _set_path(result, path, getattr(message, old_field))
+    return result
+
+
+def _convert_value(value: Any, desc: tuple[Any, Any], store: Typestore) -> Any:
+    nodetype, args = element_desc(desc)
+    if nodetype != Nodetype.NAME or args in BUILTIN_TIME_TYPES:
+        return value
+    if desc[0] == Nodetype.NAME:
+        return _convert(value, store, args)
+    return [_convert(item, store, args) for item in value]
+
+
+def _get_path(message: Any, path: str) -> Any:
+    for part in path.split("."):
+        message = getattr(message, part)
+    return message
+
+
+def _set_path(message: Any, path: str, value: Any) -> None:
+    *parents, last = path.split(".")
+    for part in parents:
+        message = getattr(message, part)
+    setattr(message, last, value)
+
+
+def canonical(type_name: str) -> MessageType:
+    return get_profile(CANONICAL_PROFILE).message(type_name)

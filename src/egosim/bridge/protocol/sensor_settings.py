@@ -1,0 +1,461 @@
+"""The `sensors:` section of the network settings file: mounts, noise and LiDAR geometry.
+
+Topic names, rates and on/off of the sensor rows come from the `rows:` section like
+every other row; this section holds what MORAI's sensor edit dialog holds:
+
+sensors:
+  seed: 0                        # noise generator seed (one stream per sensor)
+  gps:
+    frame_id: gps
+    mount: {x: 0.0, y: 0.0, z: 1.5, roll_deg: 0, pitch_deg: 0, yaw_deg: 0}
+    noise: {horizontal_std_m: 0.0, vertical_std_m: 0.0}
+  imu:
+    mount: {...}
+    noise: {orientation_std_rad: 0.0, angular_velocity_std_rad_s: 0.0,
+            linear_acceleration_std_m_s2: 0.0,
+            angular_velocity_bias_rad_s: [0, 0, 0], linear_acceleration_bias_m_s2: [0, 0, 0]}
+  lidar:
+    mount: {x: 0.0, y: 0.0, z: 1.8}
+    channels: 16
+    min_elevation_deg: -15
+    max_elevation_deg: 15
+    horizontal_resolution_deg: 0.2
+    min_range_m: 0.5
+    max_range_m: 100
+  cameras:                       # a list; absent: one default front camera; []: none
+    - frame_id: Camera           # default Camera, or Camera-1, Camera-2... on a shared topic
+      topic: /image_jpeg/compressed   # default: the camera row's topic (depth: /image)
+      mode: rgb                  # rgb | semantic | instance | depth
+      width: 640
+      height: 480
+      fov_deg: 90
+      fov_axis: vertical         # vertical (MORAI, Unity) | horizontal
+      rate_hz: 30                # default: the camera row's rate
+      format: jpeg               # jpeg | png; default jpeg for rgb, png for labels
+      jpeg_quality: 90
+      mount: {x: 1.5, y: 0.0, z: 1.2, roll_deg: 0, pitch_deg: 0, yaw_deg: 0}
+  radar:
+    frame_id: radar
+    mount: {x: 3.7, z: 0.2}
+    horizontal_fov_deg: 90
+    vertical_fov_deg: 20
+    min_range_m: 0.5
+    max_range_m: 150
+    max_detections: 64
+    noise: {range_std_m: 0, azimuth_std_rad: 0, range_rate_std_m_s: 0}
+
+Mounts (x, y, z, roll, pitch, yaw) are MORAI's: from the midpoint of the rear axle at
+wheel-centre height (see egosim.world.vehicle.mount_origin).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field, fields, replace
+from enum import Enum
+from typing import Any, TypeVar, cast
+
+from ...sensors import GpsNoise, ImuNoise, LidarConfig, MountPose, SensorConfigError
+from ...sensors.camera import CameraConfig, CameraMode, FovAxis
+from ...sensors.image_encoding import ImageFormat
+from ...sensors.radar import RadarConfig, RadarNoise
+from ...yamltext import Problems, YamlDocument, YamlFileError
+from .table import DEPTH_TOPIC
+from .units import rad
+
+T = TypeVar("T")
+E = TypeVar("E", bound=Enum)
+
+SENSOR_KINDS = ("gps", "imu", "lidar")
+"""Also the sensor indices of SensorPosControl: 0 GPS, 1 IMU, 2 LiDAR; the cameras follow
+(3, 4, ... in the order of `cameras:`), then the radar."""
+SECTION_KEYS = ("seed", *SENSOR_KINDS, "cameras", "radar")
+CAMERA_NUMBERS = ("width", "height", "fov_deg", "rate_hz", "jpeg_quality")
+CAMERA_INTEGERS = ("width", "height", "jpeg_quality")
+RADAR_NUMBERS = (
+    "horizontal_fov_deg",
+    "vertical_fov_deg",
+    "min_range_m",
+    "max_range_m",
+    "max_detections",
+)
+
+MOUNT_FIELDS = {
+    "x": "x",
+    "y": "y",
+    "z": "z",
+    "roll_deg": "roll",
+    "pitch_deg": "pitch",
+    "yaw_deg": "yaw",
+}
+LIDAR_FIELDS = (
+    "channels",
+    "min_elevation_deg",
+    "max_elevation_deg",
+    "horizontal_resolution_deg",
+    "min_range_m",
+    "max_range_m",
+)
+# The range of every numeric setting (inclusive; docs/sensors_and_time.md lists them):
+# wide enough for any real sensor, narrow enough that no setting can make the simulator
+# allocate or compute without bound.
+RANGES: dict[str, tuple[float, float]] = {
+    "seed": (0, 2**32 - 1),
+    "x": (-100.0, 100.0),
+    "y": (-100.0, 100.0),
+    "z": (-100.0, 100.0),
+    "roll_deg": (-360.0, 360.0),
+    "pitch_deg": (-360.0, 360.0),
+    "yaw_deg": (-360.0, 360.0),
+    "channels": (1, 256),
+    "min_elevation_deg": (-90.0, 90.0),
+    "max_elevation_deg": (-90.0, 90.0),
+    "horizontal_resolution_deg": (0.05, 360.0),
+    "min_range_m": (0.0, 1000.0),
+    "max_range_m": (0.01, 1000.0),
+    "horizontal_std_m": (0.0, 1000.0),
+    "vertical_std_m": (0.0, 1000.0),
+    "orientation_std_rad": (0.0, 10.0),
+    "angular_velocity_std_rad_s": (0.0, 100.0),
+    "linear_acceleration_std_m_s2": (0.0, 1000.0),
+    "angular_velocity_bias_rad_s": (-100.0, 100.0),
+    "linear_acceleration_bias_m_s2": (-1000.0, 1000.0),
+    "width": (1, 8192),
+    "height": (1, 8192),
+    "fov_deg": (0.01, 179.99),
+    "rate_hz": (0.1, 1000.0),
+    "jpeg_quality": (1, 100),
+    "horizontal_fov_deg": (0.01, 360.0),
+    "vertical_fov_deg": (0.01, 180.0),
+    "max_detections": (0, 65535),
+    "range_std_m": (0.0, 100.0),
+    "azimuth_std_rad": (0.0, 3.2),
+    "range_rate_std_m_s": (0.0, 100.0),
+}
+#: A LiDAR scan casts channels x 360 / horizontal_resolution_deg rays.
+MAX_LIDAR_RAYS = 1_000_000
+DEFAULT_GPS_MOUNT = MountPose(z=1.5)
+DEFAULT_IMU_MOUNT = MountPose()
+
+
+@dataclass(frozen=True)
+class GpsSettings:
+    frame_id: str = "gps"
+    mount: MountPose = DEFAULT_GPS_MOUNT
+    noise: GpsNoise = field(default_factory=GpsNoise)
+
+
+@dataclass(frozen=True)
+class ImuSettings:
+    frame_id: str = "imu"
+    mount: MountPose = DEFAULT_IMU_MOUNT
+    noise: ImuNoise = field(default_factory=ImuNoise)
+
+
+@dataclass(frozen=True)
+class LidarSettings:
+    frame_id: str = "lidar"
+    config: LidarConfig = field(default_factory=LidarConfig)
+
+
+@dataclass(frozen=True)
+class CameraSettings:
+    """One camera. topic and rate None: the camera row's (depth: DEPTH_TOPIC); frame_id
+    None: `Camera`, or `Camera-<n>` when several cameras share the topic."""
+
+    config: CameraConfig = field(default_factory=CameraConfig)
+    frame_id: str | None = None
+    topic: str | None = None
+    rate_hz: float | None = None
+    image_format: ImageFormat | None = None
+
+    @property
+    def format(self) -> ImageFormat:
+        if self.image_format is not None:
+            return self.image_format
+        return ImageFormat.JPEG if self.config.mode is CameraMode.RGB else ImageFormat.PNG
+
+
+def camera_topic(camera: CameraSettings, row_topic: str) -> str:
+    """Where a camera publishes: its own topic, else the camera row's (depth: /image)."""
+    if camera.topic is not None:
+        return camera.topic
+    return DEPTH_TOPIC if camera.config.mode is CameraMode.DEPTH else row_topic
+
+
+@dataclass(frozen=True)
+class RadarSettings:
+    frame_id: str = "radar"
+    config: RadarConfig = field(default_factory=RadarConfig)
+
+
+@dataclass(frozen=True)
+class SensorSettings:
+    seed: int = 0
+    gps: GpsSettings = field(default_factory=GpsSettings)
+    imu: ImuSettings = field(default_factory=ImuSettings)
+    lidar: LidarSettings = field(default_factory=LidarSettings)
+    cameras: tuple[CameraSettings, ...] = (CameraSettings(),)
+    radar: RadarSettings = field(default_factory=RadarSettings)
+
+
+Path = tuple[str, ...]
+
+
+def parse_sensor_settings(document: YamlDocument, data: Any) -> SensorSettings:
+    """The `sensors:` mapping of a network settings document; errors name file, line and
+    field, every problem of the section at once."""
+    path: Path = ("sensors",)
+    if data is None:
+        return SensorSettings()
+    problems = Problems()
+    with problems.collecting():
+        _check_keys(document, path, data, SECTION_KEYS)
+    if not isinstance(data, dict):
+        problems.raise_any()
+    seed = data.get("seed", 0)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        problems.add(document.error((*path, "seed"), "expected a non-negative integer"))
+    else:
+        with problems.collecting():
+            seed = _number(document, (*path, "seed"), seed, integer=True)
+    settings = SensorSettings(seed=seed if isinstance(seed, int) else 0)
+    with problems.collecting():
+        gps = _point_sensor(document, (*path, "gps"), data.get("gps"), GpsSettings, GpsNoise)
+        settings = replace(settings, gps=gps)
+    with problems.collecting():
+        imu = _point_sensor(document, (*path, "imu"), data.get("imu"), ImuSettings, ImuNoise)
+        settings = replace(settings, imu=imu)
+    with problems.collecting():
+        settings = replace(settings, lidar=_lidar(document, (*path, "lidar"), data.get("lidar")))
+    with problems.collecting():
+        settings = replace(settings, cameras=_cameras(document, (*path, "cameras"), data))
+    with problems.collecting():
+        settings = replace(settings, radar=_radar(document, (*path, "radar"), data.get("radar")))
+    problems.raise_any()
+    return settings
+
+
+def _cameras(document: YamlDocument, path: Path, section: dict) -> tuple[CameraSettings, ...]:
+    if "cameras" not in section:
+        return SensorSettings().cameras
+    data = section["cameras"]
+    if data is None:
+        return ()
+    if not isinstance(data, list):
+        raise document.error(path, "expected a list of cameras")
+    return tuple(_camera(document, (*path, str(k)), item) for k, item in enumerate(data))
+
+
+def _camera(document: YamlDocument, path: Path, data: Any) -> CameraSettings:
+    if data is None:
+        return CameraSettings()
+    known = ("frame_id", "topic", "mode", "fov_axis", "format", "mount", *CAMERA_NUMBERS)
+    _check_keys(document, path, data, known)
+    values: dict[str, Any] = {}
+    for name in CAMERA_NUMBERS:
+        if name in data:
+            values[name] = _number(
+                document, (*path, name), data[name], integer=name in CAMERA_INTEGERS
+            )
+    rate = values.get("rate_hz")
+    values["mode"] = _choice(document, (*path, "mode"), data.get("mode", "rgb"), CameraMode)
+    values["fov_axis"] = _choice(
+        document, (*path, "fov_axis"), data.get("fov_axis", "vertical"), FovAxis
+    )
+    defaults = CameraConfig()
+    values["mount"] = _mount(document, (*path, "mount"), data.get("mount"), defaults.mount)
+    config = _built(document, path, lambda: replace(defaults, **values))
+    image_format = None
+    if "format" in data:
+        image_format = _choice(document, (*path, "format"), data["format"], ImageFormat)
+        if config.mode is CameraMode.DEPTH:
+            raise document.error((*path, "format"), "a depth camera sends raw 32FC1 images")
+    topic = data.get("topic")
+    if topic is not None and (not isinstance(topic, str) or not topic.startswith("/")):
+        raise document.error((*path, "topic"), f"expected a topic name like /camera, got {topic!r}")
+    frame_id = _frame_id(document, path, data, "Camera") if "frame_id" in data else None
+    return CameraSettings(config, frame_id, topic, rate, image_format)
+
+
+def _radar(document: YamlDocument, path: Path, data: Any) -> RadarSettings:
+    defaults = RadarSettings()
+    if data is None:
+        return defaults
+    _check_keys(document, path, data, ("frame_id", "mount", "noise", *RADAR_NUMBERS))
+    values: dict[str, Any] = {}
+    for name in RADAR_NUMBERS:
+        if name in data:
+            values[name] = _number(
+                document, (*path, name), data[name], integer=name == "max_detections"
+            )
+    values["mount"] = _mount(document, (*path, "mount"), data.get("mount"), defaults.config.mount)
+    values["noise"] = _noise(document, (*path, "noise"), data.get("noise"), RadarNoise)
+    config = _built(document, path, lambda: replace(defaults.config, **values))
+    return RadarSettings(frame_id=_frame_id(document, path, data, defaults.frame_id), config=config)
+
+
+def _choice(document: YamlDocument, path: Path, value: Any, kind: type[E]) -> E:
+    for member in kind:  # type: ignore[attr-defined]
+        if value == member.value:
+            return member  # type: ignore[no-any-return]
+    known = ", ".join(m.value for m in kind)  # type: ignore[attr-defined]
+    raise document.error(path, f"expected one of {known}, got {value!r}")
+
+
+def _point_sensor(
+    document: YamlDocument, path: Path, data: Any, settings: type[T], noise: type
+) -> T:
+    """GPS or IMU settings: a frame id, a mount and a noise model, each defaulted."""
+    defaults: Any = settings()
+    if data is None:
+        return cast(T, defaults)
+    _check_keys(document, path, data, ("frame_id", "mount", "noise"))
+    problems = Problems()
+    values: dict[str, Any] = {}
+    with problems.collecting():
+        values["frame_id"] = _frame_id(document, path, data, defaults.frame_id)
+    with problems.collecting():
+        values["mount"] = _mount(document, (*path, "mount"), data.get("mount"), defaults.mount)
+    with problems.collecting():
+        values["noise"] = _noise(document, (*path, "noise"), data.get("noise"), noise)
+    problems.raise_any()
+    return settings(**values)
+
+
+def _lidar(document: YamlDocument, path: Path, data: Any) -> LidarSettings:
+    defaults = LidarSettings()
+    if data is None:
+        return defaults
+    _check_keys(document, path, data, ("frame_id", "mount", *LIDAR_FIELDS))
+    problems = Problems()
+    geometry: dict[str, Any] = {}
+    resolution = data.get("horizontal_resolution_deg")
+    not_positive = (
+        isinstance(resolution, int | float) and not isinstance(resolution, bool) and resolution <= 0
+    )
+    if not_positive:
+        problems.add(document.error((*path, "horizontal_resolution_deg"), "must be > 0 deg"))
+    for name in LIDAR_FIELDS:
+        if name in data and not (name == "horizontal_resolution_deg" and not_positive):
+            with problems.collecting():
+                geometry[name] = _number(
+                    document, (*path, name), data[name], integer=name == "channels"
+                )
+    if not problems.found:
+        channels = geometry.get("channels", defaults.config.channels)
+        resolution = geometry.get(
+            "horizontal_resolution_deg", defaults.config.horizontal_resolution_deg
+        )
+        if channels * 360.0 / resolution > MAX_LIDAR_RAYS:
+            problems.add(
+                document.error(
+                    path,
+                    f"channels x 360 / horizontal_resolution_deg is "
+                    f"{channels * 360.0 / resolution:.0f} rays a scan (at most {MAX_LIDAR_RAYS})",
+                )
+            )
+    mount = defaults.config.mount
+    with problems.collecting():
+        mount = _mount(document, (*path, "mount"), data.get("mount"), mount)
+    frame_id = defaults.frame_id
+    with problems.collecting():
+        frame_id = _frame_id(document, path, data, frame_id)
+    problems.raise_any()
+    config = _built(document, path, lambda: replace(defaults.config, mount=mount, **geometry))
+    return LidarSettings(frame_id=frame_id, config=config)
+
+
+def _mount(document: YamlDocument, path: Path, data: Any, default: MountPose) -> MountPose:
+    if data is None:
+        return default
+    _check_keys(document, path, data, tuple(MOUNT_FIELDS))
+    problems = Problems()
+    values = {}
+    for key, attribute in MOUNT_FIELDS.items():
+        if key in data:
+            with problems.collecting():
+                value = _number(document, (*path, key), data[key])
+                values[attribute] = rad(value) if key.endswith("_deg") else value
+    problems.raise_any()
+    return replace(default, **values)
+
+
+def _noise(document: YamlDocument, path: Path, data: Any, kind: Callable[..., T]) -> T:
+    """GpsNoise or ImuNoise from their own field names (std values, bias vectors)."""
+    if data is None:
+        return kind()
+    names = tuple(f.name for f in fields(kind))  # type: ignore[arg-type]
+    _check_keys(document, path, data, names)
+    problems = Problems()
+    values: dict[str, Any] = {}
+    for name, value in data.items():
+        with problems.collecting():
+            if name.endswith("_bias_rad_s") or name.endswith("_bias_m_s2"):
+                values[name] = _vector(document, (*path, name), value, RANGES[name])
+            else:
+                values[name] = _number(document, (*path, name), value)
+    problems.raise_any()
+    return _built(document, path, lambda: kind(**values))
+
+
+def _frame_id(document: YamlDocument, path: Path, data: dict[str, Any], default: str) -> str:
+    frame_id = data.get("frame_id", default)
+    if not isinstance(frame_id, str) or not frame_id or "/" in frame_id.strip("/"):
+        raise document.error((*path, "frame_id"), f"not a tf frame name: {frame_id!r}")
+    return frame_id
+
+
+def _check_keys(document: YamlDocument, path: Path, data: Any, known: tuple[str, ...]) -> None:
+    """A mapping of known keys only; every unknown key is reported."""
+    if not isinstance(data, dict):
+        raise document.error(path, f"expected a mapping ({', '.join(known)})")
+    unknown = [
+        document.error((*path, str(key)), f"unknown field (known: {', '.join(known)})")
+        for key in data
+        if key not in known
+    ]
+    if unknown:
+        raise YamlFileError.of_all(unknown)
+
+
+def _number(
+    document: YamlDocument,
+    path: Path,
+    value: Any,
+    integer: bool = False,
+    bounds: tuple[float, float] | None = None,
+) -> Any:
+    """A finite number within `bounds` (default: the range of the field `path` ends in)."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise document.error(path, "expected a number")
+    if not math.isfinite(value):
+        raise document.error(path, "expected a finite number")
+    if integer and not isinstance(value, int):
+        raise document.error(path, "expected an integer")
+    low, high = bounds or RANGES[path[-1]]
+    if value < low:
+        raise document.error(path, f"must be >= {low:g} (range {low:g}..{high:g}), got {value}")
+    if value > high:
+        raise document.error(path, f"must be <= {high:g} (range {low:g}..{high:g}), got {value}")
+    return value
+
+
+def _vector(
+    document: YamlDocument, path: Path, value: Any, bounds: tuple[float, float]
+) -> tuple[float, float, float]:
+    if not isinstance(value, list) or len(value) != 3:
+        raise document.error(path, "expected a list of 3 numbers (x, y, z)")
+    x, y, z = (
+        float(_number(document, (*path, str(k)), v, bounds=bounds)) for k, v in enumerate(value)
+    )
+    return x, y, z
+
+
+def _built(document: YamlDocument, path: Path, build: Callable[[], T]) -> T:
+    """The sensor models check their own parameters; their errors point at `path`."""
+    try:
+        return build()
+    except SensorConfigError as error:
+        raise document.error(path, str(error)) from None

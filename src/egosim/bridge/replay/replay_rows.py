@@ -1,0 +1,125 @@
+"""Rosbag replay on the wire: /Morai_SimProc in, MoraiSimProcStatus and ReplayInfo out.
+
+The replay session (egosim.replay) is pure logic over a playback clock; this
+module advances it with the loop, makes the world show the selected targets
+of the bag (world.show_recorded) and reports the session's state. Headers
+carry the simulator's clock, like every other row; the bag's own time is the
+playback clock.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+from ...replay import BagTimeline, CommandResult, Mode, ObjectState, ReplayTopics
+from ...sensors.rotation import quaternion_from_euler
+from ...world.traffic import ObjectType
+from ..context import BridgeContext
+from ..protocol.messages import quaternion, time_msg, vector3
+from ..protocol.network import NetworkSettings
+from ..protocol.table import Row
+from ..protocol.units import deg
+from ..scene.objects import object_status
+from .replayed_scene import recorded_scene, world_objects
+
+# The yaw rate ReplayInfo reports is the slope of the recorded heading over this span (s).
+YAW_RATE_SPAN_S = 0.002
+
+
+def replay_topics(settings: NetworkSettings) -> ReplayTopics:
+    """Where the replayed rows are recorded: their names in the effective table."""
+    return ReplayTopics(
+        ego=settings.row("ego_status").name,
+        objects=settings.row("object_status").name,
+        control=settings.row("ctrl_cmd").name,
+    )
+
+
+def show_replay(context: BridgeContext) -> None:
+    """Make the world show the session's frame (nothing, in simulation mode)."""
+    session = context.replay
+    context.world.show_recorded(recorded_scene(session.frame(), session.targets))
+
+
+def advance_replay(context: BridgeContext, dt: float) -> None:
+    """Before each physics step of `dt` s: move the playback clock and show where it is."""
+    if context.world.paused:
+        return
+    context.replay.advance(dt)
+    show_replay(context)
+
+
+def serve_sim_proc(context: BridgeContext, row: Row, request: Any) -> Any:
+    """/Morai_SimProc: apply the MoraiSimProcHandle; result true only on 0x01 success."""
+    received_ns = context.stamp_ns()
+    result = context.replay.handle(request.request, received_ns=received_ns)
+    show_replay(context)
+    profile = context.profile
+    return profile.message("morai_msgs/MoraiSimProcSrvResponse").new(
+        response=profile.message("morai_msgs/MoraiSrvResponse").new(
+            result=result is CommandResult.SUCCESS
+        )
+    )
+
+
+def publish_sim_proc_status(context: BridgeContext, row: Row) -> Any:
+    """/sim/process/state/msg/MoraiSimProcStatus: always, in simulation mode too."""
+    status = context.replay.status()
+    return context.profile.message("morai_msgs/MoraiSimProcStatus").new(
+        header=context.header(),
+        latest_command_time=time_msg(context.profile, status.latest_command_time_ns),
+        command_result=int(status.command_result),
+        current_mode=int(status.current_mode),
+        current_status=int(status.current_status),
+    )
+
+
+def publish_replay_info(context: BridgeContext, row: Row) -> Any | None:
+    """/ReplayInfo_topic, during replay only: the bag's ego inputs and objects at the
+    playback clock, whichever targets are replayed (ReplayInfo describes the bag)."""
+    session = context.replay
+    timeline = session.timeline
+    if session.mode is not Mode.REPLAY or timeline is None:
+        return None
+    frame = timeline.sample(session.playback_time)
+    profile = context.profile
+    ego = frame.ego
+    fields: dict[str, Any] = {}
+    if ego is not None:
+        fields = {
+            "ego_acc": ego.accel_pedal,
+            "ego_brake": ego.brake_pedal,
+            "ego_steer": deg(ego.front_steer),
+            "orientation": quaternion(profile, quaternion_from_euler(0.0, 0.0, ego.heading)),
+            "linear_acceleration": vector3(profile, ego.acceleration),
+            "angular_velocity": vector3(
+                profile, (0.0, 0.0, recorded_yaw_rate(timeline, frame.time))
+            ),
+        }
+
+    def listed(recorded: Sequence[ObjectState], kind: ObjectType) -> list[Any]:
+        return [object_status(profile, o) for o in world_objects(recorded, kind)]
+
+    return profile.message("morai_msgs/ReplayInfo").new(
+        header=context.header(),
+        num_of_npcs=len(frame.npcs),
+        num_of_pedestrian=len(frame.pedestrians),
+        num_of_obstacle=len(frame.obstacles),
+        npc_list=listed(frame.npcs, ObjectType.NPC_VEHICLE),
+        pedestrian_list=listed(frame.pedestrians, ObjectType.PEDESTRIAN),
+        obstacle_list=listed(frame.obstacles, ObjectType.OBSTACLE),
+        **fields,
+    )
+
+
+def recorded_yaw_rate(timeline: BagTimeline, t: float) -> float:
+    """rad/s: the recorded heading's slope around `t` s (EgoVehicleStatus has no yaw rate)."""
+    assert timeline.ego is not None
+    start = max(t - YAW_RATE_SPAN_S / 2, 0.0)
+    end = min(t + YAW_RATE_SPAN_S / 2, timeline.duration)
+    if end <= start:
+        return 0.0
+    turned = timeline.ego.sample(end).heading - timeline.ego.sample(start).heading
+    return math.remainder(turned, math.tau) / (end - start)

@@ -1,0 +1,258 @@
+"""/egosim/markers: the scene as visualization_msgs/MarkerArray for RViz, in frame `map`.
+
+The map is built once and latched (Handlers.latched): roads at their width, lane centre
+lines, stop lines, crosswalks, sidewalks, and the ids of road lanes and lights as text.
+At the row's rate (10 Hz) follow every ego, NPC, pedestrian and obstacle as a box and
+every light as a sphere in the colour of its aspect; those markers live
+LIFETIME_PERIODS of the row, so an object that leaves the scene leaves the display too.
+Namespaces (`ns`) let RViz show or hide each layer.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from ...msgs import Profile
+from ...sensors.rotation import quaternion_from_euler
+from ...world.map import LaneMap
+from ...world.map.sections import lane_cross_section
+from ...world.signals.aspects import shown_colour
+from ...world.traffic import ObjectType
+from ..context import BridgeContext
+from ..protocol.messages import quaternion, vector3
+from ..protocol.table import Row
+
+LIFETIME_PERIODS = 5
+"""Moving markers live this many periods of the row (0.5 s at 10 Hz): a missed message does
+not blink, an object that is gone goes."""
+UNTIMED_LIFETIME_S = 0.5
+"""Their lifetime when the row has no rate."""
+
+# visualization_msgs/Marker types and actions.
+CUBE, SPHERE_LIST, LINE_STRIP, LINE_LIST, TEXT_VIEW_FACING = 1, 7, 4, 5, 9
+ADD = 0
+
+RGBA = tuple[float, float, float, float]
+ROAD: RGBA = (0.35, 0.35, 0.37, 1.0)
+CENTRE_LINE: RGBA = (0.85, 0.85, 0.85, 0.8)
+STOP_LINE: RGBA = (1.0, 1.0, 1.0, 1.0)
+CROSSWALK: RGBA = (0.95, 0.95, 0.95, 0.6)
+SIDEWALK: RGBA = (0.78, 0.72, 0.6, 1.0)
+LANE_ID: RGBA = (0.6, 0.8, 1.0, 1.0)
+LIGHT_ID: RGBA = (1.0, 0.7, 0.7, 1.0)
+LIGHT_COLOURS: dict[str | None, RGBA] = {
+    "red": (0.9, 0.1, 0.1, 1.0),
+    "yellow": (1.0, 0.8, 0.0, 1.0),
+    "green": (0.1, 0.85, 0.2, 1.0),
+    None: (0.3, 0.3, 0.3, 1.0),
+}
+OBJECT_COLOURS: dict[int, RGBA] = {
+    int(ObjectType.EGO): (0.1, 0.45, 1.0, 0.9),
+    int(ObjectType.NPC_VEHICLE): (1.0, 0.55, 0.1, 0.9),
+    int(ObjectType.PEDESTRIAN): (0.2, 0.9, 0.4, 0.9),
+    int(ObjectType.OBSTACLE): (0.75, 0.75, 0.75, 0.9),
+}
+OBJECT_NAMESPACES = {
+    int(ObjectType.EGO): "egos",
+    int(ObjectType.NPC_VEHICLE): "npcs",
+    int(ObjectType.PEDESTRIAN): "pedestrians",
+    int(ObjectType.OBSTACLE): "obstacles",
+}
+CENTRE_LINE_WIDTH_M = 0.15
+STOP_LINE_WIDTH_M = 0.4
+SIDEWALK_WIDTH_M = 2.0
+TEXT_HEIGHT_M = 1.5
+LIGHT_SIZE_M = 1.0
+# Layers stacked a few cm apart so RViz draws them in order, not flickering.
+ROAD_Z_M, LINE_Z_M, TEXT_Z_M = -0.05, 0.02, 1.0
+
+
+class _Builder:
+    """Makes Marker messages of one profile (geometry and colour types looked up once)."""
+
+    def __init__(self, context: BridgeContext) -> None:
+        self.profile: Profile = context.profile
+        self.header = context.header()
+        self.marker = self.profile.message("visualization_msgs/Marker")
+        point = self.profile.message("geometry_msgs/Point")
+        colour = self.profile.message("std_msgs/ColorRGBA")
+        self.point_type = point.store.types[point.store_name]
+        self.colour_type = colour.store.types[colour.store_name]
+        self.duration_type = type(self.marker.new().lifetime)
+
+    def colour(self, rgba: RGBA) -> Any:
+        return self.colour_type(r=rgba[0], g=rgba[1], b=rgba[2], a=rgba[3])
+
+    def points(self, xyz: Iterable[Sequence[float]] | npt.NDArray[np.float64]) -> list[Any]:
+        rows = xyz.tolist() if isinstance(xyz, np.ndarray) else xyz
+        return [self.point_type(x=float(x), y=float(y), z=float(z)) for x, y, z in rows]
+
+    def new(
+        self,
+        ns: str,
+        marker_id: int,
+        marker_type: int,
+        rgba: RGBA,
+        scale: Sequence[float],
+        *,
+        position: Sequence[float] = (0.0, 0.0, 0.0),
+        yaw: float = 0.0,
+        lifetime_s: float = 0.0,
+        **fields: Any,
+    ) -> Any:
+        return self.marker.new(
+            header=self.header,
+            ns=ns,
+            id=marker_id,
+            type=marker_type,
+            action=ADD,
+            pose=self.profile.message("geometry_msgs/Pose").new(
+                position=self.profile.message("geometry_msgs/Point").new(
+                    x=float(position[0]), y=float(position[1]), z=float(position[2])
+                ),
+                orientation=quaternion(self.profile, quaternion_from_euler(0.0, 0.0, yaw)),
+            ),
+            scale=vector3(self.profile, scale),
+            color=self.colour(rgba),
+            lifetime=self._duration(lifetime_s),
+            **fields,
+        )
+
+    def _duration(self, seconds: float) -> Any:
+        sec, nanosec = divmod(round(seconds * 1e9), 1_000_000_000)
+        return self.duration_type(sec=sec, nanosec=nanosec)
+
+
+def build_map_markers(context: BridgeContext, row: Row) -> Any:
+    """The static scene, once: roads, centre lines, stop lines, crosswalks, sidewalks, ids."""
+    lane_map = context.world.map
+    make = _Builder(context)
+    # One point list per lane, shared by the road and centre-line markers (their poses set
+    # their heights): points are most of the cost of this message.
+    segments = {
+        lane.id: make.points(_segments((lane.centerline,))) for lane in lane_map.lanes.values()
+    }
+    centre_lines = [point for points in segments.values() for point in points]
+    markers = [
+        *_roads(make, lane_map, segments),
+        make.new(
+            "lane_centres", 0, LINE_LIST, CENTRE_LINE, (CENTRE_LINE_WIDTH_M, 0.0, 0.0),
+            position=(0.0, 0.0, LINE_Z_M), points=centre_lines,
+        ),
+    ]  # fmt: skip
+    lift = np.array((0.0, 0.0, LINE_Z_M))
+    stop_lines = [
+        end
+        for lane in lane_map.lanes.values() if lane.stop_line_s is not None
+        for end in (lane_cross_section(lane_map, lane.id, lane.stop_line_s) + lift).tolist()
+    ]  # fmt: skip
+    if stop_lines:
+        markers.append(
+            make.new(
+                "stop_lines", 0, LINE_LIST, STOP_LINE, (STOP_LINE_WIDTH_M, 0.0, 0.0),
+                points=make.points(stop_lines),
+            )
+        )  # fmt: skip
+    by_width: dict[float, list[tuple[float, float, float]]] = defaultdict(list)
+    for crosswalk in lane_map.crosswalks.values():
+        by_width[round(crosswalk.width, 2)] += [
+            (*crosswalk.start, LINE_Z_M),
+            (*crosswalk.end, LINE_Z_M),
+        ]
+    markers += [
+        make.new("crosswalks", k, LINE_LIST, CROSSWALK, (width, 0.0, 0.0), points=make.points(ends))
+        for k, (width, ends) in enumerate(sorted(by_width.items()))
+    ]
+    markers += [
+        make.new(
+            "sidewalks", k, LINE_STRIP, SIDEWALK, (SIDEWALK_WIDTH_M, 0.0, 0.0),
+            points=make.points((x, y, LINE_Z_M) for x, y in sidewalk.points[:, :2]),
+        )
+        for k, sidewalk in enumerate(lane_map.sidewalks.values())
+    ]  # fmt: skip
+    road_lanes = [lane for lane in lane_map.lanes.values() if not lane.is_junction]
+    for k, lane in enumerate(road_lanes):
+        x, y, z, _ = lane_map.pose_at(lane.id, lane.length / 2.0)
+        markers.append(
+            make.new(
+                "lane_ids", k, TEXT_VIEW_FACING, LANE_ID, (0.0, 0.0, TEXT_HEIGHT_M),
+                position=(x, y, z + TEXT_Z_M), text=lane.id,
+            )
+        )  # fmt: skip
+    for k, light in enumerate(lane_map.traffic_lights.values()):
+        x, y, z = light.position
+        markers.append(
+            make.new(
+                "light_ids", k, TEXT_VIEW_FACING, LIGHT_ID, (0.0, 0.0, TEXT_HEIGHT_M),
+                position=(x, y, z + LIGHT_SIZE_M + TEXT_Z_M), text=light.id,
+            )
+        )  # fmt: skip
+    return context.profile.message("visualization_msgs/MarkerArray").new(markers=markers)
+
+
+def build_scene_markers(context: BridgeContext, row: Row) -> Any:
+    """What moves, at the row's rate: a box per object, a sphere per light."""
+    make = _Builder(context)
+    lifetime = LIFETIME_PERIODS / row.rate_hz if row.rate_hz else UNTIMED_LIFETIME_S
+    world = context.world
+    objects = world.objects()
+    markers = []
+    for uid, kind, (x, y, z), heading, (length, width, height) in zip(
+        objects.unique_ids.tolist(),
+        objects.object_types.tolist(),
+        objects.positions.tolist(),
+        objects.headings.tolist(),
+        objects.sizes.tolist(),
+        strict=True,
+    ):
+        markers.append(
+            make.new(
+                OBJECT_NAMESPACES[kind], uid, CUBE, OBJECT_COLOURS[kind], (length, width, height),
+                position=(x, y, z + height / 2.0), yaw=heading, lifetime_s=lifetime,
+            )
+        )  # fmt: skip
+    signals = world.signals
+    if len(signals.light_ids):
+        sites = world.map.traffic_lights
+        markers.append(
+            make.new(
+                "lights", 0, SPHERE_LIST, LIGHT_COLOURS[None], (LIGHT_SIZE_M,) * 3,
+                lifetime_s=lifetime,
+                points=make.points(sites[i].position for i in signals.light_ids),
+                colors=[
+                    make.colour(LIGHT_COLOURS[shown_colour(int(aspect))])
+                    for aspect in signals.aspects().tolist()
+                ],
+            )
+        )  # fmt: skip
+    return context.profile.message("visualization_msgs/MarkerArray").new(markers=markers)
+
+
+def _roads(make: _Builder, lane_map: LaneMap, segments: dict[str, list[Any]]) -> list[Any]:
+    """Every lane's centre line drawn as wide as the lane (one marker per width)."""
+    by_width: dict[float, list[Any]] = defaultdict(list)
+    for lane in lane_map.lanes.values():
+        by_width[round(float(np.mean(lane.widths)), 2)] += segments[lane.id]
+    return [
+        make.new(
+            "roads", k, LINE_LIST, ROAD, (width, 0.0, 0.0),
+            position=(0.0, 0.0, ROAD_Z_M), points=points,
+        )
+        for k, (width, points) in enumerate(sorted(by_width.items()))
+    ]  # fmt: skip
+
+
+def _segments(polylines: Iterable[Any]) -> npt.NDArray[np.float64]:
+    """(N, 3) polylines as LINE_LIST point pairs, each segment's two ends: (M, 3)."""
+    pieces = []
+    for line in polylines:
+        points = np.asarray(line, dtype=np.float64)
+        ends = np.empty((2 * (len(points) - 1), 3))
+        ends[0::2], ends[1::2] = points[:-1], points[1:]
+        pieces.append(ends)
+    return np.concatenate(pieces) if pieces else np.zeros((0, 3))

@@ -1,0 +1,128 @@
+"""Objects around the ego: ObjectStatusList, CollisionData, VehicleCollisionData.
+
+ObjectStatus carries heading in deg, velocity in km/h and acceleration in m/s^2,
+both vectors in the object's own frame (x forward, y left), so `velocity.x`
+is its speed as MORAI clients read it; position is the footprint centre in the
+map frame; size is (length, width, height) in m.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+from ...msgs import Profile
+from ...world.collision import VehicleCollision
+from ...world.traffic import ObjectState
+from ..context import BridgeContext
+from ..protocol.messages import vector3
+from ..protocol.table import Row
+from ..protocol.units import heading_deg, kmh, swap_length_width
+
+
+def to_object_frame(vector: Sequence[float], heading: float) -> tuple[float, float, float]:
+    """A map-frame vector in the frame of an object heading `heading` (rad)."""
+    c, s = math.cos(heading), math.sin(heading)
+    x, y, z = vector
+    return (c * x + s * y, -s * x + c * y, z)
+
+
+def object_status_fields(profile: Profile, state: ObjectState) -> dict[str, Any]:
+    """The fields ObjectStatus and ObjectStatusExtended share, in protocol units."""
+    velocity = to_object_frame(state.velocity, state.heading)
+    return {
+        "unique_id": state.unique_id,
+        "type": int(state.object_type),
+        "name": state.name,
+        "heading": heading_deg(state.heading),
+        "velocity": vector3(profile, [kmh(v) for v in velocity]),
+        "acceleration": vector3(profile, to_object_frame(state.acceleration, state.heading)),
+        "size": vector3(profile, swap_length_width(state.size)),
+        "position": vector3(profile, state.position),
+    }
+
+
+def object_status(profile: Profile, state: ObjectState) -> Any:
+    return profile.message("morai_msgs/ObjectStatus").new(**object_status_fields(profile, state))
+
+
+def publish_object_list(context: BridgeContext, row: Row) -> Any:
+    """/Object_topic: counts of everything spawned; the N closest objects, closest first
+    (from the position /Ego_topic reports to each reported position)."""
+    listing = context.world.object_list(context.session.camera_index)
+    profile = context.profile
+    return profile.message("morai_msgs/ObjectStatusList").new(
+        header=context.header(),
+        num_of_npcs=listing.num_npcs,
+        num_of_pedestrian=listing.num_pedestrians,
+        num_of_obstacle=listing.num_obstacles,
+        npc_list=[object_status(profile, s) for s in listing.npcs],
+        pedestrian_list=[object_status(profile, s) for s in listing.pedestrians],
+        obstacle_list=[object_status(profile, s) for s in listing.obstacles],
+    )
+
+
+EGO_COLLISIONS = "ego_collisions"
+VEHICLE_COLLISIONS = "vehicle_collisions"
+
+
+def publish_collision(context: BridgeContext, row: Row) -> Any:
+    """/CollisionData: the main ego's collisions that began since the row's previous
+    message, then the objects it still touches (a contact is reported as long as it lasts).
+
+    The previous message is the previous one due, whether anyone listened or not
+    (pass_collisions): a subscriber that joins late gets no collision older than one
+    period. An empty collision_object list means no collision and no contact;
+    global_offset_* is the position of the most recent collided object, in every message
+    after it (zeros before the first).
+    """
+    world = context.world
+    ego_id = world.egos[0].unique_id
+    new = [
+        c.other
+        for c in context.unreported(EGO_COLLISIONS, world.ego_collision_log)
+        if c.ego_id == ego_id
+    ]
+    listed = {other.unique_id for other in new}
+    lasting = [o for o in world.ego_contacts.get(ego_id, []) if o.unique_id not in listed]
+    latest = world.ego_collision(0)
+    offset = latest.other.position if latest is not None else (0.0, 0.0, 0.0)
+    return context.profile.message("morai_msgs/CollisionData").new(
+        header=context.header(),
+        global_offset_x=offset[0],
+        global_offset_y=offset[1],
+        global_offset_z=offset[2],
+        collision_object=[object_status(context.profile, o) for o in new + lasting],
+    )
+
+
+def publish_vehicle_collisions(context: BridgeContext, row: Row) -> Any:
+    """/VehicleCollisionData: NPC-NPC collisions that began since the last message, then
+    the NPC-NPC contacts that last."""
+    profile = context.profile
+    collision_type = profile.message("morai_msgs/VehicleCollision")
+    new = context.unreported(VEHICLE_COLLISIONS, context.world.vehicle_collisions)
+    listed = {_pair(c) for c in new}
+    new += [c for c in context.world.vehicle_contacts if _pair(c) not in listed]
+    return profile.message("morai_msgs/VehicleCollisionData").new(
+        header=context.header(),
+        collisions=[
+            collision_type.new(crashed_vehicles=[object_status(profile, v) for v in c.vehicles])
+            for c in new
+        ],
+    )
+
+
+def pass_collisions(context: BridgeContext, row: Row) -> None:
+    """/CollisionData due with no one listening: its new collisions count as reported."""
+    context.unreported(EGO_COLLISIONS, context.world.ego_collision_log)
+
+
+def pass_vehicle_collisions(context: BridgeContext, row: Row) -> None:
+    """/VehicleCollisionData due with no one listening: the same."""
+    context.unreported(VEHICLE_COLLISIONS, context.world.vehicle_collisions)
+
+
+def _pair(collision: VehicleCollision) -> frozenset[int]:
+    return frozenset(v.unique_id for v in collision.vehicles)

@@ -1,0 +1,109 @@
+"""GPS, IMU, LiDAR and tf readings as the messages MORAI SIM publishes."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import Any
+
+import numpy as np
+
+from ...msgs import Profile
+from ...sensors import GpsFix, ImuReading, Transform
+from ...sensors.radar import RadarDetections
+from ..protocol.messages import header as make_header
+from ..protocol.messages import quaternion, vector3
+from ..protocol.units import deg
+
+POINT_FIELDS = ("x", "y", "z", "intensity")
+FLOAT32 = 7  # sensor_msgs/PointField datatype code
+
+
+def gps_message(profile: Profile, header: Any, fix: GpsFix) -> Any:
+    return profile.message("morai_msgs/GPSMessage").new(
+        header=header,
+        latitude=fix.latitude,
+        longitude=fix.longitude,
+        altitude=fix.altitude,
+        eastOffset=fix.east_offset,
+        northOffset=fix.north_offset,
+        status=fix.status,
+    )
+
+
+def imu_message(profile: Profile, header: Any, reading: ImuReading) -> Any:
+    return profile.message("sensor_msgs/Imu").new(
+        header=header,
+        orientation=quaternion(profile, reading.orientation),
+        orientation_covariance=np.array(reading.orientation_covariance, dtype=np.float64),
+        angular_velocity=vector3(profile, reading.angular_velocity),
+        angular_velocity_covariance=np.array(reading.angular_velocity_covariance, np.float64),
+        linear_acceleration=vector3(profile, reading.linear_acceleration),
+        linear_acceleration_covariance=np.array(
+            reading.linear_acceleration_covariance, dtype=np.float64
+        ),
+    )
+
+
+def point_cloud(profile: Profile, header: Any, points: np.ndarray) -> Any:
+    """sensor_msgs/PointCloud2 of (M, 4) float32 points x, y, z, intensity (unorganised)."""
+    cloud = np.ascontiguousarray(points, dtype="<f4")
+    field_type = profile.message("sensor_msgs/PointField")
+    fields = [
+        field_type.new(name=name, offset=4 * index, datatype=FLOAT32, count=1)
+        for index, name in enumerate(POINT_FIELDS)
+    ]
+    return profile.message("sensor_msgs/PointCloud2").new(
+        header=header,
+        height=1,
+        width=len(cloud),
+        fields=fields,
+        is_bigendian=False,
+        point_step=16,
+        row_step=16 * len(cloud),
+        data=cloud.view(np.uint8).reshape(-1),
+        is_dense=True,
+    )
+
+
+def tf_message(profile: Profile, stamp_ns: int, transforms: Iterable[Transform]) -> Any:
+    stamped = profile.message("geometry_msgs/TransformStamped")
+    transform_type = profile.message("geometry_msgs/Transform")
+    return profile.message("tf2_msgs/TFMessage").new(
+        transforms=[
+            stamped.new(
+                header=make_header(profile, stamp_ns, transform.parent_frame),
+                child_frame_id=transform.child_frame,
+                transform=transform_type.new(
+                    translation=vector3(profile, transform.translation),
+                    rotation=quaternion(profile, transform.rotation),
+                ),
+            )
+            for transform in transforms
+        ]
+    )
+
+
+def radar_message(profile: Profile, header: Any, detections: RadarDetections) -> Any:
+    """morai_msgs/RadarDetections: azimuth in degrees, detection_id the object's id (16 bit)."""
+    detection = profile.message("morai_msgs/RadarDetection")
+    point = profile.message("geometry_msgs/Point")
+    return profile.message("morai_msgs/RadarDetections").new(
+        header=header,
+        detections=[
+            detection.new(
+                detection_id=int(uid) & 0xFFFF,
+                position=point.new(x=float(p[0]), y=float(p[1]), z=float(p[2])),
+                azimuth=deg(float(azimuth)),
+                rangerate=float(rate),
+                amplitude=float(amplitude),
+            )
+            for uid, p, azimuth, rate, amplitude in zip(
+                detections.unique_ids.tolist(),
+                detections.positions.tolist(),
+                detections.azimuths.tolist(),
+                detections.range_rates.tolist(),
+                detections.amplitudes.tolist(),
+                strict=True,
+            )
+        ],
+    )
