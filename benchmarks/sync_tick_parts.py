@@ -36,6 +36,7 @@ from egosim.bridge import (
 from egosim.msgs import MessageType
 from egosim.ros1 import Node
 from egosim.world import World
+from egosim.world.populations import base as populations_base
 
 TICK_S = 0.01
 
@@ -44,12 +45,12 @@ def world_parts(world: World) -> dict[str, tuple[object, str]]:
     """The calls `World.step` makes, by what they do: (owner, attribute name)."""
     return {
         "signal programs": (world.signals, "step"),
-        "road surface under the ego": (world, "_road_surfaces"),
+        "road surface under the ego": (world._simulated_egos, "road_surfaces"),
         "ego dynamics": (world.egos[0].vehicle, "step"),
-        "lane projection (egos, walkers)": (world, "_lane_users"),
+        "lane projection and occupants": (populations_base, "place_on_lanes"),
         "NPC step": (world.npcs, "step"),
         "pedestrian step": (world.pedestrians, "step"),
-        "collision check": (world, "_collide"),
+        "collisions and contact response": (world._contacts, "step"),
     }
 
 
@@ -70,9 +71,7 @@ def time_world_parts(ticks: int, warmup: int) -> None:
     for label, seconds in spent.items():
         print(f"  {label:42s} {seconds / ticks * 1e6:8.0f} us per tick")
     rest = whole - sum(spent.values())
-    print(
-        f"  {'the rest (lights view, occupants, glue)':42s} {rest / ticks * 1e6:8.0f} us per tick"
-    )
+    print(f"  {'the rest (lights view, glue)':42s} {rest / ticks * 1e6:8.0f} us per tick")
 
 
 def timed(

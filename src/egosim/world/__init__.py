@@ -4,6 +4,7 @@ Public API:
     World, Ego, EgoLaneState                 the assembly the bridge drives
     UnknownObjectModelError                  World.add_object's refusal
     egosim.world.map, .vehicle, .traffic, .signals, .scenario, .collision   the parts
+    egosim.world.populations, .contact_handling   how World steps its agents
 """
 
 from egosim.world.world import (

@@ -1,29 +1,45 @@
 """The World: map, ego vehicles, traffic, signals and collisions advanced by step(dt).
 
-A thin assembly of the modules that hold the logic. It is pure and deterministic: the
-same scenario, seed and command sequence give bit-identical states.
+A thin assembly of the modules that hold the logic. Its agents are populations
+(world/populations): the egos, then the NPC vehicles (simulated, ghosts, a storyboard's),
+the pedestrians (simulated, a storyboard's) and the obstacles (likewise), in the order
+of the object table; a replay swaps a recorded population in for a kind's own ones. The
+world orders them, steps them and keeps the logs; world/contact_handling.py answers
+their contacts. It is pure and deterministic: the same scenario, seed and command
+sequence give bit-identical states.
 """
 
 from __future__ import annotations
 
 import itertools
-import math
-from collections.abc import Iterator, Sequence
-from dataclasses import dataclass, replace
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from egosim.world.arrays import FloatArray, IntArray
-from egosim.world.collision import (
-    ContactTracker,
-    EgoCollision,
-    Footprints,
-    VehicleCollision,
-    touching_pairs,
+from egosim.world.collision import EgoCollision, VehicleCollision
+from egosim.world.contact import ContactModel
+from egosim.world.contact_handling import ContactHandler, StepContacts
+from egosim.world.map import LaneMap
+from egosim.world.populations import (
+    Ego,
+    EgoPopulation,
+    PlacedGhosts,
+    Population,
+    RecordedObstacles,
+    RecordedPedestrians,
+    RecordedVehicles,
+    Replaceable,
+    ReplayedEgos,
+    ScriptedPopulation,
+    ScriptedRoadUsers,
+    SimulatedEgos,
+    SimulatedNpcs,
+    SimulatedObstacles,
+    SimulatedPedestrians,
+    Surroundings,
 )
-from egosim.world.contact import Bodies, ContactModel, Response, respond
-from egosim.world.map import LaneMap, LaneProjections
 from egosim.world.recorded_scene import RecordedScene
 from egosim.world.scenario import Scenario, ScenarioLoadOptions, ScenarioLoadReport
 from egosim.world.scenario.frame import in_map_frame
@@ -36,8 +52,6 @@ from egosim.world.scenario.placement import (
     pedestrian_spawns,
 )
 from egosim.world.signals import (
-    OFF,
-    RED,
     IntersectionProgram,
     LightState,
     TrafficSignals,
@@ -47,7 +61,6 @@ from egosim.world.signals import (
 from egosim.world.traffic import (
     CrosswalkLights,
     LaneGraph,
-    LaneOccupants,
     LightsView,
     NpcFleet,
     ObjectState,
@@ -68,9 +81,7 @@ from egosim.world.traffic.scripted import ScriptedObjects
 from egosim.world.vehicle import (
     DEFAULT_EGO_MODEL,
     EgoModel,
-    EgoVehicle,
     Pose,
-    RoadSurface,
     VehicleStatus,
     ego_model,
     ego_vehicle,
@@ -80,12 +91,6 @@ from egosim.yamltext import Problems
 
 DEFAULT_PHYSICS_STEP_S = 0.01
 DEFAULT_OBJECT_LIST_SIZE = 20
-# A pedestrian this close to a lane's edge (m) already counts as in the lane for drivers.
-PEDESTRIAN_LANE_MARGIN_M = 1.0
-PEDESTRIAN_HALF_DEPTH_M = 0.5
-# Length of lane over which the grade under an ego is measured, m.
-GRADE_BASE_M = 1.0
-PEDESTRIAN_MASS_KG = 75.0
 
 
 class UnknownObjectModelError(ValueError):
@@ -94,31 +99,6 @@ class UnknownObjectModelError(ValueError):
     def __init__(self, name: str) -> None:
         known = ", ".join(sorted([*OBSTACLE_MODELS, *VEHICLE_CATALOGUE]))
         super().__init__(f"unknown object model {name!r}; known: {known}")
-
-
-class Ego:
-    """One ego vehicle: its object id and the vehicle model that moves it."""
-
-    def __init__(self, unique_id: int, vehicle: EgoVehicle) -> None:
-        self.unique_id = unique_id
-        self.vehicle = vehicle
-        self.catalogue_model: EgoModel = vehicle.model
-        """The catalogue model it was given (a scenario may drive it with the figures of
-        its own car for a while: see use_model)."""
-
-    def use_model(self, model: EgoModel, command_timeout: float | None) -> None:
-        """Drive on as a vehicle of `model` (a scenario's car), where it is, as fast."""
-        if self.vehicle.model == model:
-            return
-        status = self.vehicle.status()
-        self.vehicle = ego_vehicle(model, status.pose, command_timeout)
-        self.vehicle.teleport(status.pose, status.velocity[0])
-
-    def box_centre(self, status: VehicleStatus) -> tuple[float, float]:
-        """Footprint centre, m: the reference point moved to the middle of the body."""
-        offset = self.vehicle.model.box_centre_ahead_of_reference
-        yaw = status.pose.yaw
-        return status.pose.x + offset * math.cos(yaw), status.pose.y + offset * math.sin(yaw)
 
 
 @dataclass(frozen=True)
@@ -153,9 +133,9 @@ class World:
         self.sim_time = 0.0
         self.paused = False
         self.signals = TrafficSignals(lane_map)
-        self._graph = LaneGraph(lane_map, self.signals.lane_signals.of_lane)
-        self._crosswalk_lights = CrosswalkLights(crossed_lights(lane_map, self._light_positions()))
-        self.npcs = NpcFleet(self._graph, np.random.default_rng(0))
+        graph = LaneGraph(lane_map, self.signals.lane_signals.of_lane)
+        light_positions = {light_id: k for k, light_id in enumerate(self.signals.light_ids)}
+        self.npcs = NpcFleet(graph, np.random.default_rng(0))
         self.npc_ghosts = NpcGhosts()
         self.pedestrians = PedestrianCrowd()
         self.obstacles = StaticObstacles()
@@ -166,12 +146,33 @@ class World:
         self.storyboard: StoryboardRun | None = None
         """The running OpenSCENARIO storyboard of the last scenario loaded, if it has one
         (the tick pipeline's storyboard stage steps it)."""
-        self._obstacle_occupants = LaneOccupants.empty()
         self._next_id = 1
         self._command_timeout_s: float | None = None
         self.egos: list[Ego] = []
+        self._simulated_egos = SimulatedEgos(lane_map, self.egos, self.scripted_egos)
+        self._own: tuple[tuple[Replaceable, ...], ...] = (
+            (
+                SimulatedNpcs(self.npcs),
+                PlacedGhosts(self.npc_ghosts),
+                ScriptedRoadUsers(self.scripted, ObjectType.NPC_VEHICLE),
+            ),
+            (
+                SimulatedPedestrians(
+                    self.pedestrians, CrosswalkLights(crossed_lights(lane_map, light_positions))
+                ),
+                ScriptedRoadUsers(self.scripted, ObjectType.PEDESTRIAN),
+            ),
+            (
+                SimulatedObstacles(self.obstacles, lane_map),
+                ScriptedPopulation(self.scripted, ObjectType.OBSTACLE),
+            ),
+        )
+        """Per kind (NPC vehicles, pedestrians, obstacles): the populations of the world's
+        own agents (simulated, placed by NpcGhostCmd, placed by a storyboard)."""
+        self.recorded = RecordedScene()
+        """What a replay shows instead of simulating (nothing by default); see show_recorded."""
+        self._show(self._simulated_egos, self._own)
         self.add_ego(DEFAULT_EGO_MODEL, self._first_lane_pose())
-        self._contacts = ContactTracker()
         self.contact_model = ContactModel()
         """Restitution and friction of every contact (world/contact.py)."""
         self.ego_collisions: dict[int, EgoCollision] = {}
@@ -186,15 +187,9 @@ class World:
         """The NPC-NPC contacts of now, time-stamped when they began."""
         self.network_settings_request: dict[str, Any] | None = None
         """The network settings of the last ScenarioLoad that asked for them."""
-        self.recorded = RecordedScene()
-        """What a replay shows instead of simulating (nothing by default); see show_recorded."""
-        self._footprints = self._current_footprints()
-        self._ego_lane_cache: tuple[tuple[Pose, ...], LaneProjections] | None = None
+        self._contacts = ContactHandler(self.objects())
         if scenario is not None:
             self.load_scenario(scenario)
-
-    def _light_positions(self) -> dict[str, int]:
-        return {light_id: k for k, light_id in enumerate(self.signals.light_ids)}
 
     def _first_lane_pose(self) -> Pose:
         x, y, z, heading = self.map.pose_at(self.map.lane_ids[0], 0.0)
@@ -208,6 +203,17 @@ class World:
         ids = list(range(self._next_id, self._next_id + count))
         self._next_id += count
         return ids
+
+    def _show(self, egos: EgoPopulation, kinds: tuple[tuple[Population, ...], ...]) -> None:
+        """From now on the world's agents are `egos`, then the populations of each kind;
+        those of its own populations that a recording stands in for wait meanwhile."""
+        self._egos = egos
+        self._kinds = kinds
+        self._populations: tuple[Population, ...] = (egos, *itertools.chain(*kinds))
+        shown = {id(population) for population in self._populations}
+        self._waiting = tuple(
+            population for population in itertools.chain(*self._own) if id(population) not in shown
+        )
 
     # -- egos ------------------------------------------------------------------------
 
@@ -239,19 +245,10 @@ class World:
 
     def ego_status(self, index: int = 0) -> VehicleStatus:
         """The ego's state; a replayed main ego reports its recorded acceleration and pedals."""
-        status = self.egos[index].vehicle.status()
-        recorded = self.recorded.ego
-        if index > 0 or recorded is None:
-            return status
-        return replace(
-            status,
-            acceleration=recorded.acceleration,
-            accel_pedal=recorded.accel_pedal,
-            brake_pedal=recorded.brake_pedal,
-        )
+        return self._egos.status(index)
 
     def ego_lane_state(self, index: int = 0) -> EgoLaneState:
-        projection = self._ego_lanes()[index]
+        projection = self._egos.lanes()[index]
         return EgoLaneState(
             lane_id=projection.lane_id,
             s=projection.s,
@@ -260,19 +257,6 @@ class World:
             distance_right=projection.distance_right,
             cross_track_error=-projection.lateral,
         )
-
-    def _ego_lanes(self) -> LaneProjections:
-        """Where each ego's reference point lies on its lane (its yaw as the hint).
-
-        Kept while no ego moves: the step, the ego status and the light lookup all ask,
-        and each projection costs as much as stepping a vehicle.
-        """
-        poses = tuple(ego.vehicle.status().pose for ego in self.egos)
-        known = self._ego_lane_cache
-        if known is None or known[0] != poses:
-            projection = self.map.project_many([(p.x, p.y) for p in poses], [p.yaw for p in poses])
-            known = self._ego_lane_cache = (poses, projection)
-        return known[1]
 
     def ego_traffic_light(self, index: int = 0) -> LightState | None:
         """GetTrafficLightStatus: the light governing the lane ahead of the ego, else the
@@ -288,62 +272,14 @@ class World:
 
     # -- objects -----------------------------------------------------------------------
 
-    def _ego_table(self) -> ObjectTable:
-        rows = []
-        for ego in self.egos:
-            status = ego.vehicle.status()
-            yaw = status.pose.yaw
-            c, s = math.cos(yaw), math.sin(yaw)
-            vx, vy, _ = status.velocity
-            ax, ay, _ = status.acceleration
-            x, y = ego.box_centre(status)
-            model = ego.vehicle.model
-            rows.append(
-                (
-                    ego.unique_id,
-                    model.name,
-                    (x, y, status.pose.z),
-                    yaw,
-                    (c * vx - s * vy, s * vx + c * vy, 0.0),
-                    (c * ax - s * ay, s * ax + c * ay, 0.0),
-                    (model.length, model.width, model.height),
-                )
-            )
-        n = len(rows)
-        return ObjectTable(
-            unique_ids=np.array([r[0] for r in rows], dtype=np.int64),
-            object_types=np.full(n, int(ObjectType.EGO), np.int64),
-            names=tuple(r[1] for r in rows),
-            positions=np.array([r[2] for r in rows], dtype=np.float64).reshape(-1, 3),
-            headings=np.array([r[3] for r in rows], dtype=np.float64),
-            velocities=np.array([r[4] for r in rows], dtype=np.float64).reshape(-1, 3),
-            accelerations=np.array([r[5] for r in rows], dtype=np.float64).reshape(-1, 3),
-            sizes=np.array([r[6] for r in rows], dtype=np.float64).reshape(-1, 3),
-        )
-
     def shown_tables(self) -> list[ObjectTable]:
         """NPCs, pedestrians and obstacles in view: the recorded ones where a replay shows
-        them, else the simulated ones."""
-        recorded, scripted = self.recorded, self.scripted
-        return [
-            ObjectTable.concatenate(
-                [self.npcs.table(), self.npc_ghosts.table(), scripted.table(ObjectType.NPC_VEHICLE)]
-            )
-            if recorded.npcs is None
-            else recorded.npcs,
-            ObjectTable.concatenate(
-                [self.pedestrians.table(), scripted.table(ObjectType.PEDESTRIAN)]
-            )
-            if recorded.pedestrians is None
-            else recorded.pedestrians,
-            ObjectTable.concatenate([self.obstacles.table(), scripted.table(ObjectType.OBSTACLE)])
-            if recorded.obstacles is None
-            else recorded.obstacles,
-        ]
+        them, else the world's own (simulated, ghosts, a storyboard's)."""
+        return [_joined([population.table() for population in kind]) for kind in self._kinds]
 
     def objects(self) -> ObjectTable:
         """Every object: egos, then NPCs, pedestrians and obstacles."""
-        return ObjectTable.concatenate([self._ego_table(), *self.shown_tables()])
+        return ObjectTable.concatenate([population.table() for population in self._populations])
 
     def object_list(self, ego_index: int = 0, size: int | None = None) -> ObjectList:
         """ObjectStatusList: counts of all spawned objects; the `size` (default
@@ -355,7 +291,7 @@ class World:
         reported position (its footprint centre, ObjectStatus.position), in the plane.
         """
         npcs, pedestrians, obstacles = self.shown_tables()
-        egos = self._ego_table()
+        egos = self._egos.table()
         other_egos = egos.select(egos.unique_ids != self.egos[ego_index].unique_id)
         others = ObjectTable.concatenate([other_egos, npcs, pedestrians, obstacles])
         pose = self.ego_status(ego_index).pose
@@ -395,7 +331,6 @@ class World:
             obstacle = OBSTACLE_MODELS[model_name]
             size = (obstacle.length, obstacle.width, obstacle.height)
             self.obstacles.spawn([ObstacleSpawn(unique_id, model_name, position, heading, size)])
-            self._place_obstacles_on_lanes()
         elif model_name in VEHICLE_CATALOGUE:
             lane = self.map.project(position[0], position[1], heading)
             index = self.map.lane_index(lane.lane_id)
@@ -412,306 +347,60 @@ class World:
         if len(npc):
             self.npcs.remove(npc)
             return True
-        if self.obstacles.remove(unique_id):
-            self._place_obstacles_on_lanes()
-            return True
-        return False
+        return self.obstacles.remove(unique_id)
 
     # -- replay ------------------------------------------------------------------------
 
     def show_recorded(self, scene: RecordedScene) -> None:
         """Show `scene` from now on: its ego pose at once, its object tables instead of
-        the simulated agents of those kinds, which stop being stepped until a later
+        the world's own agents of those kinds, which stop being stepped until a later
         scene leaves their kind out (RecordedScene() returns to full simulation)."""
         self.recorded = scene
-        if scene.ego is not None:
-            ego = scene.ego
-            self.egos[0].vehicle.teleport(ego.pose, ego.speed, ego.front_steer, ego.rear_steer)
+        recorded: tuple[tuple[ObjectTable | None, Callable[[ObjectTable], Population]], ...] = (
+            (scene.npcs, RecordedVehicles),
+            (scene.pedestrians, RecordedPedestrians),
+            (scene.obstacles, RecordedObstacles),
+        )
+        kinds = tuple(
+            own if table is None else (population(table),)
+            for own, (table, population) in zip(self._own, recorded, strict=True)
+        )
+        if scene.ego is None:
+            self._show(self._simulated_egos, kinds)
+            return
+        ego = scene.ego
+        self.egos[0].vehicle.teleport(ego.pose, ego.speed, ego.front_steer, ego.rear_steer)
+        self._show(ReplayedEgos(self._simulated_egos, ego), kinds)
 
     # -- stepping ----------------------------------------------------------------------
 
     def step(self, dt: float | None = None) -> None:
-        """Advance dt s (default physics_step_s); a paused world does not move."""
+        """Advance dt s (default physics_step_s); a paused world does not move.
+
+        The signals, then each population in order (the egos first; those a recording
+        stands in for wait), then the contacts.
+        """
         dt = self.physics_step_s if dt is None else dt
         if not dt > 0.0:
             raise ValueError(f"step needs a positive dt, got {dt}")
         if self.paused:
             return
         self.signals.step(dt)
-        recorded = self.recorded
-        surfaces = self._road_surfaces()
-        for index, ego in enumerate(self.egos):
-            # A replayed main ego holds the recorded pose show_recorded gave it, and a
-            # storyboard places the egos it drives.
-            if (index > 0 or recorded.ego is None) and ego.unique_id not in self.scripted_egos:
-                ego.vehicle.step(dt, surfaces[index])
-        lights = LightsView.of(self.signals)
-        egos, walkers = self._lane_users()
-        self._wake_dormant()
-        others = LaneOccupants.concatenate(
-            [
-                egos,
-                self.npc_ghosts.occupants(self.map),
-                self.scripted.occupants(self.map),
-                walkers,
-                self._obstacle_occupants,
-            ]
-        )
-        if recorded.npcs is None:
-            self.npcs.step(dt, lights, others)
-        if recorded.pedestrians is None:
-            stops_traffic = (lights.aspects == RED) | (lights.aspects == OFF) | lights.flashing
-            self.pedestrians.step(dt, self._crosswalk_lights.walk_signals(stops_traffic))
-        if recorded.obstacles is None and self.obstacles.step(dt):
-            self._place_obstacles_on_lanes()
+        populations = self._populations
+        surroundings = Surroundings(self.map, LightsView.of(self.signals), populations, self._egos)
+        for population in populations:
+            population.step(dt, surroundings)
+        for waiting in self._waiting:
+            waiting.wait(surroundings)
         self.sim_time += dt
-        self._collide()
+        self._log(self._contacts.step(populations, self.contact_model, self.sim_time))
 
-    def _wake_dormant(self) -> None:
-        """NPCs and pedestrians waiting for an ego to come near set off when one has."""
-        if not (self.npcs.dormant.any() or self.pedestrians.dormant.any()):
-            return
-        poses = [ego.vehicle.status().pose for ego in self.egos]
-        points = np.array([(pose.x, pose.y) for pose in poses], dtype=np.float64)
-        self.npcs.wake(points)
-        self.pedestrians.wake(points)
-
-    def _road_surfaces(self) -> list[RoadSurface]:
-        """The road under each ego: the height of its lane there, and the pitch the
-        lane's grade gives a vehicle facing the ego's way (roll: none)."""
-        projection = self._ego_lanes()
-        n = len(projection)
-        yaws = np.array([ego.vehicle.status().pose.yaw for ego in self.egos])
-        stations = np.concatenate(
-            (projection.s, projection.s - GRADE_BASE_M / 2.0, projection.s + GRADE_BASE_M / 2.0)
-        )
-        poses = self.map.poses_at(np.tile(projection.lane_index, 3), stations)
-        here, below, above = poses[:n], poses[n : 2 * n], poses[2 * n :]
-        run = np.maximum(np.hypot(*(above[:, :2] - below[:, :2]).T), 1e-9)
-        grade = (above[:, 2] - below[:, 2]) / run * np.cos(yaws - projection.heading)
-        return [
-            RoadSurface(z=float(z), pitch=float(-np.arctan(g)))
-            for z, g in zip(here[:, 2], grade, strict=True)
-        ]
-
-    def _lane_users(self) -> tuple[LaneOccupants, LaneOccupants]:
-        """The egos and the pedestrians in lanes, for the drivers behind them.
-
-        One projection serves both, and keeps the egos' reference points for the next
-        step's road surfaces and for the ego status (see _ego_lanes).
-        """
-        statuses = [ego.vehicle.status() for ego in self.egos]
-        n = len(statuses)
-        references = [(s.pose.x, s.pose.y) for s in statuses]
-        centres = [ego.box_centre(s) for ego, s in zip(self.egos, statuses, strict=True)]
-        yaws = np.array([s.pose.yaw for s in statuses])
-        walkers = self._walkers_on_road()
-        projection = self.map.project_many(
-            np.concatenate((np.array(references + centres), walkers)).reshape(-1, 2),
-            np.concatenate((yaws, yaws, np.full(len(walkers), np.nan))),
-        )
-        self._ego_lane_cache = (tuple(s.pose for s in statuses), projection.part(0, n))
-        return (
-            self._ego_occupants(statuses, projection.part(n, 2 * n)),
-            self._pedestrian_occupants(projection.part(2 * n, len(projection))),
-        )
-
-    def _ego_occupants(
-        self, statuses: list[VehicleStatus], centres: LaneProjections
-    ) -> LaneOccupants:
-        yaws = np.array([s.pose.yaw for s in statuses])
-        widths = np.array([ego.vehicle.model.width for ego in self.egos])
-        on_lane = np.abs(centres.lateral) <= (centres.width + widths) / 2.0
-        lengths = np.array([ego.vehicle.model.length for ego in self.egos])
-        along = np.cos(yaws - centres.heading) * np.array([s.velocity[0] for s in statuses])
-        return LaneOccupants(
-            centres.lane_index[on_lane],
-            centres.s[on_lane],
-            lengths[on_lane] / 2.0,
-            along[on_lane],
-        )
-
-    def _walkers_on_road(self) -> FloatArray:
-        """(N, 2) positions of the pedestrians who may stand in a lane."""
-        recorded = self.recorded.pedestrians
-        if recorded is None:
-            # Sidewalk walkers never leave the kerb: only the others can be in a lane.
-            return self.pedestrians.position[self.pedestrians.on_road]
-        return recorded.positions[:, :2]
-
-    @staticmethod
-    def _pedestrian_occupants(walkers: LaneProjections) -> LaneOccupants:
-        near = np.abs(walkers.lateral) <= walkers.width / 2.0 + PEDESTRIAN_LANE_MARGIN_M
-        count = int(np.count_nonzero(near))
-        return LaneOccupants(
-            walkers.lane_index[near],
-            walkers.s[near],
-            np.full(count, PEDESTRIAN_HALF_DEPTH_M),
-            np.zeros(count),
-        )
-
-    def _place_obstacles_on_lanes(self) -> None:
-        table = self.obstacles.table()
-        if len(table) == 0:
-            self._obstacle_occupants = LaneOccupants.empty()
-            return
-        projection = self.map.project_many(table.positions[:, :2])
-        reach = np.hypot(table.sizes[:, 0], table.sizes[:, 1]) / 2.0
-        on_lane = np.abs(projection.lateral) <= projection.width / 2.0 + reach
-        self._obstacle_occupants = LaneOccupants(
-            projection.lane_index[on_lane],
-            projection.s[on_lane],
-            reach[on_lane],
-            np.zeros(int(np.count_nonzero(on_lane))),
-        )
-
-    def _current_footprints(self, table: ObjectTable | None = None) -> Footprints:
-        table = self.objects() if table is None else table
-        return Footprints(
-            table.positions[:, :2].copy(),
-            table.headings.copy(),
-            table.sizes[:, 0].copy(),
-            table.sizes[:, 1].copy(),
-        )
-
-    def _collide(self) -> None:
-        """Record the contacts that began this step and answer every contact physically.
-
-        Ego against anything: a CollisionData record. NPC against NPC: a VehicleCollision
-        record. A struck NPC brakes to a standstill and stays (crashed); a struck
-        pedestrian stops. Every contact with a vehicle in it gets the response of
-        world/contact.py (see _bodies for who is movable); pedestrians pass each other.
-        """
-        table = self.objects()
-        now = self._current_footprints(table)
-        before = self._footprints if len(self._footprints.headings) == len(table) else now
-        self._footprints = now
-        pairs = touching_pairs(before, now)
-        self.ego_contacts, self.vehicle_contacts = {}, []
-        if len(pairs) == 0:
-            self._contacts.begin([], self.sim_time)
-            return
-        kinds = table.object_types[pairs]
-        vehicles = (kinds == ObjectType.EGO) | (kinds == ObjectType.NPC_VEHICLE)
-        self._record_contacts(table, pairs, kinds)
-        bodies = self._bodies(table, now)
-        response = respond(bodies, pairs[np.any(vehicles, axis=1)], self.contact_model)
-        if response.moved.any():
-            self._apply(response, bodies)
-            # Contacts move bodies, never turn them: the next sweep starts from here.
-            self._footprints = replace(now, centres=now.centres + response.displacements)
-
-    def _record_contacts(self, table: ObjectTable, pairs: IntArray, kinds: IntArray) -> None:
-        ego_pair = np.any(kinds == ObjectType.EGO, axis=1)
-        npc_pair = np.all(kinds == ObjectType.NPC_VEHICLE, axis=1)
-        relevant = pairs[ego_pair | npc_pair]
-        ids = table.unique_ids
-        rows = {(int(ids[i]), int(ids[j])): (int(i), int(j)) for i, j in relevant}
-        touching = list(rows)
-        fresh = self._contacts.begin(touching, self.sim_time)
-        for pair, (i, j) in rows.items():
-            records = (table.record(i), table.record(j))
-            for me, other in (records, records[::-1]):
-                if me.object_type == ObjectType.EGO:
-                    self.ego_contacts.setdefault(me.unique_id, []).append(other)
-            if not any(r.object_type == ObjectType.EGO for r in records):
-                began = self._contacts.began_at.get(pair, self.sim_time)
-                self.vehicle_contacts.append(VehicleCollision(began, records))
-        if not fresh:
-            return
-        # Only simulated agents can be halted; recorded ones go where the recording says.
-        npcs: IntArray | list[int] = self.npcs.unique_ids if self.recorded.npcs is None else []
-        walkers: IntArray | list[int] = (
-            self.pedestrians.unique_ids if self.recorded.pedestrians is None else []
-        )
-        npc_slot = {int(uid): k for k, uid in enumerate(npcs)}
-        walker_slot = {int(uid): k for k, uid in enumerate(walkers)}
-        for pair in fresh:
-            i, j = rows[pair]
-            records = (table.record(i), table.record(j))
-            if not any(r.object_type == ObjectType.EGO for r in records):
-                self.vehicle_collisions.append(VehicleCollision(self.sim_time, records))
-            for me, other in (records, records[::-1]):
-                if me.object_type == ObjectType.EGO:
-                    record = EgoCollision(self.sim_time, me.unique_id, other)
-                    self.ego_collisions[me.unique_id] = record
-                    self.ego_collision_log.append(record)
-                elif me.object_type == ObjectType.NPC_VEHICLE and me.unique_id in npc_slot:
-                    self.npcs.stop([npc_slot[me.unique_id]])
-                elif me.object_type == ObjectType.PEDESTRIAN and me.unique_id in walker_slot:
-                    self.pedestrians.stop([walker_slot[me.unique_id]])
-
-    def _bodies(self, table: ObjectTable, footprints: Footprints) -> Bodies:
-        """The objects of `table` (the order of objects()) as contact bodies.
-
-        Movable, with their mass: simulated egos, moving NPCs, pedestrians, light obstacles
-        (cones, drums, boxes). Immovable: barriers, parked NPCs (still waiting to set
-        off), NPC ghosts and whatever a replay shows (its motion is dictated).
-        """
-        recorded = self.recorded
-        ego_mass = [ego.vehicle.model.mass for ego in self.egos]
-        ego_inverse = 1.0 / np.array(ego_mass)
-        if recorded.ego is not None:
-            ego_inverse[0] = 0.0
-        for k, ego in enumerate(self.egos):
-            if ego.unique_id in self.scripted_egos:
-                ego_inverse[k] = 0.0
-        # Scripted objects keep 0: the storyboard dictates their motion.
-        others = np.zeros(len(table) - len(self.egos))
-        if recorded.npcs is None:
-            others[: len(self.npcs)] = np.where(self.npcs.parked(), 0.0, 1.0 / self.npcs.mass)
-        start = self._shown_npc_count()
-        if recorded.pedestrians is None:
-            others[start : start + len(self.pedestrians)] = 1.0 / PEDESTRIAN_MASS_KG
-        if recorded.obstacles is None:
-            first = self._first_obstacle_row() - len(self.egos)
-            others[first : first + len(self.obstacles)] = self.obstacles.inverse_masses()
-        return Bodies(footprints, table.velocities[:, :2], np.concatenate((ego_inverse, others)))
-
-    def _shown_npc_count(self) -> int:
-        """Rows of vehicles in objects() after the egos: simulated NPCs and ghosts, or the
-        replayed ones."""
-        recorded = self.recorded.npcs
-        if recorded is not None:
-            return len(recorded)
-        return (
-            len(self.npcs) + len(self.npc_ghosts) + len(self.scripted.table(ObjectType.NPC_VEHICLE))
-        )
-
-    def _first_obstacle_row(self) -> int:
-        """Row in objects() of the first obstacle: after the egos, vehicles, pedestrians."""
-        recorded = self.recorded.pedestrians
-        walkers = (
-            len(self.pedestrians) + len(self.scripted.table(ObjectType.PEDESTRIAN))
-            if recorded is None
-            else len(recorded)
-        )
-        return len(self.egos) + self._shown_npc_count() + walkers
-
-    def _apply(self, response: Response, bodies: Bodies) -> None:
-        """Hand each moved simulated body its share of the response."""
-        moved = response.moved
-        displacement, velocity = response.displacements, response.velocities
-        change = velocity - bodies.velocities
-        for k, ego in enumerate(self.egos):
-            if moved[k] and ego.unique_id not in self.scripted_egos:
-                ego.vehicle.shove(tuple(displacement[k]), tuple(change[k]))
-        start = len(self.egos)
-        if self.recorded.npcs is None:
-            rows = np.flatnonzero(moved[start : start + len(self.npcs)])
-            if rows.size:
-                self.npcs.shove(rows, displacement[start + rows], velocity[start + rows])
-        start += self._shown_npc_count()
-        if self.recorded.pedestrians is None:
-            rows = np.flatnonzero(moved[start : start + len(self.pedestrians)])
-            if rows.size:
-                self.pedestrians.shove(rows, displacement[start + rows])
-        if self.recorded.obstacles is None:
-            start = self._first_obstacle_row()
-            rows = np.flatnonzero(moved[start : start + len(self.obstacles)])
-            if rows.size:
-                self.obstacles.shove(rows, displacement[start + rows], velocity[start + rows])
-                self._place_obstacles_on_lanes()
+    def _log(self, contacts: StepContacts) -> None:
+        self.ego_contacts, self.vehicle_contacts = contacts.ego_contacts, contacts.vehicle_contacts
+        for record in contacts.ego_collisions:
+            self.ego_collisions[record.ego_id] = record
+        self.ego_collision_log.extend(contacts.ego_collisions)
+        self.vehicle_collisions.extend(contacts.vehicle_collisions)
 
     # -- scenarios ---------------------------------------------------------------------
 
@@ -771,7 +460,6 @@ class World:
         self.npcs.spawn(npcs)
         self.pedestrians.spawn(walkers)
         self.obstacles.spawn(things)
-        self._place_obstacles_on_lanes()
         self.scripted.clear()
         self.scripted_egos.clear()
         self.storyboard = None
@@ -787,9 +475,8 @@ class World:
                 frozenset(kind for kind, wanted in kinds.items() if wanted),
                 options.scenario_drives_ego,
             )
-        self._contacts.clear()
+        self._contacts.forget(self.objects())
         self.ego_contacts, self.vehicle_contacts = {}, []
-        self._footprints = self._current_footprints()
         self.paused = options.set_pause
         network = scenario.network if options.load_network_connection_data else None
         if options.load_network_connection_data:
@@ -830,6 +517,13 @@ class World:
             return TrafficSignals(self.map, programs, IntersectionProgram(timing=spec.default))
         except UnknownPhaseError as error:
             raise scenario.error(phase_paths[error.intersection_id], str(error)) from None
+
+
+def _joined(tables: list[ObjectTable]) -> ObjectTable:
+    """One table of `tables` in order (where only one has rows, that one as it is: most
+    kinds have one population with agents in it)."""
+    filled = [table for table in tables if len(table)]
+    return filled[0] if len(filled) == 1 else ObjectTable.concatenate(filled or tables[:1])
 
 
 __all__ = ["DEFAULT_PHYSICS_STEP_S", "Ego", "EgoLaneState", "ObjectState", "World"]

@@ -59,6 +59,8 @@ class NpcGhosts:
 
     def __init__(self) -> None:
         self._ghosts: dict[int, GhostState] = {}
+        self._table: ObjectTable | None = None
+        """The ghosts' table, built once per placement: every step asks for it."""
 
     def __len__(self) -> int:
         return len(self._ghosts)
@@ -68,6 +70,7 @@ class NpcGhosts:
 
     def clear(self) -> None:
         self._ghosts.clear()
+        self._table = None
 
     @property
     def unique_ids(self) -> list[int]:
@@ -78,6 +81,7 @@ class NpcGhosts:
 
     def place(self, placements: Sequence[GhostPlacement], sim_time: float) -> None:
         """Put each ghost where its placement says; a new id becomes a new ghost."""
+        self._table = None
         for placement in placements:
             previous = self._ghosts.get(placement.unique_id)
             if previous is None:
@@ -100,6 +104,11 @@ class NpcGhosts:
             )
 
     def table(self) -> ObjectTable:
+        if self._table is None:
+            self._table = self._build_table()
+        return self._table
+
+    def _build_table(self) -> ObjectTable:
         states = list(self._ghosts.values())
         if not states:
             return ObjectTable.empty()

@@ -2,8 +2,9 @@
 every step (OpenSCENARIO's entities other than the ego).
 
 They are road users like any other to everyone else: listed, seen by sensors, in
-collisions (immovable: their motion is dictated), and the simulated NPCs treat those on
-a lane as its occupants. The storyboard hands over the whole table each step.
+collisions (immovable: their motion is dictated), and the simulated NPCs treat the
+vehicles and pedestrians on a lane as its occupants (world/populations/scripted.py).
+The storyboard hands over the whole table each step.
 """
 
 from __future__ import annotations
@@ -13,10 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from egosim.world.map import LaneMap
 from egosim.world.traffic.leaders import LaneOccupants
 from egosim.world.traffic.objects import ObjectTable, ObjectType
-from egosim.world.traffic.road_users import lane_occupants_of
 
 
 @dataclass(frozen=True)
@@ -37,57 +36,71 @@ class ScriptedObject:
 
 
 _EMPTY = ObjectTable.empty()
+_NOBODY = LaneOccupants.empty()
+
+
+@dataclass(frozen=True, eq=False)
+class _Placed:
+    """The objects of one kind as placed now."""
+
+    table: ObjectTable
+    on_lanes: LaneOccupants
+    """Those the storyboard moves along a lane, where it says."""
+    unplaced: ObjectTable
+    """The others."""
+
+
+_NONE_PLACED = _Placed(_EMPTY, _NOBODY, _EMPTY)
 
 
 class ScriptedObjects:
-    """The scripted objects of a world, split by kind for the world's tables."""
+    """The scripted objects of a world, split by kind for the world's tables (and its
+    populations: world/populations/scripted.py)."""
 
     def __init__(self) -> None:
-        self._tables: dict[ObjectType, ObjectTable] = {}
-        self._on_lanes = LaneOccupants.empty()
-        self._unplaced = _EMPTY
+        self._kinds: dict[ObjectType, _Placed] = {}
 
     def __len__(self) -> int:
-        return sum(len(t) for t in self._tables.values())
+        return sum(len(placed.table) for placed in self._kinds.values())
 
     def clear(self) -> None:
-        self._tables = {}
-        self._on_lanes = LaneOccupants.empty()
-        self._unplaced = _EMPTY
+        self._kinds = {}
 
     def place(self, objects: Sequence[ScriptedObject]) -> None:
         """Show exactly these objects from now on."""
-        tables = {}
+        kinds = {}
         for kind in (ObjectType.NPC_VEHICLE, ObjectType.PEDESTRIAN, ObjectType.OBSTACLE):
             rows = [o for o in objects if o.object_type == kind]
             if rows:
-                tables[kind] = _table(rows)
-        self._tables = tables
-        movers = [o for o in objects if o.object_type != ObjectType.OBSTACLE]
-        known = [o for o in movers if o.lane is not None]
-        self._on_lanes = LaneOccupants(
-            np.array([o.lane[0] for o in known if o.lane], dtype=np.int64),
-            np.array([o.lane[1] for o in known if o.lane], dtype=np.float64),
-            np.array([o.size[0] / 2.0 for o in known], dtype=np.float64),
-            np.array([float(np.hypot(*o.velocity)) for o in known], dtype=np.float64),
-        )
-        unknown = [o for o in movers if o.lane is None]
-        self._unplaced = _table(unknown) if unknown else _EMPTY
+                kinds[kind] = _placed(rows)
+        self._kinds = kinds
 
     def table(self, kind: ObjectType) -> ObjectTable:
-        return self._tables.get(kind, _EMPTY)
+        return self._kinds.get(kind, _NONE_PLACED).table
+
+    def on_lanes(self, kind: ObjectType) -> LaneOccupants:
+        """Those of `kind` the storyboard moves along a lane: where it says, as fast as
+        they go."""
+        return self._kinds.get(kind, _NONE_PLACED).on_lanes
+
+    def unplaced(self, kind: ObjectType) -> ObjectTable:
+        """Those of `kind` not moved along a lane (their lane is wherever they stand)."""
+        return self._kinds.get(kind, _NONE_PLACED).unplaced
 
     def unique_ids(self) -> set[int]:
-        return {int(i) for t in self._tables.values() for i in t.unique_ids}
+        return {int(i) for placed in self._kinds.values() for i in placed.table.unique_ids}
 
-    def occupants(self, lane_map: LaneMap) -> LaneOccupants:
-        """The scripted vehicles and pedestrians standing on a lane: those the storyboard
-        moves along a lane where it says, the others where they project."""
-        if len(self._unplaced) == 0:
-            return self._on_lanes
-        return LaneOccupants.concatenate(
-            [self._on_lanes, lane_occupants_of(self._unplaced, lane_map)]
-        )
+
+def _placed(rows: Sequence[ScriptedObject]) -> _Placed:
+    known = [o for o in rows if o.lane is not None]
+    on_lanes = LaneOccupants(
+        np.array([o.lane[0] for o in known if o.lane], dtype=np.int64),
+        np.array([o.lane[1] for o in known if o.lane], dtype=np.float64),
+        np.array([o.size[0] / 2.0 for o in known], dtype=np.float64),
+        np.array([float(np.hypot(*o.velocity)) for o in known], dtype=np.float64),
+    )
+    unknown = [o for o in rows if o.lane is None]
+    return _Placed(_table(rows), on_lanes, _table(unknown) if unknown else _EMPTY)
 
 
 def _table(rows: Sequence[ScriptedObject]) -> ObjectTable:
