@@ -13,10 +13,7 @@ from enum import IntEnum
 
 import numpy as np
 
-from egosim.world.map import LaneMap
-from egosim.world.traffic.leaders import LaneOccupants
 from egosim.world.traffic.objects import ObjectTable, ObjectType
-from egosim.world.traffic.road_users import lane_occupants_of
 from egosim.world.vehicle import VehicleModel
 
 
@@ -128,7 +125,3 @@ class NpcGhosts:
             accelerations=acceleration[:, None] * direction,
             sizes=np.array([(m.length, m.width, m.height) for m in models], dtype=np.float64),
         )
-
-    def occupants(self, lane_map: LaneMap) -> LaneOccupants:
-        """The ghosts standing on a lane."""
-        return lane_occupants_of(self.table(), lane_map)
