@@ -11,6 +11,11 @@ from egosim.world.kernels import kernel
 from egosim.world.kernels.numpy_scalars import clip, fmax, remainder
 
 
+PRUNE_MARGIN = 1e-9
+"""Relative margin of the squared-distance test that skips a segment: far larger than
+the rounding of either side, so a skipped segment could never have won or tied."""
+
+
 @kernel
 def _pair_cost(
     x: float,
@@ -23,13 +28,18 @@ def _pair_cost(
     heading: FloatArray,
     heading_weight: float,
     wrong_way_penalty: float,
+    bound: float,
 ) -> tuple[float, float]:
-    """(cost, t) of point (x, y) with heading hint (NaN: none) against segment g."""
+    """(cost, t) of point (x, y) with heading hint (NaN: none) against segment g; cost
+    inf when the distance alone already exceeds `bound` (the heading terms only add)."""
     rel_x = x - start[g, 0]
     rel_y = y - start[g, 1]
     along = (rel_x * delta[g, 0] + rel_y * delta[g, 1]) / length_sq[g]
     t = clip(along, 0.0, 1.0)
-    cost = math.hypot(rel_x - t * delta[g, 0], rel_y - t * delta[g, 1])
+    gap_x, gap_y = rel_x - t * delta[g, 0], rel_y - t * delta[g, 1]
+    if gap_x * gap_x + gap_y * gap_y > bound * bound * (1.0 + PRUNE_MARGIN):
+        return math.inf, t
+    cost = math.hypot(gap_x, gap_y)
     error = abs(remainder(heading[g] - hint + math.pi, math.tau) - math.pi)
     penalty = wrong_way_penalty if error > math.pi / 2 else 0.0
     return cost + (fmax(heading_weight * error, 0.0) + penalty), t
@@ -73,7 +83,7 @@ def best_segments(
                         g = cell_segments[k]
                         cost, t = _pair_cost(
                             x, y, hint, g, start, delta, length_sq, heading,
-                            heading_weight, wrong_way_penalty,
+                            heading_weight, wrong_way_penalty, found_cost,
                         )  # fmt: skip
                         if cost < found_cost or (cost == found_cost and g < found_seg):
                             found_seg, found_t, found_cost = g, t, cost
@@ -86,7 +96,7 @@ def best_segments(
             for g in range(start.shape[0]):
                 cost, t = _pair_cost(
                     x, y, hint, g, start, delta, length_sq, heading,
-                    heading_weight, wrong_way_penalty,
+                    heading_weight, wrong_way_penalty, found_cost,
                 )  # fmt: skip
                 if cost < found_cost:
                     found_seg, found_t, found_cost = g, t, cost
