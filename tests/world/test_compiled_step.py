@@ -70,13 +70,9 @@ def snapshots(compiled: bool, monkeypatch: pytest.MonkeyPatch) -> tuple[list[byt
         world.step()
         table = world.objects()
         status = world.ego_status()
+        fields = ("unique_ids", "positions", "headings", "velocities", "accelerations", "sizes")
         taken.append(
-            b"".join(
-                np.ascontiguousarray(getattr(table, field)).tobytes()
-                for field in (
-                    "unique_ids", "positions", "headings", "velocities", "accelerations", "sizes"
-                )
-            )  # fmt: skip
+            b"".join(np.ascontiguousarray(getattr(table, field)).tobytes() for field in fields)
             + repr((status, world.ego_lane_state(), world.ego_collision_log)).encode()
             + repr(world.vehicle_collisions).encode()
         )

@@ -110,7 +110,8 @@ def respond(
     moved = np.zeros(n, dtype=np.bool_)
     if count == 0:
         return displacements, velocities, moved
-    a, b, total, normals, depths = a[:count], b[:count], total[:count], normals[:count], depths[:count]
+    a, b, total = a[:count], b[:count], total[:count]
+    normals, depths = normals[:count], depths[:count]
     push = np.empty((count, 2))
     for k in range(count):
         amount = maximum(depths[k] - slop, 0.0)
@@ -135,9 +136,10 @@ def respond(
     for sweep in range(iterations):
         hit = False
         for number in range(batches):
-            members = np.flatnonzero(batch_of == number)
             hitting_any = False
-            for k in members:
+            for k in range(count):
+                if batch_of[k] != number:
+                    continue
                 rx = velocities[b[k], 0] - velocities[a[k], 0]
                 ry = velocities[b[k], 1] - velocities[a[k], 1]
                 nx, ny = normals[k, 0], normals[k, 1]
@@ -155,12 +157,14 @@ def respond(
             if not hitting_any:
                 continue
             hit = True
-            for k in members:
-                for d in range(2):
-                    velocities[a[k], d] += -impulse[k, d] * inverse[a[k]]
-            for k in members:
-                for d in range(2):
-                    velocities[b[k], d] += impulse[k, d] * inverse[b[k]]
+            for k in range(count):
+                if batch_of[k] == number:
+                    for d in range(2):
+                        velocities[a[k], d] += -impulse[k, d] * inverse[a[k]]
+            for k in range(count):
+                if batch_of[k] == number:
+                    for d in range(2):
+                        velocities[b[k], d] += impulse[k, d] * inverse[b[k]]
         if not hit:
             break
     for i in range(n):

@@ -10,7 +10,6 @@ from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.kernels import kernel
 from egosim.world.kernels.numpy_scalars import clip, fmax, remainder
 
-
 PRUNE_MARGIN = 1e-9
 """Relative margin of the squared-distance test that skips a segment: far larger than
 the rounding of either side, so a skipped segment could never have won or tied."""
@@ -70,8 +69,8 @@ def best_segments(
     max_ring = max(shape[0], shape[1])
     for p in range(n):
         x, y, hint = xy[p, 0], xy[p, 1], hints[p]
-        ix = int(math.floor((x - origin[0]) / cell_size))
-        iy = int(math.floor((y - origin[1]) / cell_size))
+        ix = math.floor((x - origin[0]) / cell_size)
+        iy = math.floor((y - origin[1]) / cell_size)
         done = False
         ring = 1
         while not done and ring <= max_ring:

@@ -227,7 +227,7 @@ def advance(
         else:
             gap, closing = np.inf, 0.0
         # _desired_speed
-        if target_speed[i] != target_speed[i]:  # noqa: PLR0124 (NaN: the lane's limit)
+        if target_speed[i] != target_speed[i]:
             base = speed_limit[here_lane] * speed_factor[i]
         else:
             base = target_speed[i]

@@ -56,10 +56,7 @@ def advance(
     front_steer, rear_steer = state[9], state[10]
 
     # longitudinal.drive_force, grade_force, aero_drag_force, holding_force, next_speed
-    if abs(vx) * max_drive_force <= max_power:
-        capacity = max_drive_force
-    else:
-        capacity = max_power / abs(vx)
+    capacity = max_drive_force if abs(vx) * max_drive_force <= max_power else max_power / abs(vx)
     force = accel_pedal * capacity
     limit = max_reverse_speed if drive_direction < 0 else max_speed
     headroom = (limit - drive_direction * vx) / governor_band

@@ -189,8 +189,8 @@ def _advance_compiled(
             state.x, state.y, state.z, state.roll, state.pitch, state.yaw, state.vx,
             state.vy, state.yaw_rate, state.front_steer, state.rear_steer, state.vx_rate,
             state.vy_rate, state.yaw_acceleration,
-        )  # fmt: skip
-    )
+        )
+    )  # fmt: skip
     vehicle_dynamics.advance(
         _figures(model),
         values,
