@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from tests.compiled_paths import busy_town, drive
 
 from egosim.world import World, kernels
 from egosim.world.map import build_builtin_map
 from egosim.world.scenario import parse_scenario
-from tests.compiled_paths import busy_town, drive
 
 pytestmark = pytest.mark.skipif(not kernels.AVAILABLE, reason="numba is not installed")
 
