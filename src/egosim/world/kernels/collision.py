@@ -10,6 +10,7 @@ import numpy as np
 from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.kernels import kernel
 from egosim.world.kernels.numpy_scalars import maximum, minimum, remainder
+from egosim.world.kernels.sorting import lexsort_argsort, search_sorted
 
 
 @kernel
@@ -92,12 +93,13 @@ def touching_pairs(
         for d in range(2):
             low[k, d] = minimum(b0[k, d], b1[k, d])
             high[k, d] = maximum(b0[k, 2 + d], b1[k, 2 + d])
-    order = np.argsort(low[:, 0], kind="mergesort")
+    order = lexsort_argsort(np.zeros(n, dtype=np.int64), low[:, 0].copy())
     sorted_low = low[order, 0]
-    keys = []
+    keys = np.empty(16, dtype=np.int64)
+    found = 0
     for a in range(n):
         i = order[a]
-        reach = np.searchsorted(sorted_low, high[i, 0], side="right")
+        reach = search_sorted(sorted_low, high[i, 0], True)
         for b in range(a + 1, reach):
             j = order[b]
             if not (low[i, 1] <= high[j, 1] and low[j, 1] <= high[i, 1]):
@@ -132,9 +134,13 @@ def touching_pairs(
                         )
                     )
                 if overlap(boxes[0], boxes[1]):
-                    keys.append(first * n + second)
+                    if found == keys.shape[0]:
+                        keys = np.concatenate((keys, np.empty(found, dtype=np.int64)))
+                    keys[found] = first * n + second
+                    found += 1
                     break
-    result = np.empty((len(keys), 2), dtype=np.int64)
-    for row, key in enumerate(sorted(keys)):
-        result[row, 0], result[row, 1] = key // n, key % n
+    keys = keys[:found]
+    result = np.empty((found, 2), dtype=np.int64)
+    for row, k in enumerate(lexsort_argsort(keys, np.zeros(found))):
+        result[row, 0], result[row, 1] = keys[k] // n, keys[k] % n
     return result

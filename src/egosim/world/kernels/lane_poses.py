@@ -9,6 +9,7 @@ import numpy as np
 from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.kernels import kernel
 from egosim.world.kernels.numpy_scalars import maximum, minimum
+from egosim.world.kernels.sorting import search_sorted
 
 
 @kernel
@@ -32,7 +33,7 @@ def lane_poses(
     for i in range(n):
         lane = lanes[i]
         station = minimum(maximum(s[i], 0.0), lane_lengths[lane])
-        j = np.searchsorted(point_key, key_base[lane] + station, side="right") - 1
+        j = search_sorted(point_key, key_base[lane] + station, True) - 1
         j = min(max(j, first_point[lane]), last_segment[lane])
         t = (station - point_station[j]) / (point_station[j + 1] - point_station[j])
         for c in range(points.shape[1]):

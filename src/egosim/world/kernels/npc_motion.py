@@ -16,6 +16,7 @@ import numpy.typing as npt
 from egosim.world.arrays import BoolArray, FloatArray, IntArray
 from egosim.world.kernels import kernel
 from egosim.world.kernels.numpy_scalars import clip, maximum, minimum
+from egosim.world.kernels.sorting import lexsort_argsort, search_sorted
 
 _UNDECIDED, _STOP, _PASS = 0, 1, 2  # npc_vehicles' yellow latch
 _YELLOW, _GREEN, _GREEN_LEFT = 4, 16, 32  # signals.aspects
@@ -48,13 +49,6 @@ def idm_acceleration(
 
 
 @kernel
-def _sorted_occupants(lane: IntArray, s: FloatArray) -> IntArray:
-    """np.lexsort((s, lane)): by lane, then station, then index."""
-    by_s = np.argsort(s, kind="mergesort")
-    return by_s[np.argsort(lane[by_s], kind="mergesort")]
-
-
-@kernel
 def _leaders(
     n: int,
     lane: IntArray,
@@ -64,7 +58,7 @@ def _leaders(
 ) -> tuple[FloatArray, IntArray]:
     """leaders.leaders_ahead for followers 0..n-1 of the occupants (lane, s)."""
     m = lane.shape[0]
-    order = _sorted_occupants(lane, s)
+    order = lexsort_argsort(lane, s)  # np.lexsort((s, lane))
     sorted_lane = lane[order]
     rank = np.empty(m, dtype=np.int64)
     for k in range(m):
@@ -80,7 +74,7 @@ def _leaders(
         for k in range(next_lanes.shape[1]):
             target = next_lanes[i, k]
             if leader[i] < 0 and target >= 0:
-                first = np.searchsorted(sorted_lane, target)
+                first = search_sorted(sorted_lane, target, False)
                 if first < m and sorted_lane[first] == target:
                     candidate = order[first]
                     if candidate != i:
@@ -129,7 +123,7 @@ def _junction_gaps(
     if count == 0:
         return gap
     claimed = np.zeros(lanes + 1, dtype=np.bool_)
-    for k in np.argsort(entry[:count], kind="mergesort"):
+    for k in lexsort_argsort(np.zeros(count, dtype=np.int64), entry[:count]):
         i = rows[k]
         entering = next_lanes[i, 0]
         exit_lane = next_lanes[i, 1]

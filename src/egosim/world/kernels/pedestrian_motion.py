@@ -8,6 +8,7 @@ import numpy as np
 from egosim.world.arrays import BoolArray, FloatArray, IntArray
 from egosim.world.kernels import kernel
 from egosim.world.kernels.numpy_scalars import minimum
+from egosim.world.kernels.sorting import search_sorted
 
 
 @kernel
@@ -42,7 +43,7 @@ def walk(
     for i in range(n):
         new_s = s[i] + (walk_speed[i] * dt if moving[i] else 0.0)
         if gates.shape[0]:
-            g = np.searchsorted(gates, key_base[i] + s[i])
+            g = search_sorted(gates, key_base[i] + s[i], False)
             safe = g if g < gates.shape[0] else 0
             if (
                 g < gates.shape[0]
@@ -56,7 +57,7 @@ def walk(
         station = minimum(new_s, length[i])
         new_station[i] = station
         key = key_base[i] + station
-        j = np.searchsorted(point_key, key, side="right") - 1
+        j = search_sorted(point_key, key, True) - 1
         j = min(max(j, first_last[0, i]), first_last[1, i])
         t = (key - point_key[j]) / (point_key[j + 1] - point_key[j])
         for d in range(2):
