@@ -49,6 +49,9 @@ _PER_NPC_ARRAYS = (
 )  # fmt: skip
 _PER_NPC_LISTS = ("names", "routes", "route_pos")
 
+_MARGINS = np.array((DECISION_MARGIN_M, CRASH_BRAKE_DECEL_MPS2))
+"""The junction decision margin and the crash deceleration, for the compiled step."""
+
 # Latched reaction to a yellow, reset on every new lane and on every go aspect.
 _YELLOW_UNDECIDED, _YELLOW_STOP, _YELLOW_PASS = 0, 1, 2
 
@@ -105,6 +108,7 @@ class NpcFleet:
             (graph.length, graph.speed_limit, graph.curve_speed, graph.stop_s)
         ).astype(np.float64)
         self._lane_signals = np.stack((graph.light, graph.turn)).astype(np.int64)
+        self._idm_table: tuple[IntelligentDriverModel | None, FloatArray] = (None, np.empty(0))
         self.clear()
 
     def clear(self) -> None:
@@ -305,7 +309,6 @@ class NpcFleet:
 
     def _step_compiled(self, dt: float, lights: LightsView, others: LaneOccupants) -> None:
         """step() through kernels/npc_motion.py: the same arithmetic, the same results."""
-        idm = self.idm
         moved, frozen, past_end = npc_motion.advance(
             dt,
             self.lane,
@@ -331,17 +334,9 @@ class NpcFleet:
             lights.flashing,
             lights.arrow_head,
             lights.arrow_only,
-            np.array(
-                (
-                    idm.time_headway_s,
-                    idm.min_gap_m,
-                    idm.max_accel_mps2,
-                    idm.comfortable_decel_mps2,
-                    idm.max_decel_mps2,
-                )
-            ),
-            int(idm.delta),
-            np.array((DECISION_MARGIN_M, CRASH_BRAKE_DECEL_MPS2)),
+            self._idm_figures(),
+            int(self.idm.delta),
+            _MARGINS,
         )
         self.s, self.speed, self.accel, self.delay = moved
         self._advance_lanes(past_end)
@@ -360,6 +355,20 @@ class NpcFleet:
         self.pose = self._poses()
         self.yaw_rate = np.remainder(self.pose[:, 3] - old_heading + math.pi, math.tau) - math.pi
         self.yaw_rate /= dt
+
+    def _idm_figures(self) -> FloatArray:
+        """The IDM's figures as kernels/npc_motion.py takes them (kept while the IDM is)."""
+        idm = self.idm
+        if self._idm_table[0] is not idm:
+            figures = (
+                idm.time_headway_s,
+                idm.min_gap_m,
+                idm.max_accel_mps2,
+                idm.comfortable_decel_mps2,
+                idm.max_decel_mps2,
+            )
+            self._idm_table = (idm, np.array(figures))
+        return self._idm_table[1]
 
     def _desired_speed(self) -> FloatArray:
         """IDM v0: scripted or lane-limit speed, capped by this lane's and (braking at the
