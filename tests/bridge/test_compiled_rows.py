@@ -11,7 +11,9 @@ from egosim.world.map import build_builtin_map
 from egosim.world.scenario import parse_scenario
 from tests.compiled_paths import busy_town, drive
 
-pytestmark = pytest.mark.skipif(not kernels.AVAILABLE, reason="no compiled path: numba missing or EGOSIM_COMPILED=0")
+pytestmark = pytest.mark.skipif(
+    not kernels.AVAILABLE, reason="no compiled path: numba missing or EGOSIM_COMPILED=0"
+)
 
 TICKS = 300
 ROWS = {"ego_status": "morai_msgs/EgoVehicleStatus", "object_status": "morai_msgs/ObjectStatusList"}

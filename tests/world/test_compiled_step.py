@@ -11,7 +11,9 @@ from egosim.world import World, kernels
 from egosim.world.map import build_builtin_map
 from egosim.world.scenario import parse_scenario
 
-pytestmark = pytest.mark.skipif(not kernels.AVAILABLE, reason="no compiled path: numba missing or EGOSIM_COMPILED=0")
+pytestmark = pytest.mark.skipif(
+    not kernels.AVAILABLE, reason="no compiled path: numba missing or EGOSIM_COMPILED=0"
+)
 
 TOWN = build_builtin_map("town")
 STEPS = 450
