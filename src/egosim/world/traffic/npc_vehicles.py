@@ -302,10 +302,7 @@ class NpcFleet:
         self.speed = new_speed
         self._advance_lanes(np.flatnonzero(self.s > self.graph.length[self.lane]))
         self._change_lanes(dt, frozen)
-        old_heading = self.pose[:, 3]
-        self.pose = self._poses()
-        self.yaw_rate = np.remainder(self.pose[:, 3] - old_heading + math.pi, math.tau) - math.pi
-        self.yaw_rate /= dt
+        self._turn(dt)
 
     def _step_compiled(self, dt: float, lights: LightsView, others: LaneOccupants) -> None:
         """step() through kernels/npc_motion.py: the same arithmetic, the same results."""
@@ -351,6 +348,10 @@ class NpcFleet:
             frozen,
         )
         self._change_lanes_now(due)
+        self._turn(dt)
+
+    def _turn(self, dt: float) -> None:
+        """The poses on the lanes now, and the yaw rate (rad/s) that took them there."""
         old_heading = self.pose[:, 3]
         self.pose = self._poses()
         self.yaw_rate = np.remainder(self.pose[:, 3] - old_heading + math.pi, math.tau) - math.pi
