@@ -16,7 +16,9 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.sensors.errors import SensorConfigError
+from egosim.world import kernels
 from egosim.world.arrays import FloatArray
+from egosim.world.kernels.ray_boxes import nearest_box_hits
 
 IndexArray = npt.NDArray[np.intp]
 
@@ -120,6 +122,20 @@ def cast_boxes(
     candidates = _boxes_in_range(origin, boxes, max_range, exclude_index)
     if len(candidates) == 0 or len(directions) == 0:
         return distance, cos_incidence
+    if kernels.ACTIVE:
+        offset, tangent_length = _cone_tangents(origin, boxes)
+        frames = np.vstack(_box_frames(origin, boxes))
+        half_size = np.ascontiguousarray(0.5 * boxes.sizes.T)
+        rays = np.ascontiguousarray(directions)
+        for group_rays, group_boxes in _ray_groups(origin, directions, boxes, candidates):
+            sorted_rays, interval_box, first, stop = _sector_intervals(
+                origin, directions, group_rays, boxes, group_boxes
+            )
+            nearest_box_hits(
+                rays, sorted_rays, interval_box, first, stop, offset, tangent_length,
+                frames, half_size, distance, cos_incidence,
+            )  # fmt: skip
+        return distance, cos_incidence
 
     ray_index, box_index = _pairs_in_sector(origin, directions, boxes, candidates)
     pair_direction = directions[ray_index]
@@ -163,21 +179,27 @@ def _pairs_in_sector(
     with the sensor above the traffic, that halves the work. Each ray's pairs keep
     the order of its boxes.
     """
+    pairs = [
+        _sector_pairs(origin, directions, rays, boxes, group)
+        for rays, group in _ray_groups(origin, directions, boxes, candidates)
+    ]
+    if len(pairs) == 1:
+        return pairs[0]
+    return np.concatenate([p[0] for p in pairs]), np.concatenate([p[1] for p in pairs])
+
+
+def _ray_groups(
+    origin: FloatArray, directions: FloatArray, boxes: ObstacleBoxes, candidates: IndexArray
+) -> list[tuple[IndexArray, IndexArray]]:
+    """(rays, boxes they may meet): the falling and level rays with every candidate, then
+    the rising rays with the boxes whose top is above the origin, if any."""
     rising = directions[:, 2] > 0.0
     # The top face's offset exactly as _slab_entry computes it.
     top_above = 0.5 * boxes.sizes[candidates, 2] - (origin[2] - boxes.centres[candidates, 2]) > 0.0
-    ray_index, box_index = _sector_pairs(
-        origin, directions, np.flatnonzero(~rising), boxes, candidates
-    )
-    if not top_above.any():
-        return ray_index, box_index
-    rising_ray_index, rising_box_index = _sector_pairs(
-        origin, directions, np.flatnonzero(rising), boxes, candidates[top_above]
-    )
-    return (
-        np.concatenate([ray_index, rising_ray_index]),
-        np.concatenate([box_index, rising_box_index]),
-    )
+    groups = [(np.flatnonzero(~rising), candidates)]
+    if top_above.any():
+        groups.append((np.flatnonzero(rising), candidates[top_above]))
+    return groups
 
 
 def _sector_pairs(
@@ -188,6 +210,25 @@ def _sector_pairs(
     candidates: IndexArray,
 ) -> tuple[IndexArray, IndexArray]:
     """_pairs_in_sector among `rays` and `candidates`."""
+    sorted_rays, interval_box, first, stop = _sector_intervals(
+        origin, directions, rays, boxes, candidates
+    )
+    counts = np.maximum(stop - first, 0)
+    box_index = np.repeat(interval_box, counts)
+    interval_start = np.repeat(first - (np.cumsum(counts) - counts), counts)
+    return sorted_rays[interval_start + np.arange(counts.sum())], box_index
+
+
+def _sector_intervals(
+    origin: FloatArray,
+    directions: FloatArray,
+    rays: IndexArray,
+    boxes: ObstacleBoxes,
+    candidates: IndexArray,
+) -> tuple[IndexArray, IndexArray, IndexArray, IndexArray]:
+    """`rays` sorted by bearing, and per bearing interval of a box's sector (in the
+    order of `candidates`, then the second halves of sectors crossing +-pi): its box and
+    the range first:stop of the sorted rays inside it."""
     bearing = np.arctan2(directions[rays, 1], directions[rays, 0])
     by_bearing = np.argsort(bearing, kind="stable")
     sorted_bearing = bearing[by_bearing]
@@ -215,36 +256,39 @@ def _sector_pairs(
     )
     first = np.searchsorted(sorted_bearing, interval_low, side="left")
     stop = np.searchsorted(sorted_bearing, interval_high, side="right")
-    counts = np.maximum(stop - first, 0)
-
-    box_index = np.repeat(interval_box, counts)
-    interval_start = np.repeat(first - (np.cumsum(counts) - counts), counts)
-    sorted_position = interval_start + np.arange(counts.sum())
-    return rays[by_bearing[sorted_position]], box_index
+    return rays[by_bearing], interval_box, first, stop
 
 
 def _in_bounding_cone(
     origin: FloatArray, boxes: ObstacleBoxes, pair_direction: FloatArray, box_index: IndexArray
 ) -> npt.NDArray[np.bool_]:
     """Whether each pair's ray meets the box's bounding sphere (or starts inside it)."""
+    offset, tangent_length = _cone_tangents(origin, boxes)
+    towards = offset[box_index]
+    # Summed left to right, as the compiled cast does (einsum's order depends on size).
+    along = (
+        pair_direction[:, 0] * towards[:, 0] + pair_direction[:, 1] * towards[:, 1]
+    ) + pair_direction[:, 2] * towards[:, 2]
+    in_cone: npt.NDArray[np.bool_] = along >= tangent_length[box_index]
+    return in_cone
+
+
+def _cone_tangents(origin: FloatArray, boxes: ObstacleBoxes) -> tuple[FloatArray, FloatArray]:
+    """Each box's centre from the origin (N, 3), and the length of a tangent from the
+    origin to its bounding sphere (-inf when the origin is inside it)."""
     offset = boxes.centres - origin
     radius_sq: FloatArray = 0.25 * np.einsum("ij,ij->i", boxes.sizes, boxes.sizes)
     distance_sq: FloatArray = np.einsum("ij,ij->i", offset, offset)
     tangent_length = np.sqrt(np.maximum(distance_sq - radius_sq, 0.0))
     # Rays into a sphere the origin is inside of always pass.
     tangent_length[distance_sq <= radius_sq] = -np.inf
-    along: FloatArray = np.einsum("ij,ij->i", pair_direction, offset[box_index])
-    return along >= tangent_length[box_index]
+    return offset, tangent_length
 
 
-def _slab_entry(
-    origin: FloatArray, boxes: ObstacleBoxes, pair_direction: FloatArray, box_index: IndexArray
-) -> tuple[FloatArray, FloatArray, npt.NDArray[np.bool_]]:
-    """Entry distance, |cos| at the entry face and whether each (ray, box) pair hits.
-
-    Works one box axis at a time on flat arrays: the ray's parameter interval
-    inside each pair of parallel faces, intersected over the three axes.
-    """
+def _box_frames(
+    origin: FloatArray, boxes: ObstacleBoxes
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Each box's cos and sin of yaw, and the origin in each box's frame (3, N)."""
     cos_yaw, sin_yaw = np.cos(boxes.yaws), np.sin(boxes.yaws)
     offset = origin - boxes.centres
     # Rz(-yaw) takes map vectors into each box's frame.
@@ -255,6 +299,18 @@ def _slab_entry(
             offset[:, 2],
         ]
     )
+    return cos_yaw, sin_yaw, box_origin
+
+
+def _slab_entry(
+    origin: FloatArray, boxes: ObstacleBoxes, pair_direction: FloatArray, box_index: IndexArray
+) -> tuple[FloatArray, FloatArray, npt.NDArray[np.bool_]]:
+    """Entry distance, |cos| at the entry face and whether each (ray, box) pair hits.
+
+    Works one box axis at a time on flat arrays: the ray's parameter interval
+    inside each pair of parallel faces, intersected over the three axes.
+    """
+    cos_yaw, sin_yaw, box_origin = _box_frames(origin, boxes)
     pair_cos, pair_sin = cos_yaw[box_index], sin_yaw[box_index]
     east, north, up = pair_direction.T
     local_direction = (pair_cos * east + pair_sin * north, -pair_sin * east + pair_cos * north, up)

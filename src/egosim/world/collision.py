@@ -15,7 +15,9 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from egosim.world import kernels
 from egosim.world.arrays import FloatArray, IntArray
+from egosim.world.kernels import collision as compiled
 from egosim.world.traffic.objects import ObjectState
 
 DEFAULT_MAX_SUBSTEP_M = 0.1
@@ -44,6 +46,20 @@ def touching_pairs(
 ) -> IntArray:
     """(K, 2) index pairs i < j whose rectangles overlap at some point of the motion from
     `before` to `after` (positions in between are interpolated), sorted."""
+    if kernels.ACTIVE:
+        pairs: IntArray = compiled.touching_pairs(
+            before.centres,
+            before.headings,
+            before.lengths,
+            before.widths,
+            after.centres,
+            after.headings,
+            after.lengths,
+            after.widths,
+            max_substep_m,
+            MAX_SUBSTEPS,
+        )
+        return pairs
     extents_before, extents_after = before.half_extents(), after.half_extents()
     low = np.minimum(before.centres - extents_before, after.centres - extents_after)
     high = np.maximum(before.centres + extents_before, after.centres + extents_after)

@@ -25,8 +25,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from egosim.world import kernels
 from egosim.world.arrays import BoolArray, FloatArray, IntArray
 from egosim.world.collision import Footprints, corners
+from egosim.world.kernels import contact as compiled
 
 RESTITUTION = 0.2
 """Share of the approach speed a contact gives back (car bodies crumple: mostly plastic)."""
@@ -95,6 +97,23 @@ def respond(bodies: Bodies, pairs: IntArray, model: ContactModel | None = None) 
     """The response to the contacts between `pairs` (K, 2) of bodies, each pair touching
     now; pairs of two immovable bodies are left alone."""
     model = model or ContactModel()
+    if kernels.ACTIVE:
+        foot = bodies.footprints
+        return Response(
+            *compiled.respond(
+                np.ascontiguousarray(foot.centres),
+                np.ascontiguousarray(foot.headings),
+                np.ascontiguousarray(foot.lengths),
+                np.ascontiguousarray(foot.widths),
+                np.ascontiguousarray(bodies.velocities),
+                np.ascontiguousarray(bodies.inverse_masses, dtype=np.float64),
+                np.ascontiguousarray(pairs, dtype=np.int64).reshape(-1, 2),
+                np.array(
+                    (model.restitution, model.friction, model.resting_speed_mps, model.slop_m)
+                ),
+                ITERATIONS,
+            )
+        )
     velocities = bodies.velocities.copy()
     displacements = np.zeros_like(velocities)
     inverse = bodies.inverse_masses

@@ -9,7 +9,9 @@ from dataclasses import dataclass, field, fields, is_dataclass
 import numpy as np
 import numpy.typing as npt
 
+from egosim.world import kernels
 from egosim.world.arrays import FloatArray
+from egosim.world.kernels.lane_poses import lane_poses
 from egosim.world.map.errors import MapGeometryError, UnknownLaneError
 from egosim.world.map.georef import GeoReference
 from egosim.world.map.light_type import LightType
@@ -28,6 +30,9 @@ def _frozen_array(values: object, what: str) -> FloatArray:
         raise MapGeometryError(f"{what} holds non-finite values")
     array.flags.writeable = False
     return array
+
+
+_NOT_MOVED = np.empty(0)
 
 
 class _ArrayFieldsEquality:
@@ -247,20 +252,41 @@ class LaneMap:
         x, y, z, heading = self.poses_at(np.array([self.lane_index(lane_id)]), np.array([s]))[0]
         return float(x), float(y), float(z), float(heading)
 
-    def poses_at(self, lane_indices: npt.ArrayLike, s: npt.ArrayLike) -> FloatArray:
-        """(N, 4) array of x, y, z, heading for lane indices and stations (clamped)."""
+    def poses_at(
+        self, lane_indices: npt.ArrayLike, s: npt.ArrayLike, lateral: FloatArray | None = None
+    ) -> FloatArray:
+        """(N, 4) array of x, y, z, heading for lane indices and stations (clamped); with
+        `lateral`, each point moved that far (m) to the left of its lane."""
         lanes = np.asarray(lane_indices, dtype=np.int64).reshape(-1)
+        stations = np.asarray(s, dtype=np.float64).reshape(-1)
+        if kernels.ACTIVE:
+            return lane_poses(
+                lanes,
+                stations,
+                _NOT_MOVED if lateral is None else lateral,
+                self.lane_lengths,
+                self._lane_key_base,
+                self._point_key,
+                self._first_point,
+                self._last_segment,
+                self._point_station,
+                self._points,
+                self._point_heading,
+            )
         # minimum(maximum()) rather than np.clip: the same values, a fraction of the
         # overhead on the few elements a step asks for.
-        station = np.minimum(
-            np.maximum(np.asarray(s, dtype=np.float64).reshape(-1), 0.0), self.lane_lengths[lanes]
-        )
+        station = np.minimum(np.maximum(stations, 0.0), self.lane_lengths[lanes])
         j = np.searchsorted(self._point_key, self._lane_key_base[lanes] + station, side="right") - 1
         j = np.minimum(np.maximum(j, self._first_point[lanes]), self._last_segment[lanes])
         span = self._point_station[j + 1] - self._point_station[j]
         t = ((station - self._point_station[j]) / span)[:, None]
         xyz = self._points[j] + t * (self._points[j + 1] - self._points[j])
-        return np.concatenate((xyz, self._point_heading[j, None]), axis=1)
+        pose = np.concatenate((xyz, self._point_heading[j, None]), axis=1)
+        if lateral is not None:
+            heading = pose[:, 3].copy()
+            pose[:, 0] -= lateral * np.sin(heading)
+            pose[:, 1] += lateral * np.cos(heading)
+        return pose
 
     def lookahead(
         self, lane_id: str, s: float, distance: float, route: Sequence[str] = ()

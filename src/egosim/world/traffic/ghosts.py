@@ -16,6 +16,9 @@ import numpy as np
 from egosim.world.traffic.objects import ObjectTable, ObjectType
 from egosim.world.vehicle import VehicleModel
 
+_NO_GHOSTS = ObjectTable.empty()
+"""The table of no ghosts (tables are never changed in place)."""
+
 
 class TurnSignal(IntEnum):
     """NpcGhostInfo.turn_signal."""
@@ -108,7 +111,7 @@ class NpcGhosts:
     def _build_table(self) -> ObjectTable:
         states = list(self._ghosts.values())
         if not states:
-            return ObjectTable.empty()
+            return _NO_GHOSTS
         n = len(states)
         heading = np.array([g.placement.heading for g in states])
         direction = np.column_stack((np.cos(heading), np.sin(heading), np.zeros(n)))

@@ -38,11 +38,27 @@ class IntelligentDriverModel:
         self, v: FloatArray, v0: FloatArray, gap: FloatArray, dv: FloatArray
     ) -> FloatArray:
         """m/s² for speeds v, v0 (m/s), gaps (m; inf for a free road) and dv (m/s)."""
-        free = 1.0 - (v / v0) ** self.delta
+        free = 1.0 - self.speed_term(v / v0)
         # A free road's infinite gap divides to exactly 0: no interaction.
         interaction = (self.desired_gap(v, dv) / np.maximum(gap, 1e-3)) ** 2
         accel = self.max_accel_mps2 * (free - interaction)
         return np.clip(accel, -self.max_decel_mps2, self.max_accel_mps2)
+
+    def speed_term(self, ratio: FloatArray) -> FloatArray:
+        """ratio ** delta; for an integer delta a product left to right, as the compiled
+        step computes it (kernels/npc_motion.py: numpy's float power may differ from it
+        in the last bit on some CPUs)."""
+        if not self.integer_delta():
+            power: FloatArray = ratio**self.delta
+            return power
+        result = np.ones_like(ratio)
+        for k in range(int(self.delta)):
+            result = ratio if k == 0 else result * ratio
+        return result
+
+    def integer_delta(self) -> bool:
+        """delta is a whole number >= 0 (the compiled step handles only those)."""
+        return float(self.delta).is_integer() and self.delta >= 0
 
     def equilibrium_gap(self, v: float, v0: float) -> float:
         """Gap (m) at which a = 0 behind a leader at the same speed v < v0."""

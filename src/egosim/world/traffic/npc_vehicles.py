@@ -19,7 +19,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from egosim.world import kernels
 from egosim.world.arrays import BoolArray, FloatArray, Indices, IntArray
+from egosim.world.kernels import npc_motion
 from egosim.world.traffic.activation import still_dormant
 from egosim.world.traffic.idm import IntelligentDriverModel
 from egosim.world.traffic.junction_rules import (
@@ -46,6 +48,9 @@ _PER_NPC_ARRAYS = (
     "active_distance", "dormant", "wake_speed",
 )  # fmt: skip
 _PER_NPC_LISTS = ("names", "routes", "route_pos")
+
+_MARGINS = np.array((DECISION_MARGIN_M, CRASH_BRAKE_DECEL_MPS2))
+"""The junction decision margin and the crash deceleration, for the compiled step."""
 
 # Latched reaction to a yellow, reset on every new lane and on every go aspect.
 _YELLOW_UNDECIDED, _YELLOW_STOP, _YELLOW_PASS = 0, 1, 2
@@ -98,6 +103,12 @@ class NpcFleet:
         self.rng = rng
         self.idm = idm or IntelligentDriverModel()
         self.conflicts = junction_conflicts(graph.lane_map)
+        # The lane graph's per-lane facts as the compiled step takes them.
+        self._lane_facts = np.stack(
+            (graph.length, graph.speed_limit, graph.curve_speed, graph.stop_s)
+        ).astype(np.float64)
+        self._lane_signals = np.stack((graph.light, graph.turn)).astype(np.int64)
+        self._idm_table: tuple[IntelligentDriverModel | None, FloatArray] = (None, np.empty(0))
         self.clear()
 
     def clear(self) -> None:
@@ -257,6 +268,9 @@ class NpcFleet:
         n = len(self)
         if n == 0:
             return
+        if kernels.ACTIVE and self.idm.integer_delta():
+            self._step_compiled(dt, lights, others)
+            return
         graph = self.graph
         waiting = (self.delay > 0.0) | self.dormant
         self.delay = np.where(self.dormant, self.delay, np.maximum(self.delay - dt, 0.0))
@@ -286,12 +300,76 @@ class NpcFleet:
         self.s = self.s + 0.5 * (self.speed + new_speed) * dt
         self.accel = (new_speed - self.speed) / dt
         self.speed = new_speed
-        self._advance_lanes()
+        self._advance_lanes(np.flatnonzero(self.s > self.graph.length[self.lane]))
         self._change_lanes(dt, frozen)
+        self._turn(dt)
+
+    def _step_compiled(self, dt: float, lights: LightsView, others: LaneOccupants) -> None:
+        """step() through kernels/npc_motion.py: the same arithmetic, the same results."""
+        moved, frozen, past_end = npc_motion.advance(
+            dt,
+            self.lane,
+            self.next_lanes,
+            self.s,
+            self.speed,
+            self.dims,
+            self.target_speed,
+            self.speed_factor,
+            self.delay,
+            self.dormant,
+            self.crashed,
+            self.yellow,
+            others.lane,
+            others.s,
+            others.half_length,
+            others.speed,
+            self._lane_facts,
+            self._lane_signals,
+            self.graph.is_junction,
+            self.conflicts,
+            lights.aspects,
+            lights.flashing,
+            lights.arrow_head,
+            lights.arrow_only,
+            self._idm_figures(),
+            int(self.idm.delta),
+            _MARGINS,
+        )
+        self.s, self.speed, self.accel, self.delay = moved
+        self._advance_lanes(past_end)
+        due = npc_motion.slide(
+            dt,
+            self.slide_elapsed,
+            self.change_duration,
+            self.slide_from,
+            self.lateral,
+            self.change_to,
+            self.change_timer,
+            frozen,
+        )
+        self._change_lanes_now(due)
+        self._turn(dt)
+
+    def _turn(self, dt: float) -> None:
+        """The poses on the lanes now, and the yaw rate (rad/s) that took them there."""
         old_heading = self.pose[:, 3]
         self.pose = self._poses()
         self.yaw_rate = np.remainder(self.pose[:, 3] - old_heading + math.pi, math.tau) - math.pi
         self.yaw_rate /= dt
+
+    def _idm_figures(self) -> FloatArray:
+        """The IDM's figures as kernels/npc_motion.py takes them (kept while the IDM is)."""
+        idm = self.idm
+        if self._idm_table[0] is not idm:
+            figures = (
+                idm.time_headway_s,
+                idm.min_gap_m,
+                idm.max_accel_mps2,
+                idm.comfortable_decel_mps2,
+                idm.max_decel_mps2,
+            )
+            self._idm_table = (idm, np.array(figures))
+        return self._idm_table[1]
 
     def _desired_speed(self) -> FloatArray:
         """IDM v0: scripted or lane-limit speed, capped by this lane's and (braking at the
@@ -367,9 +445,10 @@ class NpcFleet:
         dead_end = self.next_lanes[:, 0] < 0
         return np.where(dead_end, self.graph.length[self.lane] - self.s - half, np.inf)
 
-    def _advance_lanes(self) -> None:
+    def _advance_lanes(self, past_end: IntArray) -> None:
+        """NPCs `past_end` (beyond their lane's end) onto the lanes they planned."""
         length = self.graph.length
-        for i in np.flatnonzero(self.s > length[self.lane]):
+        for i in past_end:
             while self.s[i] > length[self.lane[i]]:
                 nxt = int(self.next_lanes[i, 0])
                 if nxt < 0:
@@ -393,9 +472,13 @@ class NpcFleet:
         self.slide_elapsed[sliding & (progress >= 1.0)] = np.inf
         pending = self.change_to >= 0
         self.change_timer[pending] -= dt
+        self._change_lanes_now(np.flatnonzero(pending & (self.change_timer <= 0.0) & ~frozen))
+
+    def _change_lanes_now(self, due: IntArray) -> None:
+        """The lane changes of NPCs `due` whose target lies beside them."""
         lanes = self.graph.lane_map.lanes
         ids = self.graph.lane_map.lane_ids
-        for i in np.flatnonzero(pending & (self.change_timer <= 0.0) & ~frozen):
+        for i in due:
             here, target = lanes[ids[self.lane[i]]], ids[self.change_to[i]]
             if target in (here.left_neighbor, here.right_neighbor):
                 self._move_beside(int(i), int(self.change_to[i]))
@@ -419,10 +502,7 @@ class NpcFleet:
             self.next_lanes[i, k] = previous
 
     def _poses(self) -> FloatArray:
-        pose = self.graph.lane_map.poses_at(self.lane, self.s)
-        heading = pose[:, 3].copy()
-        pose[:, 0] -= self.lateral * np.sin(heading)
-        pose[:, 1] += self.lateral * np.cos(heading)
+        pose = self.graph.lane_map.poses_at(self.lane, self.s, self.lateral)
         sliding = np.isfinite(self.slide_elapsed)
         if np.any(sliding):
             # The heading follows the slide: d(lateral)/dt against the forward speed.
@@ -435,12 +515,17 @@ class NpcFleet:
 
     def table(self) -> ObjectTable:
         heading = self.pose[:, 3]
-        direction = np.column_stack((np.cos(heading), np.sin(heading), np.zeros(len(self))))
-        normal = np.column_stack((-np.sin(heading), np.cos(heading), np.zeros(len(self))))
-        velocity = self.speed[:, None] * direction
-        acceleration = (
-            self.accel[:, None] * direction + (self.speed * self.yaw_rate)[:, None] * normal
-        )
+        if kernels.ACTIVE:
+            velocity, acceleration = npc_motion.planar_motion(
+                heading, self.speed, self.accel, self.yaw_rate
+            )
+        else:
+            direction = np.column_stack((np.cos(heading), np.sin(heading), np.zeros(len(self))))
+            normal = np.column_stack((-np.sin(heading), np.cos(heading), np.zeros(len(self))))
+            velocity = self.speed[:, None] * direction
+            acceleration = (
+                self.accel[:, None] * direction + (self.speed * self.yaw_rate)[:, None] * normal
+            )
         return ObjectTable(
             unique_ids=self.unique_ids,
             object_types=np.full(len(self), int(ObjectType.NPC_VEHICLE), np.int64),

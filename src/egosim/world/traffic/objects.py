@@ -118,6 +118,11 @@ class ObjectTable:
 
     @classmethod
     def concatenate(cls, tables: Sequence[ObjectTable]) -> ObjectTable:
+        """The rows of `tables` one after the other (tables are never changed in place, so
+        a lone non-empty table is handed out as it is: most parts of a step are empty)."""
+        filled = [t for t in tables if len(t.unique_ids)]
+        if len(filled) == 1:
+            return filled[0]
         if not tables:
             return cls.empty()
         return cls(

@@ -15,7 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from egosim.world import kernels
 from egosim.world.arrays import BoolArray, FloatArray, Indices, IntArray
+from egosim.world.kernels import pedestrian_motion
 from egosim.world.map import Crosswalk, LaneMap, Sidewalk
 from egosim.world.traffic.activation import still_dormant
 from egosim.world.traffic.catalogue import BoxModel
@@ -166,6 +168,12 @@ class PedestrianCrowd:
         self._gate_key = np.array([g[0] for g in gates], dtype=np.float64)
         self._gate_owner = np.array([g[1] for g in gates], dtype=np.int64)
         self._gate_crosswalk = np.array([g[2] for g in gates], dtype=np.int64)
+        # The same tables as the compiled step takes them.
+        self._gate_links = np.stack((self._gate_owner, self._gate_crosswalk)).reshape(2, -1)
+        self._path = np.vstack(
+            (self._point_key, self._points.T.reshape(2, -1), self._point_heading)
+        )
+        self._path_bounds = np.stack((self._first, self._last_segment)).astype(np.int64)
 
     def _place(self, s: FloatArray) -> tuple[FloatArray, FloatArray]:
         key = self._key_base + s
@@ -195,6 +203,27 @@ class PedestrianCrowd:
         n = len(self)
         if n == 0:
             return
+        if kernels.ACTIVE:
+            self.s, self.heading, (self.position, self.velocity, self.acceleration) = (
+                pedestrian_motion.walk(
+                    dt,
+                    self.s,
+                    ~(self.stopped | self.dormant),
+                    self.walk_speed,
+                    walk_allowed,
+                    self._key_base,
+                    self._gate_key,
+                    self._gate_links,
+                    self.closed,
+                    self.length,
+                    self._path,
+                    self._path_bounds,
+                    self.shoved,
+                    self.position,
+                    self.velocity,
+                )
+            )
+            return
         old_s = self.s
         new_s = old_s + np.where(self.stopped | self.dormant, 0.0, self.walk_speed * dt)
         if len(self._gate_key):
@@ -221,17 +250,24 @@ class PedestrianCrowd:
 
     def table(self) -> ObjectTable:
         n = len(self)
-        zeros = np.zeros((n, 1))
         return ObjectTable(
             unique_ids=self.unique_ids,
             object_types=np.full(n, int(ObjectType.PEDESTRIAN), np.int64),
             names=self.names,
-            positions=np.hstack((self.position, zeros)),
+            positions=_on_ground(self.position),
             headings=self.heading.copy(),
-            velocities=np.hstack((self.velocity, zeros)),
-            accelerations=np.hstack((self.acceleration, zeros)),
+            velocities=_on_ground(self.velocity),
+            accelerations=_on_ground(self.acceleration),
             sizes=self.dims.copy(),
         )
+
+
+def _on_ground(planar: FloatArray) -> FloatArray:
+    """(N, 2) map-frame vectors as (N, 3), z 0."""
+    if kernels.ACTIVE:
+        spatial: FloatArray = pedestrian_motion.on_ground(planar)
+        return spatial
+    return np.hstack((planar, np.zeros((len(planar), 1))))
 
 
 class CrosswalkLights:

@@ -21,9 +21,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from egosim.world.vehicle.catalogue import VehicleModel
+import numpy as np
+
+from egosim.world import kernels
+from egosim.world.arrays import FloatArray
+from egosim.world.kernels import vehicle_dynamics
+from egosim.world.vehicle.catalogue import GRAVITY, VehicleModel
 from egosim.world.vehicle.gear import Gear
 from egosim.world.vehicle.longitudinal import (
+    AIR_DENSITY,
+    GOVERNOR_BAND,
     aero_drag_force,
     drive_force,
     grade_force,
@@ -106,8 +113,26 @@ def dynamic_lateral_motion(
     return (rhs1 * m22 - m12 * rhs2) / det, (m11 * rhs2 - m21 * rhs1) / det
 
 
+_PHYSICS = np.array((AIR_DENSITY, GRAVITY, GOVERNOR_BAND, BLEND_START, BLEND_END))
+_FIGURES: dict[int, tuple[VehicleModel, FloatArray]] = {}
+
+
+def _figures(model: VehicleModel) -> FloatArray:
+    """The model's figures as kernels/vehicle_dynamics.py takes them, kept per model."""
+    known = _FIGURES.get(id(model))
+    if known is None or known[0] is not model:
+        if len(_FIGURES) > 64:
+            _FIGURES.clear()
+        figures = np.array([getattr(model, name) for name in vehicle_dynamics.MODEL_FIELDS])
+        known = _FIGURES[id(model)] = (model, figures)
+    return known[1]
+
+
 def advance(model: VehicleModel, state: VehicleState, inputs: ActuatorInputs, dt: float) -> None:
     """Integrate the state over dt (s) in place: actuators, then speeds, then pose."""
+    if kernels.ACTIVE:
+        _advance_compiled(model, state, inputs, dt)
+        return
     state.front_steer = steer_towards(
         state.front_steer, inputs.front_steer_target, model.max_steer_rate, dt
     )
@@ -153,3 +178,37 @@ def advance(model: VehicleModel, state: VehicleState, inputs: ActuatorInputs, dt
     # Euler-angle rate of a body turning about its own z axis on a tilted road.
     state.yaw += dt * new_yaw_rate * cos_roll / cos_pitch
     state.yaw = math.remainder(state.yaw, math.tau)
+
+
+def _advance_compiled(
+    model: VehicleModel, state: VehicleState, inputs: ActuatorInputs, dt: float
+) -> None:
+    """advance() through kernels/vehicle_dynamics.py: the same arithmetic, the same results."""
+    values = np.array(
+        (
+            state.x, state.y, state.z, state.roll, state.pitch, state.yaw, state.vx,
+            state.vy, state.yaw_rate, state.front_steer, state.rear_steer, state.vx_rate,
+            state.vy_rate, state.yaw_acceleration,
+        )
+    )  # fmt: skip
+    vehicle_dynamics.advance(
+        _figures(model),
+        values,
+        np.array(
+            (
+                inputs.accel_pedal,
+                inputs.brake_pedal,
+                inputs.front_steer_target,
+                inputs.rear_steer_target,
+            )
+        ),
+        inputs.gear.drive_direction,
+        inputs.gear is Gear.PARKING,
+        _PHYSICS,
+        dt,
+    )
+    (
+        state.x, state.y, state.z, state.roll, state.pitch, state.yaw, state.vx, state.vy,
+        state.yaw_rate, state.front_steer, state.rear_steer, state.vx_rate, state.vy_rate,
+        state.yaw_acceleration,
+    ) = values.tolist()  # fmt: skip

@@ -1,0 +1,146 @@
+"""The swept collision test (world/collision.py's touching_pairs) as compiled loops: the
+broad phase's sweep along x, then the separating-axis test at sub-steps of the motion."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from egosim.world.arrays import FloatArray, IntArray
+from egosim.world.kernels import kernel
+from egosim.world.kernels.numpy_scalars import maximum, minimum, remainder
+from egosim.world.kernels.sorting import lexsort_argsort, search_sorted
+
+
+@kernel
+def _bounds(
+    centres: FloatArray, headings: FloatArray, lengths: FloatArray, widths: FloatArray
+) -> FloatArray:
+    """(N, 4) x low, y low, x high, y high of each rectangle (Footprints.half_extents)."""
+    n = headings.shape[0]
+    bounds = np.empty((n, 4))
+    for k in range(n):
+        c, s = abs(math.cos(headings[k])), abs(math.sin(headings[k]))
+        half_l, half_w = lengths[k] / 2.0, widths[k] / 2.0
+        ex, ey = c * half_l + s * half_w, s * half_l + c * half_w
+        bounds[k, 0] = centres[k, 0] - ex
+        bounds[k, 1] = centres[k, 1] - ey
+        bounds[k, 2] = centres[k, 0] + ex
+        bounds[k, 3] = centres[k, 1] + ey
+    return bounds
+
+
+@kernel
+def _corners(x: float, y: float, heading: float, length: float, width: float) -> FloatArray:
+    """collision.corners of one rectangle: (4, 2), counter-clockwise."""
+    c, s = math.cos(heading), math.sin(heading)
+    along_x, along_y = c * (length / 2.0), s * (length / 2.0)
+    across_x, across_y = -s * (width / 2.0), c * (width / 2.0)
+    corners = np.empty((4, 2))
+    corners[0, 0], corners[0, 1] = x + along_x + across_x, y + along_y + across_y
+    corners[1, 0], corners[1, 1] = x - along_x + across_x, y - along_y + across_y
+    corners[2, 0], corners[2, 1] = x - along_x - across_x, y - along_y - across_y
+    corners[3, 0], corners[3, 1] = x + along_x - across_x, y + along_y - across_y
+    return corners
+
+
+@kernel
+def _separated_along(axis_heading: float, corners_a: FloatArray, corners_b: FloatArray) -> bool:
+    ax, ay = math.cos(axis_heading), math.sin(axis_heading)
+    low_a, high_a, low_b, high_b = np.inf, -np.inf, np.inf, -np.inf
+    for k in range(4):
+        pa = corners_a[k, 0] * ax + corners_a[k, 1] * ay
+        pb = corners_b[k, 0] * ax + corners_b[k, 1] * ay
+        low_a, high_a = min(low_a, pa), max(high_a, pa)
+        low_b, high_b = min(low_b, pb), max(high_b, pb)
+    return high_a < low_b or high_b < low_a
+
+
+@kernel
+def overlap(
+    a: tuple[float, float, float, float, float], b: tuple[float, float, float, float, float]
+) -> bool:
+    """collision._overlap of two rectangles (x, y, heading, length, width)."""
+    corners_a = _corners(a[0], a[1], a[2], a[3], a[4])
+    corners_b = _corners(b[0], b[1], b[2], b[3], b[4])
+    for axis_heading in (a[2], a[2] + math.pi / 2, b[2], b[2] + math.pi / 2):
+        if _separated_along(axis_heading, corners_a, corners_b):
+            return False
+    return True
+
+
+@kernel
+def touching_pairs(
+    before_centres: FloatArray,
+    before_headings: FloatArray,
+    before_lengths: FloatArray,
+    before_widths: FloatArray,
+    after_centres: FloatArray,
+    after_headings: FloatArray,
+    after_lengths: FloatArray,
+    after_widths: FloatArray,
+    max_substep_m: float,
+    max_substeps: int,
+) -> IntArray:
+    """collision.touching_pairs: (K, 2) pairs i < j, sorted, that touch during the motion."""
+    n = before_headings.shape[0]
+    b0 = _bounds(before_centres, before_headings, before_lengths, before_widths)
+    b1 = _bounds(after_centres, after_headings, after_lengths, after_widths)
+    low = np.empty((n, 2))
+    high = np.empty((n, 2))
+    for k in range(n):
+        for d in range(2):
+            low[k, d] = minimum(b0[k, d], b1[k, d])
+            high[k, d] = maximum(b0[k, 2 + d], b1[k, 2 + d])
+    order = lexsort_argsort(np.zeros(n, dtype=np.int64), low[:, 0].copy())
+    sorted_low = low[order, 0]
+    keys = np.empty(16, dtype=np.int64)
+    found = 0
+    for a in range(n):
+        i = order[a]
+        reach = search_sorted(sorted_low, high[i, 0], True)
+        for b in range(a + 1, reach):
+            j = order[b]
+            if not (low[i, 1] <= high[j, 1] and low[j, 1] <= high[i, 1]):
+                continue
+            first, second = min(i, j), max(i, j)
+            travel_x = (after_centres[first, 0] - before_centres[first, 0]) - (
+                after_centres[second, 0] - before_centres[second, 0]
+            )
+            travel_y = (after_centres[first, 1] - before_centres[first, 1]) - (
+                after_centres[second, 1] - before_centres[second, 1]
+            )
+            steps = int(
+                min(max(math.ceil(math.hypot(travel_x, travel_y) / max_substep_m), 1), max_substeps)
+            )
+            for step in range(1, steps + 1):
+                fraction = step / steps
+                boxes = []
+                for k in (first, second):
+                    turn = (
+                        remainder(after_headings[k] - before_headings[k] + math.pi, math.tau)
+                        - math.pi
+                    )
+                    boxes.append(
+                        (
+                            before_centres[k, 0]
+                            + fraction * (after_centres[k, 0] - before_centres[k, 0]),
+                            before_centres[k, 1]
+                            + fraction * (after_centres[k, 1] - before_centres[k, 1]),
+                            before_headings[k] + fraction * turn,
+                            after_lengths[k],
+                            after_widths[k],
+                        )
+                    )
+                if overlap(boxes[0], boxes[1]):
+                    if found == keys.shape[0]:
+                        keys = np.concatenate((keys, np.empty(found, dtype=np.int64)))
+                    keys[found] = first * n + second
+                    found += 1
+                    break
+    keys = keys[:found]
+    result = np.empty((found, 2), dtype=np.int64)
+    for row, k in enumerate(lexsort_argsort(keys, np.zeros(found))):
+        result[row, 0], result[row, 1] = keys[k] // n, keys[k] % n
+    return result
