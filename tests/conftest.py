@@ -113,8 +113,10 @@ class RosProcess:
         while time.monotonic() < deadline:
             with contextlib.suppress(subprocess.TimeoutExpired):
                 self.popen.wait(0.05)
-            if self.popen.poll() is not None and not self._group_alive():
-                break
+            if self.popen.poll() is not None:
+                if not self._group_alive():
+                    break
+                time.sleep(0.05)  # the leader is gone, the rest of its group not yet
         with contextlib.suppress(ProcessLookupError):
             os.killpg(self.popen.pid, signal.SIGKILL)
         self.popen.wait()
