@@ -38,7 +38,7 @@ def run_batch(out: Path, msgs: Path, *options: str) -> subprocess.CompletedProce
 @pytest.fixture(scope="module")
 def local_run(
     tmp_path_factory: pytest.TempPathFactory,
-    built_msg_packages: Path,  # noqa: F811
+    built_msg_packages: Path,
 ) -> tuple[Path, subprocess.CompletedProcess[str]]:
     out = tmp_path_factory.mktemp("local")
     return out, run_batch(out, built_msg_packages, "--workers", "2")
@@ -103,7 +103,7 @@ def test_each_case_leaves_a_bag_junit_and_a_report(local_run) -> None:
 def test_ray_tasks_give_the_same_results(
     local_run,
     tmp_path: Path,
-    built_msg_packages: Path,  # noqa: F811
+    built_msg_packages: Path,
 ) -> None:
     pytest.importorskip("ray", reason="Ray is an optional extra: pip install egosim[ray]")
     local_out, _ = local_run
