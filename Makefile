@@ -3,6 +3,10 @@ PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 ARGS ?=
+# `make test` runs the tests in this many pytest-xdist workers, a test file per worker at
+# a time (module-scoped simulators and batch runs stay shared). Most tests wait on
+# subprocesses, so more workers than cores pay: docs/BENCHMARKS.md, "The test suite".
+TEST_WORKERS ?= 4
 # Debian's ROS 1 (Noetic): test peers only, never a runtime dependency.
 ROS_PEER_DEBS := python3-rospy python3-rosmaster python3-rostopic python3-rosservice \
 	python3-rosparam python3-rosnode python3-rosbag python3-genpy ros-core-dev \
@@ -84,7 +88,7 @@ lint: $(VENV)/.installed-test
 	$(BIN)/mypy
 
 test: $(VENV)/.installed-test ros-peers browser-peers render-libs lint
-	$(BIN)/pytest
+	$(BIN)/pytest -n $(TEST_WORKERS) --dist loadfile
 
 benchmarks: $(VENV)/.installed-test
 	@for script in benchmarks/*.py; do echo "== $$script"; $(BIN)/python $$script || exit 1; done

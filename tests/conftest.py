@@ -2,6 +2,7 @@
 
 - ``ros_env``: environment for ROS subprocesses (ROS_HOME/ROS_LOG_DIR in a tmp dir).
 - ``spawn_ros``: start a subprocess in its own process group; killed at teardown.
+  (``ros_environment`` and ``ros_spawner`` are the same for fixtures of a wider scope.)
 - ``rosmaster``: Debian's rosmaster on a free loopback port; yields its URI.
 - ``embedded_master``: egosim's master on a free loopback port; yields it (``.uri``).
 - ``built_msg_packages``: morai_msgs as rospy modules (`egosim msgs --export-python`).
@@ -113,8 +114,10 @@ class RosProcess:
         while time.monotonic() < deadline:
             with contextlib.suppress(subprocess.TimeoutExpired):
                 self.popen.wait(0.05)
-            if self.popen.poll() is not None and not self._group_alive():
-                break
+            if self.popen.poll() is not None:
+                if not self._group_alive():
+                    break
+                time.sleep(0.05)  # the leader is gone, the rest of its group not yet
         with contextlib.suppress(ProcessLookupError):
             os.killpg(self.popen.pid, signal.SIGKILL)
         self.popen.wait()
@@ -125,20 +128,20 @@ class RosProcess:
             self.popen.stdout.close()
 
 
-@pytest.fixture
-def ros_env(tmp_path: Path) -> dict[str, str]:
+def ros_environment(directory: Path) -> dict[str, str]:
+    """The environment of ROS subprocesses, their ROS_HOME and logs in `directory`."""
     env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
-    home = tmp_path / "ros_home"
+    home = directory / "ros_home"
     home.mkdir(exist_ok=True)
     env.update(ROS_HOME=str(home), ROS_LOG_DIR=str(home / "log"), PYTHONUNBUFFERED="1")
     env.pop("PYTHONPATH", None)
     return env
 
 
-@pytest.fixture
-def spawn_ros(tmp_path: Path, ros_env: dict[str, str]) -> Iterator[Callable[..., RosProcess]]:
-    """``spawn_ros(args, master_uri=None, **env)`` starts a process; ``args[0] == "python"``
-    means Debian's ROS interpreter."""
+@contextlib.contextmanager
+def ros_spawner(directory: Path, ros_env: dict[str, str]) -> Iterator[Callable[..., RosProcess]]:
+    """``spawn(args, master_uri=None, **env)`` starts a process (stderr in `directory`),
+    each killed on leaving; ``args[0] == "python"`` means Debian's ROS interpreter."""
     started: list[RosProcess] = []
 
     def spawn(args: list[str], master_uri: str | None = None, **extra_env: str) -> RosProcess:
@@ -147,7 +150,7 @@ def spawn_ros(tmp_path: Path, ros_env: dict[str, str]) -> Iterator[Callable[...,
             env["ROS_MASTER_URI"] = master_uri
         if args[0] == "python":
             args = [ROS_PYTHON, *args[1:]]
-        process = RosProcess(args, env, tmp_path / f"proc{len(started)}.stderr")
+        process = RosProcess(args, env, directory / f"proc{len(started)}.stderr")
         started.append(process)
         return process
 
@@ -156,6 +159,18 @@ def spawn_ros(tmp_path: Path, ros_env: dict[str, str]) -> Iterator[Callable[...,
     finally:
         for process in reversed(started):
             process.kill()
+
+
+@pytest.fixture
+def ros_env(tmp_path: Path) -> dict[str, str]:
+    return ros_environment(tmp_path)
+
+
+@pytest.fixture
+def spawn_ros(tmp_path: Path, ros_env: dict[str, str]) -> Iterator[Callable[..., RosProcess]]:
+    """``spawn_ros(args, master_uri=None, **env)``: ros_spawner for the test."""
+    with ros_spawner(tmp_path, ros_env) as spawn:
+        yield spawn
 
 
 def wait_for_master(uri: str, timeout: float = EVENT_TIMEOUT_S) -> None:

@@ -82,9 +82,13 @@ class RospyDriver:
         """Messages received on topic from index `since`, waiting for `count` of them."""
         return self.request("messages", topic=topic, since=since, count=count, timeout=timeout)
 
+    def received(self, topic: str) -> int:
+        """How many messages have been received on topic so far (the `since` of the next)."""
+        return self.request("received", topic=topic)
+
     def next_message(self, topic: str, timeout: float = 20.0) -> dict[str, Any]:
         """A message received after this call."""
-        seen = len(self.messages(topic, count=0, timeout=0))
+        seen = self.received(topic)
         received = self.messages(topic, since=seen, count=1, timeout=timeout)
         if not received:
             raise DriverError(f"no message on {topic} within {timeout} s")

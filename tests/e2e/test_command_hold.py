@@ -16,7 +16,7 @@ CTRL = ("/ctrl_cmd", "morai_msgs/CtrlCmd")
 
 def _speeds_for(client: Any, seconds: float) -> list[float]:
     """Ego speeds (km/h) over the next `seconds` of simulation time."""
-    since = len(client.messages(EGO[0], count=0, timeout=0))
+    since = client.received(EGO[0])
     first = None
     speeds: list[float] = []
     while True:

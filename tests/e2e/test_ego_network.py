@@ -28,7 +28,7 @@ def test_velocity_mode_reaches_its_target(egosim, rospy_client) -> None:
     client.subscribe(*EGO)
     client.stream(*CTRL, {"longlCmdType": 2, "velocity": 30.0}, rate=50)
     speeds = []
-    since = len(client.messages(EGO[0], count=0, timeout=0))
+    since = client.received(EGO[0])
     while not speeds or speeds[-1][0] < speeds[0][0] + 15.0:
         received = client.messages(EGO[0], since=since, count=1)
         since += len(received)

@@ -45,7 +45,7 @@ def test_auto_drives_along_the_lane_at_its_limit(egosim, rospy_client):
     client = rospy_client(egosim("--map", "straight", "--clock", "sim", "--rtf", "4"))
     client.subscribe(*EGO)
     assert set_ctrl_mode(client, AUTO)["ctrl_mode"] == AUTO
-    since = len(client.messages(EGO[0], count=0, timeout=0))
+    since = client.received(EGO[0])
     trace: list[dict] = []
     while not trace or trace[-1]["header"]["stamp"] < trace[0]["header"]["stamp"] + 20.0:
         received = client.messages(EGO[0], since=since, count=1)

@@ -36,7 +36,7 @@ def stamp(message: dict[str, Any]) -> float:
 
 def ego_messages_for(client, seconds: float) -> list[dict[str, Any]]:
     """Every /Ego_topic message over the next `seconds` of header time."""
-    since = len(client.messages(EGO[0], count=0, timeout=0))
+    since = client.received(EGO[0])
     received: list[dict[str, Any]] = []
     while not received or stamp(received[-1]) < stamp(received[0]) + seconds:
         batch = client.messages(EGO[0], since=since, count=1)

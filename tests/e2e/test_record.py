@@ -75,7 +75,7 @@ def test_rosbag_info_lists_every_topic_with_its_type_and_count(
     egosim: Callable[..., Any], rospy_client: Callable[..., RospyDriver], tmp_path: Path
 ) -> None:
     bag = tmp_path / "drive.bag"
-    record_drive(egosim, rospy_client, bag, duration=5.0)
+    record_drive(egosim, rospy_client, bag, duration=5.0, accelerate_s=0.5)
     info = rosbag_info(bag)
     assert info["indexed"] is True
     topics = {t["topic"]: t for t in info["topics"]}

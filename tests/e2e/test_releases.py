@@ -17,6 +17,13 @@ STEER_STATUS = {"26.r1": "front_steer_angle", "24.r2": "wheel_angle", "2021.08":
 RELEASES = ("26.r1", "24.r2", "2021.08")
 
 
+@pytest.fixture(scope="module")
+def straight(module_egosim):
+    """One simulator on the straight map for the tests that call services and handshake:
+    a gear set to 2 by each release, nothing else changed."""
+    return module_egosim("--map", "straight")
+
+
 @pytest.mark.parametrize("release", RELEASES)
 def test_client_of_a_release_steers_and_reads_the_ego(egosim, rospy_client, release) -> None:
     client = rospy_client(egosim("--map", "straight"), profile=release)
@@ -49,8 +56,8 @@ def test_three_releases_at_once_see_the_same_world(egosim, rospy_client) -> None
 
 
 @pytest.mark.parametrize("release", RELEASES)
-def test_services_answer_each_release_in_its_own(egosim, rospy_client, release) -> None:
-    client = rospy_client(egosim("--map", "straight"), profile=release)
+def test_services_answer_each_release_in_its_own(straight, rospy_client, release) -> None:
+    client = rospy_client(straight, profile=release)
     reply = client.call(
         "/Service_MoraiEventCmd",
         "morai_msgs/MoraiEventCmdSrv",
@@ -63,10 +70,9 @@ def test_services_answer_each_release_in_its_own(egosim, rospy_client, release) 
     assert spec["response"]["utm_num"] == 52
 
 
-def test_unknown_md5_is_refused_naming_the_accepted_ones(egosim) -> None:
-    simulator = egosim("--map", "straight")
+def test_unknown_md5_is_refused_naming_the_accepted_ones(straight) -> None:
     reply = handshake(
-        simulator.master_uri,
+        straight.master_uri,
         "/Ego_topic",
         "morai_msgs/EgoVehicleStatus",
         "0123456789abcdef0123456789abcdef",

@@ -31,7 +31,7 @@ def test_npc_crash_is_one_vehicle_collision_with_both_vehicles(egosim, rospy_cli
         "position": {"x": position["x"], "y": position["y"], "z": 0.0},
         "rpy": {"x": 0.0, "y": 0.0, "z": npc["heading"]},
     }
-    since = len(client.messages(VEHICLE_COLLISIONS[0], count=0, timeout=0))
+    since = client.received(VEHICLE_COLLISIONS[0])
     client.publish(*NPC_GHOST, {"npc_list": [ghost]})
     crashes = []
     while not crashes:

@@ -7,6 +7,7 @@ import bisect
 import math
 import shutil
 import time
+import xmlrpc.client
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,6 +20,7 @@ from rosbags.typesys.msg import denormalize_msgtype
 from egosim.msgs import get_profile
 from tests.conftest import EVENT_TIMEOUT_S
 from tests.e2e.driver import RospyDriver
+from tests.waiting import until
 
 pytestmark = pytest.mark.ros
 
@@ -36,7 +38,10 @@ TARGET_EGO, TARGET_NPC, TARGET_PEDESTRIAN = 0x0001, 0x0010, 0x0100
 SUCCESS, BAG_LOAD_FAILED = 0x01, 0x20
 SIMULATION_MODE, REPLAY_MODE, AT_END = 0x01, 0x10, 0x20
 
-RECORD_S = 20.0
+# The drive: ACCELERATE_S of throttle, then the brake; the ego stands well before RECORD_S.
+RECORD_S = 10.0
+ACCELERATE_S = 2.0
+EGO_RATE_HZ = 50  # /Ego_topic's default rate
 TOLERANCE_M = 0.01
 # The lists of ObjectStatusList and the target that replays each.
 LISTS_OF_TARGET = {
@@ -177,8 +182,10 @@ def record_drive(
     rospy_client: Callable[..., RospyDriver],
     bag: Path,
     duration: float = RECORD_S,
+    accelerate_s: float = ACCELERATE_S,
 ) -> None:
-    """`duration` s of the default scenario with a scripted controller, recorded by egosim."""
+    """`duration` s of the default scenario with a scripted controller, recorded by egosim:
+    `accelerate_s` s of throttle, then the brake."""
     recording = egosim(
         "--clock", "sim", "--rtf", "0", "--duration", str(duration), "--record", str(bag)
     )
@@ -186,9 +193,17 @@ def record_drive(
     # Accelerate while steering gently left, then brake: a curved drive that stops.
     driver.stream(*CTRL, {"longlCmdType": 1, "accel": 0.5, "front_steer": 0.03}, rate=50)
     driver.subscribe(*EGO)
-    driver.messages(EGO[0], count=round(duration * 5), timeout=60)
+    driver.messages(EGO[0], count=round(accelerate_s * EGO_RATE_HZ), timeout=60)
     driver.stream(*CTRL, {"longlCmdType": 1, "brake": 0.3, "front_steer": -0.02}, rate=50)
     assert recording.process.wait(120) == 0
+
+
+def subscriber_connections(master_uri: str, topic: str) -> int:
+    """How many subscribers /egosim's publisher of `topic` has live connections to (its
+    Slave API's getBusInfo)."""
+    _, _, node_uri = xmlrpc.client.ServerProxy(master_uri).lookupNode("/test", "/egosim")
+    _, _, connections = xmlrpc.client.ServerProxy(node_uri).getBusInfo("/test")
+    return sum(c[2] == "o" and c[4] == topic and c[5] for c in connections)
 
 
 def replayed(client: RospyDriver, topic: str, since: int) -> list[dict[str, Any]]:
@@ -228,7 +243,7 @@ def replay_and_compare(
 ) -> float:
     """Play the whole bag for one target at one speed; compare what the simulator reports
     with the recording at matched times. The time (s) the play command arrived."""
-    since = {topic: len(replayed(client, topic, 0)) for topic in (EGO[0], OBJECTS[0])}
+    since = {topic: client.received(topic) for topic in (EGO[0], OBJECTS[0])}
     assert sim_proc(
         client,
         sim_process_status=PLAY,
@@ -302,7 +317,7 @@ def test_replay_info_reports_the_recorded_inputs_and_objects(
     egosim: Callable[..., Any], rospy_client: Callable[..., RospyDriver], tmp_path: Path
 ) -> None:
     bag = tmp_path / "data" / "short.bag"
-    record_drive(egosim, rospy_client, bag, duration=4.0)
+    record_drive(egosim, rospy_client, bag, duration=4.0, accelerate_s=0.4)
     recording = Recording.of(bag)
     player = egosim("--clock", "sim", "--rtf", "0")
     client = rospy_client(player)
@@ -368,12 +383,18 @@ def test_a_bag_recorded_by_rosbag_record_replays(
         master_uri=simulator.master_uri,
         ROS_IP="127.0.0.1",
     )
-    # rosbag's recorder prints nothing when it subscribes; its bag appears when it does.
+    # rosbag's recorder prints nothing when it subscribes; its bag appears when it does,
+    # and what it records begins once egosim's publishers have connected to it.
     active = bag.with_name(bag.name + ".active")
     deadline = time.monotonic() + EVENT_TIMEOUT_S
     while not active.exists():
         assert time.monotonic() < deadline, rosbag.stderr_text()
         time.sleep(0.05)
+    for topic in (EGO[0], OBJECTS[0]):  # the client and rosbag
+        until(
+            lambda topic=topic: subscriber_connections(simulator.master_uri, topic) >= 2,
+            f"egosim's {topic} to connect to the client and to rosbag record",
+        )
     client.stream(*CTRL, {"longlCmdType": 1, "accel": 0.6, "front_steer": 0.04}, rate=50)
     client.messages(EGO[0], count=300, timeout=120)
     client.stop_stream(CTRL[0])

@@ -196,7 +196,7 @@ LOAD = ("/SyncModeScenarioLoad", "morai_msgs/MoraiSyncModeSLSrv")
 
 
 def obstacles_after_tick(client, frame: int) -> list[dict]:
-    since = len(client.messages(OBJECTS[0], count=0, timeout=0))
+    since = client.received(OBJECTS[0])
     tick(client, frame)
     return client.messages(OBJECTS[0], since=since, count=1)[0]["obstacle_list"]
 
@@ -343,7 +343,7 @@ def test_a_real_time_run_stamps_sync_ticks_with_the_world_time(
     # goes on from there
     tick(client, first + 105)
     stop_sync_mode(client)
-    seen = len(client.messages(EGO[0], count=0, timeout=0))
+    seen = client.received(EGO[0])
     client.messages(EGO[0], since=seen, count=20)
     stamps = [raw_stamp_ns(m) for m in client.messages(EGO[0], count=0, timeout=0)]
     assert stamps == sorted(stamps)

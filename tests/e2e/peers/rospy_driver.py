@@ -156,6 +156,13 @@ def op_messages(request):
         return inbox.messages[since:]
 
 
+def op_received(request):
+    """How many messages the subscription to topic has received so far."""
+    inbox = subscriptions[request["topic"]]
+    with inbox.condition:
+        return len(inbox.messages)
+
+
 def publisher(request):
     topic = request["topic"]
     if topic not in publishers:
@@ -221,6 +228,7 @@ OPS = {
     "wait_connected": op_wait_connected,
     "now": op_now,
     "messages": op_messages,
+    "received": op_received,
     "publish": op_publish,
     "stream": op_stream,
     "stop_stream": op_stop_stream,
