@@ -23,6 +23,9 @@ WRONG_WAY_PENALTY_M = 50.0
 EXHAUSTIVE_PAIRS_PER_CHUNK = 1_000_000
 # Grid cell edge; a point on a road or its kerb finds its lane in the 3 x 3 cells around it.
 GRID_CELL_M = 6.0
+# Beyond this a coordinate is no place on Earth (|x|, |y| well past any projected map),
+# and its grid cell would overflow the compiled loop's integers.
+COMPILED_COORDINATE_LIMIT_M = 1.0e9
 
 
 @dataclass(frozen=True)
@@ -104,7 +107,9 @@ class SegmentTable:
     def project(self, xy: FloatArray, headings: FloatArray | None) -> LaneProjections:
         """Best lane for each point: least distance + heading error (see module constants);
         a NaN heading hint means none for that point."""
-        if kernels.ACTIVE:
+        # The compiled loop turns coordinates into grid cells without numpy's checks: a
+        # point that is not finite or is beyond any map (odd input) takes the numpy path.
+        if kernels.ACTIVE and np.all(np.abs(xy) < COMPILED_COORDINATE_LIMIT_M):
             return self._project_compiled(xy, headings)
         n = len(xy)
         best_seg = np.zeros(n, dtype=np.int64)
