@@ -5,7 +5,7 @@ BIN := $(VENV)/bin
 ARGS ?=
 # `make test` runs the tests in this many pytest-xdist workers, a test file per worker at
 # a time (module-scoped simulators and batch runs stay shared). Most tests wait on
-# subprocesses, so more workers than cores pay: docs/BENCHMARKS.md, "The test suite".
+# subprocesses, so more workers than cores pay.
 TEST_WORKERS ?= 4
 # Debian's ROS 1 (Noetic): test peers only, never a runtime dependency.
 ROS_PEER_DEBS := python3-rospy python3-rosmaster python3-rostopic python3-rosservice \
