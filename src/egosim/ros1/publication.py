@@ -15,7 +15,7 @@ from collections import deque
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
-from .connection_header import error_header, write_header
+from .connection_header import encode_header, error_header, write_header
 from .errors import ConnectionRefusedByPeerError, NodeShutdownError
 from .tcpros import close_quietly, encode_frame, send_frame, set_cork, set_nodelay
 from .types import MessageTypeInfo
@@ -59,6 +59,7 @@ class _Outbox:
         stats: ConnectionStats,
         queue_size: int,
         on_closed: Callable[[_Outbox], None],
+        preamble: bytes,
     ) -> None:
         self.sock = sock
         self.stats = stats
@@ -67,7 +68,8 @@ class _Outbox:
         self._queue_size = queue_size
         self._ready = threading.Condition()
         # The unsent end of a frame publish() began sending; it goes out before the queue.
-        self._tail: memoryview | None = None
+        # It starts as the preamble (the connection header), so no message can precede it.
+        self._tail: memoryview | None = memoryview(preamble)
         self._writing = False
         self._closed = False
         self._on_closed = on_closed
@@ -277,8 +279,7 @@ class Publisher:
             write_header(sock, error_header(exc.reason))
             close_quietly(sock)
             return
-        write_header(
-            sock,
+        reply = encode_header(
             {
                 "callerid": self.caller_id,
                 "topic": self.topic,
@@ -286,12 +287,14 @@ class Publisher:
                 "md5sum": served.md5sum,
                 "message_definition": served.definition,
                 "latching": "1" if self.latch else "0",
-            },
+            }
         )
         if header.get("tcp_nodelay") == "1":
             set_nodelay(sock)
         stats = ConnectionStats(connection_id, header.get("callerid", peer), served.md5sum)
-        outbox = _Outbox(sock, stats, self.queue_size, self._forget)
+        # The reply goes out through the outbox, which joins the publisher in the same step:
+        # a subscriber that has read the reply has every message published after it.
+        outbox = _Outbox(sock, stats, self.queue_size, self._forget, preamble=reply)
         with self._lock:
             if self._closed:
                 outbox.close()
