@@ -115,7 +115,7 @@ def test_in_sync_mode_cameras_render_only_for_a_captured_frame() -> None:
     # --clock sync: the world waits for a client, so time is held from the start.
     context = context_for(sync=True)
     row = context.row("camera")
-    build = camera_rows._image_builder((0,), camera_rows.CameraSchedule(1.0 / 30.0))
+    build = camera_rows._image_builder((0,), camera_rows.CameraSchedule(30.0))
     assert build(context, row) is None
     context.sync.capture_cameras = True
     context.pipeline.loop_time += 0.01
@@ -125,14 +125,14 @@ def test_in_sync_mode_cameras_render_only_for_a_captured_frame() -> None:
 def test_outside_sync_mode_cameras_publish_at_their_rate() -> None:
     context = context_for()
     row = context.row("camera")
-    build = camera_rows._info_builder((0,), camera_rows.CameraSchedule(0.1))
+    build = camera_rows._info_builder((0,), camera_rows.CameraSchedule(10.0))
     published = []
     for tick in range(1, 51):  # 0.5 s of 10 ms ticks
         context.pipeline.loop_time = tick * 0.01
         if build(context, row) is not None:
             published.append(tick)
     # At once, then every 10 ticks (0.1 s).
-    assert published == [1, 10, 20, 30, 40, 50]
+    assert published == [1, 11, 21, 31, 41]
 
 
 def test_sensor_pos_control_moves_a_camera_and_its_tf() -> None:

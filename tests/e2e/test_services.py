@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import statistics
 import xmlrpc.client
 from itertools import pairwise
 
@@ -194,11 +195,13 @@ def test_scenario_network_settings_apply_live_and_keep_unchanged_connections(
     request = {"file_name": "live.yaml", "load_network_connection_data": True}
     assert client.call(*SCENARIO_SRV, {"request": request})["response"]["result"] is True
 
-    # The same /Ego_topic connection goes on, now at 10 Hz.
+    # The same /Ego_topic connection goes on, now at 10 Hz. Header stamps are wall times in
+    # real time: a loop late on a busy machine runs its ticks back to back, so one gap may
+    # be long and the next short; the median is the row's period.
     seen = client.received(EGO[0])
-    stamps = [m["header"]["stamp"] for m in client.messages(EGO[0], since=seen + 2, count=5)]
+    stamps = [m["header"]["stamp"] for m in client.messages(EGO[0], since=seen + 2, count=8)]
     gaps = [b - a for a, b in pairwise(stamps)]
-    assert all(gap == pytest.approx(0.1, abs=0.02) for gap in gaps), gaps
+    assert statistics.median(gaps) == pytest.approx(0.1, abs=0.02), gaps
     # /Object_topic moved to /objects; /CollisionData is gone.
     client.subscribe("/objects", OBJECTS[1])
     assert client.next_message("/objects")["num_of_npcs"] == 0

@@ -203,6 +203,21 @@ def test_a_burst_arrives_whole_in_order_and_latches_its_last(embedded_master, ma
     assert late_subscriber_gets(late, "/status") == ["intersection 31"]
 
 
+def test_a_subscriber_that_has_the_reply_gets_every_later_message(embedded_master, make_node):
+    # A stack publishing the moment it is connected (a burst larger than the queue) loses
+    # nothing: the reply header is the subscriber's signal that it is connected.
+    node = make_node("pub", master_uri=embedded_master.uri)
+    pub = node.advertise("/burst", STRING, queue_size=4)
+    for attempt in range(20):
+        sock, _ = raw_subscribe(node, "/burst", STRING.md5sum, STRING.name)
+        with sock:
+            pub.publish_many([string_bytes(f"{attempt}/{k}") for k in range(3)])
+            pub.publish(string_bytes(f"{attempt}/3"))
+            assert [string_text(read_frame(sock)) for _ in range(4)] == [
+                f"{attempt}/{k}" for k in range(4)
+            ], f"attempt {attempt}"
+
+
 def test_output_held_in_a_block_arrives_whole_and_in_order_after_it(embedded_master, make_node):
     node = make_node("pub", master_uri=embedded_master.uri)
     pub = node.advertise("/clock_like", STRING)

@@ -42,6 +42,7 @@ from .protocol.releases import (
     service_releases_of,
 )
 from .protocol.table import Direction, Row
+from .rate_schedule import RateSchedule
 
 log = logging.getLogger(__name__)
 throttle = LogThrottle(log)
@@ -114,8 +115,7 @@ class Outlet:
     message_type: MessageType  # the canonical release's, which builders fill
     releases: tuple[Release, ...]  # every release a subscriber may ask for, default first
     build: Builder
-    period: float | None
-    next_due: float = 0.0
+    schedule: RateSchedule
     seq: int = 0
     static: Builder | None = None  # Handlers.latched's builder, until it has run
 
@@ -186,7 +186,7 @@ class Bridge:
                     self._bind(row)
                 else:
                     outlet = next(o for o in self.outlets if o.row.key == key and o.row == old)
-                    outlet.row, outlet.period = row, 1.0 / row.rate_hz if row.rate_hz else None
+                    outlet.row, outlet.schedule = row, RateSchedule(row.rate_hz)
                 changes.append(f"{row.name} at {row.rate_hz:g} Hz")
         return changes
 
@@ -231,11 +231,8 @@ class Bridge:
     def publish_due(self, now: float) -> None:
         """Build and publish every outlet whose period has elapsed at loop time `now` (s)."""
         for outlet in self.outlets:
-            if outlet.period is not None and now + 1e-9 < outlet.next_due:
-                continue
-            if outlet.period is not None:
-                outlet.next_due = max(outlet.next_due + outlet.period, now)
-            self.publish(outlet)
+            if outlet.schedule.take(now):
+                self.publish(outlet)
 
     def publish(self, outlet: Outlet) -> None:
         if outlet.publisher.num_subscribers == 0 and not self.taps:
@@ -282,14 +279,13 @@ class Bridge:
             latch=static is not None,
             negotiate=negotiator(row.name, releases),
         )
-        period = 1.0 / row.rate_hz if row.rate_hz else None
         outlet = Outlet(
             row,
             publisher,
             canonical(row.type_name),
             releases,
             build,
-            period,
+            RateSchedule(row.rate_hz),
             static=static,
         )
         self.outlets.append(outlet)

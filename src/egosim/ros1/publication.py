@@ -15,7 +15,7 @@ from collections import deque
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
-from .connection_header import encode_header, error_header, write_header
+from .connection_header import error_header, write_header
 from .errors import ConnectionRefusedByPeerError, NodeShutdownError
 from .tcpros import close_quietly, encode_frame, send_frame, set_cork, set_nodelay
 from .types import MessageTypeInfo
@@ -59,7 +59,6 @@ class _Outbox:
         stats: ConnectionStats,
         queue_size: int,
         on_closed: Callable[[_Outbox], None],
-        preamble: bytes,
     ) -> None:
         self.sock = sock
         self.stats = stats
@@ -68,14 +67,23 @@ class _Outbox:
         self._queue_size = queue_size
         self._ready = threading.Condition()
         # The unsent end of a frame publish() began sending; it goes out before the queue.
-        # It starts as the preamble (the connection header), so no message can precede it.
-        self._tail: memoryview | None = memoryview(preamble)
+        self._tail: memoryview | None = None
         self._writing = False
         self._closed = False
         self._on_closed = on_closed
+        # Until open(), messages only queue: the connection header must go out first.
+        self._open = False
         self._thread = threading.Thread(
             target=self._write, name=f"tcpros out {stats.peer}", daemon=True
         )
+
+    def open(self, reply: Mapping[str, str]) -> None:
+        """Send the connection header, then start sending what queued before it."""
+        with self._ready:
+            # Under the lock: a put() meanwhile waits for the header instead of queueing
+            # behind it, where a burst right after connecting would overflow the queue.
+            write_header(self.sock, reply)
+            self._open = True
         self._thread.start()
 
     def put(self, payloads: Sequence[bytes]) -> None:
@@ -83,7 +91,7 @@ class _Outbox:
         with self._ready:
             if self._closed:
                 return
-            idle = not self._queue and self._tail is None and not self._writing
+            idle = self._open and not self._queue and self._tail is None and not self._writing
             size = sum(len(data) for data in payloads)
             if idle and size <= _DIRECT_SEND_MAX and self._send_now(payloads):
                 if self._tail is not None:
@@ -279,22 +287,20 @@ class Publisher:
             write_header(sock, error_header(exc.reason))
             close_quietly(sock)
             return
-        reply = encode_header(
-            {
-                "callerid": self.caller_id,
-                "topic": self.topic,
-                "type": served.name,
-                "md5sum": served.md5sum,
-                "message_definition": served.definition,
-                "latching": "1" if self.latch else "0",
-            }
-        )
+        reply = {
+            "callerid": self.caller_id,
+            "topic": self.topic,
+            "type": served.name,
+            "md5sum": served.md5sum,
+            "message_definition": served.definition,
+            "latching": "1" if self.latch else "0",
+        }
         if header.get("tcp_nodelay") == "1":
             set_nodelay(sock)
         stats = ConnectionStats(connection_id, header.get("callerid", peer), served.md5sum)
-        # The reply goes out through the outbox, which joins the publisher in the same step:
-        # a subscriber that has read the reply has every message published after it.
-        outbox = _Outbox(sock, stats, self.queue_size, self._forget, preamble=reply)
+        outbox = _Outbox(sock, stats, self.queue_size, self._forget)
+        # The outbox joins before the reply goes out, so a subscriber that has read the reply
+        # gets every message published after it.
         with self._lock:
             if self._closed:
                 outbox.close()
@@ -304,6 +310,12 @@ class Publisher:
             if self._latched is not None:
                 outbox.put((_variant(self._latched, served.md5sum),))
             self._outboxes = (*self._outboxes, outbox)
+        try:
+            outbox.open(reply)
+        except OSError as exc:
+            log.debug("subscriber %s of %s left before the reply: %s", peer, self.topic, exc)
+            outbox.close()
+            self._forget(outbox)
 
     def _choose_type(self, header: Mapping[str, str]) -> MessageTypeInfo:
         if "md5sum" not in header or "callerid" not in header:

@@ -12,6 +12,7 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+from ..bridge.rate_schedule import RateSchedule
 from .snapshot import encode
 
 #: Frames per second the loop offers at most (and so the browsers receive at most).
@@ -26,13 +27,12 @@ class FrameHub:
         max_rate_hz: float = MAX_FRAME_RATE_HZ,
         monotonic: Callable[[], float] = time.monotonic,
     ) -> None:
-        self._period = 1.0 / max_rate_hz
+        self._rate = RateSchedule(max_rate_hz)
         self._monotonic = monotonic
         self._lock = threading.Lock()
         self._frame: dict[str, Any] | None = None
         self._sequence = 0
         self._encoded: tuple[int, str] | None = None
-        self._next_due = -float("inf")
         self.clients = 0
         """Browsers connected (set by the server); no client, no frame is taken."""
         self.lidar_wanted = False
@@ -42,15 +42,11 @@ class FrameHub:
 
     def due(self) -> bool:
         """A frame should be taken now: someone watches and the rate allows it."""
-        return self.clients > 0 and self._monotonic() >= self._next_due
+        return self.clients > 0 and self._rate.is_due(self._monotonic())
 
     def offer(self, frame: dict[str, Any]) -> None:
         """Publish a captured frame (loop thread); replaces any not yet sent."""
-        # Due times keep to the rate's grid, so a loop whose ticks do not divide the
-        # period still averages the full rate; after a stall the grid starts afresh.
-        now = self._monotonic()
-        on_grid = now - self._next_due < self._period
-        self._next_due = (self._next_due if on_grid else now) + self._period
+        self._rate.advance(self._monotonic())
         with self._lock:
             self._frame = frame
             self._sequence += 1

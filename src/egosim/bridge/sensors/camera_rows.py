@@ -29,6 +29,7 @@ from ..context import BridgeContext
 from ..protocol.network import NetworkSettings
 from ..protocol.sensor_settings import camera_topic
 from ..protocol.table import Row
+from ..rate_schedule import RateSchedule
 from .sensor_rig import optical_frame
 
 log = logging.getLogger(__name__)
@@ -85,7 +86,7 @@ def open_camera_rows(bridge: Any, row: Row) -> Callable[[], None]:
                 ", ".join(rig.camera_frame_ids[k] for k in mixed),
             )
         # Built every tick, due by its own schedule: sync mode's captures are off period.
-        schedule = CameraSchedule(1.0 / rate if rate else 0.0)
+        schedule = CameraSchedule(rate)
         image_row = replace(
             row,
             key=f"camera {topic}",
@@ -105,25 +106,19 @@ def open_camera_rows(bridge: Any, row: Row) -> Callable[[], None]:
 
 
 class CameraSchedule:
-    """When a topic's cameras publish: every `period_s` of loop time, or, while sync mode
+    """When a topic's cameras publish: at their rate in loop time, or, while sync mode
     holds time, on the ticks a client captures. The image and its CameraInfo ask in the
     same tick, so both go out together."""
 
-    def __init__(self, period_s: float) -> None:
-        self.period_s = period_s
-        self._next_due = 0.0
+    def __init__(self, rate_hz: float | None) -> None:
+        self._rate = RateSchedule(rate_hz)
         self._decided: tuple[float, bool] | None = None
 
     def due(self, context: BridgeContext) -> bool:
         now = context.pipeline.loop_time
         if self._decided is not None and self._decided[0] == now:
             return self._decided[1]
-        if context.sync.holds_time:
-            due = context.sync.capture_cameras
-        else:
-            due = now + 1e-9 >= self._next_due
-            if due:
-                self._next_due = max(self._next_due + self.period_s, now)
+        due = context.sync.capture_cameras if context.sync.holds_time else self._rate.take(now)
         self._decided = (now, due)
         return due
 
