@@ -16,7 +16,7 @@ from ...msgs import Profile
 from ...world.collision import VehicleCollision
 from ...world.traffic import ObjectState
 from ..context import BridgeContext
-from ..protocol.messages import vector3
+from ..protocol.messages import message_class, vector3
 from ..protocol.table import Row
 from ..protocol.units import heading_deg, kmh, swap_length_width
 
@@ -44,7 +44,8 @@ def object_status_fields(profile: Profile, state: ObjectState) -> dict[str, Any]
 
 
 def object_status(profile: Profile, state: ObjectState) -> Any:
-    return profile.message("morai_msgs/ObjectStatus").new(**object_status_fields(profile, state))
+    # Every field is given: the class itself, not MessageType.new (a list has dozens).
+    return message_class(profile, "morai_msgs/ObjectStatus")(**object_status_fields(profile, state))
 
 
 def publish_object_list(context: BridgeContext, row: Row) -> Any:
