@@ -27,6 +27,7 @@ STANDARD_GRAVITY = 9.80665
 """m/s^2, the conventional standard gravity (CGPM 1901), used everywhere on the map."""
 
 Vector3Tuple = tuple[float, float, float]
+NO_ATTITUDE_ERROR = rotation_matrix(0.0, 0.0, 0.0)
 Covariance = tuple[float, float, float, float, float, float, float, float, float]
 
 
@@ -177,8 +178,11 @@ class ImuModel:
             _floats(noise.angular_velocity_bias_rad_s),
             _noise(noise.angular_velocity_std_rad_s, rng),
         )
-        attitude_error = _noise(noise.orientation_std_rad, rng)
-        sensor_to_map = body_to_map @ sensor_to_body @ rotation_matrix(*attitude_error)
+        if noise.orientation_std_rad == 0.0:  # the zero error _noise gives, turned once
+            attitude_error = NO_ATTITUDE_ERROR
+        else:
+            attitude_error = rotation_matrix(*_noise(noise.orientation_std_rad, rng))
+        sensor_to_map = body_to_map @ sensor_to_body @ attitude_error
 
         return ImuReading(
             orientation=quaternion_from_matrix(sensor_to_map),

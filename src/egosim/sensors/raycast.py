@@ -126,7 +126,8 @@ def cast_boxes(
         offset, tangent_length = _cone_tangents(origin, boxes)
         frames = np.vstack(_box_frames(origin, boxes))
         half_size = np.ascontiguousarray(0.5 * boxes.sizes.T)
-        rays = np.ascontiguousarray(directions)
+        # One row per axis: a LiDAR's rotated beams already are, so nothing is copied.
+        rays = np.ascontiguousarray(directions.T)
         for group_rays, group_boxes in _ray_groups(origin, directions, boxes, candidates):
             sorted_rays, interval_box, first, stop = _sector_intervals(
                 origin, directions, group_rays, boxes, group_boxes
