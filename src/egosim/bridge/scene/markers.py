@@ -239,19 +239,32 @@ def build_scene_markers(context: BridgeContext, row: Row) -> Any:
         )  # fmt: skip
     signals = world.signals
     if len(signals.light_ids):
-        sites = world.map.traffic_lights
         markers.append(
             make.new(
                 "lights", 0, SPHERE_LIST, LIGHT_COLOURS[None], (LIGHT_SIZE_M,) * 3,
                 lifetime_s=lifetime,
-                points=make.points(sites[i].position for i in signals.light_ids),
-                colors=[
-                    make.colour(LIGHT_COLOURS[shown_colour(int(aspect))])
-                    for aspect in signals.aspects().tolist()
-                ],
+                points=list(light_sites(make.profile, world.map, signals.light_ids)),
+                colors=list(light_colours(make.profile, tuple(signals.aspects().tolist()))),
             )
         )  # fmt: skip
     return context.profile.message("visualization_msgs/MarkerArray").new(markers=markers)
+
+
+@functools.lru_cache(maxsize=2)  # a map held here at most until the next run's
+def light_sites(profile: Profile, lane_map: LaneMap, light_ids: tuple[str, ...]) -> tuple[Any, ...]:
+    """The lights' points of the lights marker: the map's, so made once."""
+    sites = lane_map.traffic_lights
+    return tuple(point(profile, sites[i].position) for i in light_ids)
+
+
+@functools.lru_cache(maxsize=64)
+def light_colours(profile: Profile, aspects: tuple[int, ...]) -> tuple[Any, ...]:
+    """The lights' colours of the lights marker, made again only when an aspect changes."""
+    colour = message_class(profile, "std_msgs/ColorRGBA")
+    made = {
+        rgba: colour(r=rgba[0], g=rgba[1], b=rgba[2], a=rgba[3]) for rgba in LIGHT_COLOURS.values()
+    }
+    return tuple(made[LIGHT_COLOURS[shown_colour(aspect)]] for aspect in aspects)
 
 
 def _roads(make: _Builder, lane_map: LaneMap, segments: dict[str, list[Any]]) -> list[Any]:
