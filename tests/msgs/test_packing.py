@@ -17,14 +17,11 @@ def generic_bytes(message_type: MessageType, message: object) -> bytes:
 
 
 def every_type_of_every_release() -> list[tuple[str, str]]:
-    cases = []
-    for release in PROFILES:
-        profile = get_profile(release)
-        names = list(profile.message_names())
-        for service in profile.service_names():
-            names += [f"{service}Request", f"{service}Response"]
-        cases += [(release, name) for name in names]
-    return cases
+    """Every type each release's store holds: morai_msgs, its services' halves, and the
+    ROS standard types, those egosim publishes and the rest."""
+    return [
+        (release, name) for release in PROFILES for name in get_profile(release).store.fielddefs
+    ]
 
 
 @pytest.mark.parametrize(("release", "name"), every_type_of_every_release())

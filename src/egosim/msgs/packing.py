@@ -81,9 +81,9 @@ class _Writer:
         """End the struct run under way: one pack of its values."""
         if not self.run_format:
             return
-        packer = self.fresh("pack")
-        self.names[packer] = struct.Struct(f"<{self.run_format}").pack
-        self.emit(depth, f"_out({packer}({', '.join(self.run_values)}))")
+        pack = self.fresh("pack")
+        self.names[pack] = struct.Struct(f"<{self.run_format}").pack
+        self.emit(depth, f"_out({pack}({', '.join(self.run_values)}))")
         self.run_format, self.run_values = "", []
 
     def message(self, store_name: str, value: str, depth: int) -> None:
@@ -148,13 +148,14 @@ def packer(store: Typestore, store_name: str) -> Packer:
     writer = _Writer(store)
     writer.message(store_name, "message", 1)
     writer.flush(1)
+    body = writer.lines or ["    pass"]  # a message with no fields: no bytes
     source = "\n".join(
         [
             "def pack(message):",
             "    _parts = []",
             "    _out = _parts.append",
             "    try:",
-            *("    " + line for line in writer.lines),
+            *("    " + line for line in body),
             "    except Exception:  # the generic serialiser gives the bytes or the error",
             "        return None",
             "    return b''.join(_parts)",
