@@ -108,3 +108,35 @@ def test_calls_racing_a_close_are_answered_or_refused_never_left_waiting() -> No
         outcomes = [c.result(timeout=30) for c in callers]
     assert all(o[-1] == "refused" for o in outcomes), outcomes
     assert any("ran" in o for o in outcomes)
+
+
+def test_a_call_returns_what_the_work_returned_and_raises_what_it_raised() -> None:
+    inbox = Inbox()
+    stop = threading.Event()
+
+    def loop() -> None:
+        while not stop.is_set():
+            inbox.wait(0.01)
+
+    def fail() -> None:
+        raise KeyError("no such row")
+
+    thread = threading.Thread(target=loop)
+    thread.start()
+    try:
+        assert inbox.call(lambda: 42, timeout=30) == 42
+        error = ValueError("a value, not raised")
+        assert inbox.call(lambda: error, timeout=30) is error
+        with pytest.raises(KeyError, match="no such row"):
+            inbox.call(fail, timeout=30)
+    finally:
+        stop.set()
+        thread.join()
+
+
+def test_a_call_the_loop_never_runs_times_out() -> None:
+    inbox = Inbox()
+    began = time.monotonic()
+    with pytest.raises(TimeoutError):
+        inbox.call(lambda: 1, timeout=0.2)
+    assert time.monotonic() - began < 5.0, "the call waited far past its timeout"

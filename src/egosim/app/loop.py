@@ -32,7 +32,7 @@ class SimulationLoop:
 
     def __init__(
         self,
-        step: Callable[[], None],
+        step: Callable[[], object],
         inbox: Inbox,
         dt: float,
         rtf: float,

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+from ..bridge import ClockMode
 from ..bridge.protocol.units import heading_deg
 from ..world import World
 from ..world.traffic import ObjectType
-from .options import ClockMode, RunOptions
+from .options import RunOptions
 
 CLOCK_TEXT = {
     ClockMode.REAL: "real time",

@@ -74,7 +74,7 @@ def score_histogram(cases: list[dict[str, Any]]) -> Figure:
     figure = Figure(figsize=(6.0, 2.6), dpi=110)
     FigureCanvasAgg(figure)
     axes = figure.add_subplot()
-    axes.hist(scores, bins=np.linspace(0.0, 1.0, 21), color="#1f77b4", edgecolor="white")
+    axes.hist(scores, bins=np.linspace(0.0, 1.0, 21).tolist(), color="#1f77b4", edgecolor="white")
     axes.set_xlabel("driving score", fontsize=8)
     axes.set_ylabel("cases", fontsize=8)
     axes.tick_params(labelsize=7)
@@ -149,9 +149,10 @@ def write_html_report(out_dir: Path, title: str, document: dict[str, Any]) -> Pa
 
 def _drive(folder: Path) -> dict[str, Any] | None:
     try:
-        return json.loads((folder / SCORE_FILE).read_text(encoding="utf-8"))
+        drive: dict[str, Any] = json.loads((folder / SCORE_FILE).read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return None
+    return drive
 
 
 def _map_name(folder: Path) -> str:

@@ -198,4 +198,4 @@ def _ray_result(ray: Any, ref: Any, case: CaseSpec) -> Result | None:
 
 
 def failed(result: Result) -> bool:
-    return result["status"] != PASSED
+    return bool(result["status"] != PASSED)

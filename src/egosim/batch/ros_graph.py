@@ -17,11 +17,13 @@ def stack_connected(master_uri: str, timeout_s: float = 2.0) -> bool:
     than the log topics (every rospy node publishes /rosout as it starts)."""
     transport = _TimeoutTransport(timeout_s)
     try:
-        code, _, state = xmlrpc.client.ServerProxy(master_uri, transport=transport).getSystemState(
+        # The master's reply is XML-RPC data, untyped by nature.
+        reply: Any = xmlrpc.client.ServerProxy(master_uri, transport=transport).getSystemState(
             CALLER_ID
         )
     except (OSError, xmlrpc.client.Error):
         return False
+    code, _, state = reply
     if code != 1:
         return False
     publishers, subscribers, _ = state

@@ -17,6 +17,7 @@ import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import yaml
 
@@ -42,7 +43,7 @@ CONNECT_POLL_S = 0.25
 PHYSICS_RATE_HZ = 100.0
 
 
-def evaluation_settings(scoring: dict) -> EvaluationSettings:
+def evaluation_settings(scoring: dict[str, Any]) -> EvaluationSettings:
     defaults = EvaluationSettings()
     penalties = dict(defaults.penalties)
     penalties.update({InfractionKind(k): float(v) for k, v in scoring.get("penalties", {}).items()})
@@ -55,7 +56,7 @@ def evaluation_settings(scoring: dict) -> EvaluationSettings:
     )
 
 
-def build_route(lane_map: LaneMap, spec: dict | None) -> Route | None:
+def build_route(lane_map: LaneMap, spec: dict[str, Any] | None) -> Route | None:
     if spec is None:
         return None
     if "lanes" in spec:
@@ -144,7 +145,7 @@ class CaseDrive:
         print(f"{PREFIX}{RUNNING}", flush=True)
         return False
 
-    def result(self) -> dict:
+    def result(self) -> dict[str, Any]:
         wall = 0.0 if self.started_wall is None else time.monotonic() - self.started_wall
         score = None
         if self.evaluator is not None:

@@ -59,7 +59,8 @@ MORAI_LAYOUT = ScenarioLayout(
 def suite_schema() -> dict[str, Any]:
     """The JSON Schema of suite files."""
     text = resources.files(__package__).joinpath("suite.schema.json").read_text("utf-8")
-    return json.loads(text)
+    schema: dict[str, Any] = json.loads(text)
+    return schema
 
 
 def load_suite(path: Path) -> list[CaseSpec]:
@@ -354,7 +355,7 @@ def _apply(
             return parameters[key]
         return value
 
-    result = substitute(copy.deepcopy(scenario))
+    result: dict[str, Any] = substitute(copy.deepcopy(scenario))
     for key, value in parameters.items():
         if key in layout.fields:
             result[layout.fields[key]] = value

@@ -18,7 +18,7 @@ from ..batch.html_report import write_html_report
 from ..batch.interrupt import EXIT_SIGNALLED, Interrupt, interrupted_by_signals
 from ..batch.junit import write_junit
 from ..batch.logs import tail_report
-from ..batch.pool import default_workers, failed, run_local, run_ray
+from ..batch.pool import Result, default_workers, failed, run_local, run_ray
 from ..batch.progress import BatchProgress
 from ..batch.results import (
     needs_rerun,
@@ -42,7 +42,7 @@ def positive_int(text: str) -> int:
     return value
 
 
-def add_parser(subparsers: argparse._SubParsersAction) -> None:
+def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "batch",
         help="run a stack through a suite of scenarios and score every drive",
@@ -165,12 +165,12 @@ def _run_cases(
     workers: int,
     interrupt: Interrupt,
     reinstall: Callable[[], None],
-) -> dict[str, dict]:
+) -> dict[str, Result]:
     done = failures = 0
-    new: dict[str, dict] = {}
+    new: dict[str, Result] = {}
     with BatchProgress(len(to_run)) as bar:
 
-        def on_result(result: dict, running: int) -> None:
+        def on_result(result: Result, running: int) -> None:
             nonlocal done, failures
             done += 1
             failures += failed(result)
@@ -191,8 +191,8 @@ def _report(
     args: argparse.Namespace,
     cases: list[CaseSpec],
     to_run: list[CaseSpec],
-    results: dict[str, dict],
-    new: dict[str, dict],
+    results: dict[str, Result],
+    new: dict[str, Result],
     out_dir: Path,
     workers: int,
     interrupt: Interrupt,

@@ -12,7 +12,7 @@ from ..msgs.export import DEFAULT_ROS_PYTHON, write_catkin_package, write_python
 from ..msgs.show import show_message, show_service
 
 
-def add_parser(subparsers: argparse._SubParsersAction) -> None:
+def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "msgs",
         help="list message and service types with their md5sums, show one, or export them",

@@ -20,7 +20,7 @@ from ..yamltext import YamlFileError
 from .run import LOG_LEVELS, positive_float
 
 
-def add_parser(subparsers: argparse._SubParsersAction) -> None:
+def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "record",
         help="record a running simulator's topics into a ROS 1 bag",

@@ -8,9 +8,10 @@ import math
 import sys
 from pathlib import Path
 
-from ..app.options import ClockMode, RunOptions
+from ..app.options import RunOptions
 from ..app.runner import run as run_simulator
 from ..app.signals import CLEAN_STOP_DEADLINE_S, exit_now
+from ..bridge import ClockMode
 from ..bridge.protocol.codes import ControlMode
 from ..msgs import DEFAULT_PROFILE, PROFILES
 from ..view import DEFAULT_HOST, DEFAULT_PORT, ViewOptions, live_view
@@ -46,7 +47,7 @@ def parameter_assignment(text: str) -> tuple[str, str]:
     return name.strip(), value
 
 
-def add_parser(subparsers: argparse._SubParsersAction) -> None:
+def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "run",
         help="start the simulator",

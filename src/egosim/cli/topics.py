@@ -9,7 +9,7 @@ from ..bridge.protocol.network import load_network_settings
 from ..yamltext import YamlFileError
 
 
-def add_parser(subparsers: argparse._SubParsersAction) -> None:
+def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "topics",
         help="print the effective topic/service table",

@@ -33,12 +33,19 @@ log = logging.getLogger(__name__)
 class ProcHandleCommand(Protocol):
     """The fields of morai_msgs/MoraiSimProcHandle (a deserialised message has them)."""
 
-    sim_process_status: int
-    replay_option: int
-    rosbag_file_name: str
-    replay_target_option: int
-    replay_speed: int
-    start_time: int  # ms
+    # Read-only: the session reads a command, never changes it.
+    @property
+    def sim_process_status(self) -> int: ...
+    @property
+    def replay_option(self) -> int: ...
+    @property
+    def rosbag_file_name(self) -> str: ...
+    @property
+    def replay_target_option(self) -> int: ...
+    @property
+    def replay_speed(self) -> int: ...
+    @property
+    def start_time(self) -> int: ...  # ms
 
 
 @dataclass(frozen=True)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 import numpy.typing as npt
@@ -74,8 +75,12 @@ def red_lights_run(lane_map: LaneMap, drive: RecordedDrive, errors: LaneErrors) 
             body_width_m=0.0,
             nearest=nearest[i],
         )
-        found.extend(watch.observe(sample, lambda light, shown=aspects: shown.get(light, OFF)))
+        found.extend(watch.observe(sample, partial(_lit_or_off, aspects)))
     return found
+
+
+def _lit_or_off(aspects: dict[str, int], light: str) -> int:
+    return aspects.get(light, OFF)
 
 
 def best_fitting_map(xy: npt.ArrayLike, candidates: Iterable[LaneMap]) -> LaneMap:

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 from ..bridge import BridgeContext
 from ..sensors.camera import CameraMode
-from ..sensors.image_encoding import encode_image
 from .snapshot import ImageSource, SensorImage
 
 #: How often the page's copy of a camera's image is renewed, Hz of simulation time.
@@ -33,14 +32,9 @@ def _source(context: BridgeContext, k: int) -> ImageSource:
             return None
         if latest and world.sim_time - latest[0].stamp < 1.0 / IMAGE_RATE_HZ:
             return latest[0]
-        camera = rig.cameras[k]
-        pixels = cameras.image(rig, world, k)
-        data = encode_image(pixels, camera.format, camera.config.jpeg_quality)  # type: ignore[arg-type]
-        latest[:] = [
-            SensorImage(
-                rig.camera_frame_ids[k], f"image/{camera.format.value}", data, world.sim_time
-            )
-        ]
+        data = cameras.encoded_image(rig, world, k)
+        mime = f"image/{rig.cameras[k].format.value}"
+        latest[:] = [SensorImage(rig.camera_frame_ids[k], mime, data, world.sim_time)]
         return latest[0]
 
     return image

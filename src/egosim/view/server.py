@@ -167,7 +167,9 @@ class ViewServer:
         await self._runner.setup()
         site = web.TCPSite(self._runner, self.host, self.port, reuse_address=True)
         await site.start()
-        sockets = site._server.sockets if site._server is not None else []  # type: ignore[union-attr]
+        # aiohttp keeps the listening server private and types it as the abstract base.
+        server = site._server
+        sockets = server.sockets if isinstance(server, asyncio.Server) else ()
         if sockets:
             self.port = sockets[0].getsockname()[1]  # the one the OS chose for port 0
 

@@ -14,7 +14,7 @@ from ..context import BridgeContext
 from ..protocol.messages import vector3
 from ..protocol.table import Row
 from ..protocol.units import deg, heading_deg, mps
-from .ground_vehicle import commanded_ego
+from .ground_vehicle import commanded_vehicle
 
 WHEEL_SUFFIXES = (
     ("fl", "front_left"),
@@ -110,10 +110,10 @@ def on_ctrl_cmd(context: BridgeContext, row: Row, ctrl_cmd: Any) -> None:
 def drive_with_ctrl_cmd(context: BridgeContext, row: Row, index: int, ctrl_cmd: Any) -> None:
     """Hand a CtrlCmd received on `row` to the ego at `index` if its control mode and kind
     take it."""
-    ego = commanded_ego(context, row, index, Vehicle)
-    if ego is None:
+    vehicle = commanded_vehicle(context, row, index, Vehicle)
+    if vehicle is None:
         return
-    verdict = ego.vehicle.command(control_command(ctrl_cmd))
+    verdict = vehicle.command(control_command(ctrl_cmd))
     if not verdict.accepted:
         context.warn_throttled(
             f"{row.name}: {verdict.reason}",

@@ -30,7 +30,7 @@ from ...world.vehicle import (
 from ..context import BridgeContext
 from ..protocol.table import Row
 from ..protocol.units import mps, rad
-from .ground_vehicle import commanded_main_ego
+from .ground_vehicle import commanded_main_vehicle
 
 log = logging.getLogger(__name__)
 
@@ -41,8 +41,8 @@ def _finite(*values: float) -> bool:
 
 def on_ghost_ctrl_cmd(context: BridgeContext, row: Row, message: Any) -> None:
     """/ghost_ctrl_cmd: teleport the main ego while its control mode is external."""
-    ego = commanded_main_ego(context, row, Vehicle)
-    if ego is None:
+    vehicle = commanded_main_vehicle(context, row, Vehicle)
+    if vehicle is None:
         return
     position, rotation = message.position, message.rotation
     values = (position.x, position.y, position.z, rotation.x, rotation.y, rotation.z)
@@ -54,8 +54,8 @@ def on_ghost_ctrl_cmd(context: BridgeContext, row: Row, message: Any) -> None:
         return
     pose = Pose(position.x, position.y, position.z, *(rad(a) for a in values[3:]))
     speed, steer = mps(message.velocity), rad(message.steering_angle)
-    ego.vehicle.teleport(pose, speed, steer)
-    ego.vehicle.command(
+    vehicle.teleport(pose, speed, steer)
+    vehicle.command(
         ControlCommand(mode=LongitudinalMode.VELOCITY, velocity=speed, front_steer=steer)
     )
 

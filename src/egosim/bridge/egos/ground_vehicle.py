@@ -8,9 +8,8 @@ Semantics and codes are listed in docs/protocol.md.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, TypeVar
 
-from ...world import Ego
 from ...world.vehicle import (
     BodyVelocityCommand,
     SideEffortCommand,
@@ -21,6 +20,8 @@ from ..context import BridgeContext
 from ..protocol.codes import ControlMode
 from ..protocol.table import Row
 
+VehicleT = TypeVar("VehicleT", Vehicle, SkidSteerVehicle)
+
 # GVDirectCmd.steerType (the protocol document's "Table 1" is missing; these are egosim's).
 STEER_TYPE_SKID = 0  # throttle and skidSteering drive the two sides
 STEER_TYPE_WHEEL_ANGLES = 1  # steerAngle[] steers the wheels: no ground model has steered wheels
@@ -30,18 +31,18 @@ LAT_CTRL_ANGULAR_VELOCITY = 0  # targetAngularVelocity sets the yaw rate
 LAT_CTRL_STEER_ANGLES = 1  # targetSteerAngle[]: as STEER_TYPE_WHEEL_ANGLES, unsupported
 
 
-def commanded_main_ego(
-    context: BridgeContext, row: Row, kind: type[Vehicle] | type[SkidSteerVehicle]
-) -> Ego | None:
-    """The main ego when a command of `row` may drive it: its control mode is external
-    (EventInfo 3) and its vehicle is of `kind`; None otherwise."""
-    return commanded_ego(context, row, 0, kind)
+def commanded_main_vehicle(
+    context: BridgeContext, row: Row, kind: type[VehicleT]
+) -> VehicleT | None:
+    """The main ego's vehicle when a command of `row` may drive it: the ego's control mode
+    is external (EventInfo 3) and its vehicle is of `kind`; None otherwise."""
+    return commanded_vehicle(context, row, 0, kind)
 
 
-def commanded_ego(
-    context: BridgeContext, row: Row, index: int, kind: type[Vehicle] | type[SkidSteerVehicle]
-) -> Ego | None:
-    """commanded_main_ego for the ego at `index` of the world's egos."""
+def commanded_vehicle(
+    context: BridgeContext, row: Row, index: int, kind: type[VehicleT]
+) -> VehicleT | None:
+    """commanded_main_vehicle for the ego at `index` of the world's egos."""
     ego = context.world.egos[index]
     if context.ego_session(ego).ctrl_mode is not ControlMode.EXTERNAL:
         return None
@@ -53,16 +54,16 @@ def commanded_ego(
             f"road vehicles take ctrl_cmd)",
         )
         return None
-    return ego
+    return ego.vehicle
 
 
 def _drive(
     context: BridgeContext, row: Row, command: SideEffortCommand | BodyVelocityCommand
 ) -> None:
-    ego = commanded_main_ego(context, row, SkidSteerVehicle)
-    if ego is None:
+    vehicle = commanded_main_vehicle(context, row, SkidSteerVehicle)
+    if vehicle is None:
         return
-    verdict = ego.vehicle.command(command)
+    verdict = vehicle.command(command)
     if not verdict.accepted:
         context.warn_throttled(
             f"{row.name}: {verdict.reason}",

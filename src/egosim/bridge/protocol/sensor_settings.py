@@ -237,7 +237,9 @@ def parse_sensor_settings(document: YamlDocument, data: Any) -> SensorSettings:
     return settings
 
 
-def _cameras(document: YamlDocument, path: Path, section: dict) -> tuple[CameraSettings, ...]:
+def _cameras(
+    document: YamlDocument, path: Path, section: dict[str, Any]
+) -> tuple[CameraSettings, ...]:
     if "cameras" not in section:
         return SensorSettings().cameras
     data = section["cameras"]
@@ -297,10 +299,10 @@ def _radar(document: YamlDocument, path: Path, data: Any) -> RadarSettings:
 
 
 def _choice(document: YamlDocument, path: Path, value: Any, kind: type[E]) -> E:
-    for member in kind:  # type: ignore[attr-defined]
+    for member in kind:
         if value == member.value:
-            return member  # type: ignore[no-any-return]
-    known = ", ".join(m.value for m in kind)  # type: ignore[attr-defined]
+            return member
+    known = ", ".join(str(m.value) for m in kind)
     raise document.error(path, f"expected one of {known}, got {value!r}")
 
 

@@ -63,7 +63,7 @@ def recorded_ego(ego: EgoState) -> RecordedEgo:
         ego.velocity[0],
         ego.front_steer,
         ego.rear_steer,
-        acceleration=tuple(ego.acceleration),
+        acceleration=(ego.acceleration[0], ego.acceleration[1], ego.acceleration[2]),
         accel_pedal=ego.accel_pedal,
         brake_pedal=ego.brake_pedal,
     )

@@ -11,7 +11,7 @@ from ...msgs import Profile
 from ...world import World
 from ...world.map.georef import GeoReference
 from ...world.traffic import ObjectType
-from ...world.vehicle import VEHICLE_CATALOGUE, VehicleModel
+from ...world.vehicle import VEHICLE_CATALOGUE, GroundVehicleModel, VehicleModel
 from ..context import BridgeContext
 from ..protocol.messages import vector3
 from ..protocol.table import Row
@@ -42,7 +42,7 @@ def map_spec(profile: Profile, georef: GeoReference) -> Any:
     )
 
 
-def vehicle_spec(profile: Profile, model: VehicleModel | None) -> Any:
+def vehicle_spec(profile: Profile, model: VehicleModel | GroundVehicleModel | None) -> Any:
     """morai_msgs/VehicleSpec of a model; all zeros for none (an unknown unique_id)."""
     spec = profile.message("morai_msgs/VehicleSpec")
     if model is None:
@@ -74,7 +74,7 @@ def serve_vehicle_spec(context: BridgeContext, row: Row, request: Any) -> Any:
     )
 
 
-def vehicle_model_of(world: World, unique_id: int) -> VehicleModel | None:
+def vehicle_model_of(world: World, unique_id: int) -> VehicleModel | GroundVehicleModel | None:
     """The catalogue model of the vehicle `unique_id` in the scene: an ego, or an NPC as
     shown (simulated, ghost or replayed); None for anything else or a model the catalogue
     does not hold."""

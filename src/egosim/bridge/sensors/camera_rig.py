@@ -20,6 +20,7 @@ from ...sensors import RendererUnavailableError
 from ...sensors.camera_capture import Image, capture
 from ...sensors.camera_render import CameraRenderer
 from ...sensors.camera_scene import StaticScene, build_static_scene
+from ...sensors.image_encoding import encode_image
 from ...world import World
 from ...world.map import LaneMap
 from .sensor_rig import MAIN_EGO, SensorRig
@@ -56,6 +57,13 @@ class CameraRig:
             world.signals.aspects(),
             (world.egos[MAIN_EGO].unique_id,),
         )
+
+    def encoded_image(self, sensors: SensorRig, world: World, k: int) -> bytes:
+        """Colour camera k's image of the world as it is now, encoded in the camera's
+        format (JPEG or PNG)."""
+        camera = sensors.cameras[k]
+        pixels = self.image(sensors, world, k)
+        return encode_image(pixels, camera.format, camera.config.jpeg_quality)  # type: ignore[arg-type]
 
 
 def open_camera_rig(

@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from ...sensors.camera import CameraMode
-from ...sensors.image_encoding import depth_bytes, encode_image
+from ...sensors.image_encoding import depth_bytes
 from ..context import BridgeContext
 from ..protocol.network import NetworkSettings
 from ..protocol.sensor_settings import camera_topic
@@ -147,9 +147,9 @@ def camera_image_message(context: BridgeContext, k: int) -> Any:
     rig = context.sensors
     camera = rig.cameras[k]
     header = context.header(rig.camera_frame_ids[k])
-    image = context.cameras.image(rig, context.world, k)
     profile = context.profile
     if camera.config.mode is CameraMode.DEPTH:
+        image = context.cameras.image(rig, context.world, k)
         height, width = image.shape
         return profile.message(RAW_IMAGE).new(
             header=header,
@@ -160,7 +160,7 @@ def camera_image_message(context: BridgeContext, k: int) -> Any:
             step=4 * width,
             data=np.frombuffer(depth_bytes(image), dtype=np.uint8),  # type: ignore[arg-type]
         )
-    data = encode_image(image, camera.format, camera.config.jpeg_quality)  # type: ignore[arg-type]
+    data = context.cameras.encoded_image(rig, context.world, k)
     return profile.message(COMPRESSED_IMAGE).new(
         header=header, format=camera.format.value, data=np.frombuffer(data, dtype=np.uint8)
     )

@@ -53,7 +53,7 @@ def target_path(path: Path, roots: tuple[Path, ...]) -> Path:
 def file_stem(context: BridgeContext, request: Any) -> str:
     if not request.is_custom_file_name:
         return f"sensor_data_{round(context.world.sim_time * 1e6)}"
-    name = request.custom_file_name
+    name: str = request.custom_file_name
     if not name or name in (".", "..") or "/" in name or "\\" in name or "\x00" in name:
         raise SaveRequestError(f"custom_file_name {name!r} is not a plain file name")
     return name

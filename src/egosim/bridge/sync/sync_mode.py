@@ -204,13 +204,13 @@ def serve_set_gear(context: BridgeContext, row: Row, request: Any) -> Any:
         gear = Gear(int(request.request.gear))
     except ValueError:
         log.error("%s: gear %s is not 1..4", row.name, request.request.gear)
-        gear = None
+        return service_response(context, "MoraiSyncModeSetGearSrv", result_message(context, False))
 
     def shift(context: BridgeContext) -> bool:
         context.world.egos[0].vehicle.set_gear(gear)
         return True
 
-    ok = gear is not None and at_frame(context, row, int(request.request.frame), shift)
+    ok = at_frame(context, row, int(request.request.frame), shift)
     return service_response(context, "MoraiSyncModeSetGearSrv", result_message(context, ok))
 
 
