@@ -11,6 +11,7 @@ Namespaces (`ns`) let RViz show or hide each layer.
 from __future__ import annotations
 
 import functools
+import math
 from collections import defaultdict
 from collections.abc import Iterable, Sequence
 from typing import Any
@@ -142,10 +143,16 @@ class _Builder:
         return shared
 
 
-@functools.lru_cache(maxsize=4096)
 def yaw_quaternion(yaw: float) -> Quaternion:
     """The orientation of a marker turned by `yaw`: most objects keep their heading from
-    one message to the next (parked, stopped, driving straight), so it is worked out once."""
+    one message to the next (parked, stopped, driving straight), so it is worked out once
+    per heading."""
+    # -0.0 == 0.0, but their quaternions differ in the sign of z: the key tells them apart.
+    return _yaw_quaternion(yaw, math.copysign(1.0, yaw))
+
+
+@functools.lru_cache(maxsize=4096)
+def _yaw_quaternion(yaw: float, sign: float) -> Quaternion:
     return quaternion_from_euler(0.0, 0.0, yaw)
 
 
