@@ -9,8 +9,9 @@ import pytest
 
 from egosim.bridge import BridgeContext, simulation_context
 from egosim.bridge.protocol.network import parse_network_settings
-from egosim.bridge.scene.markers import build_map_markers, build_scene_markers
+from egosim.bridge.scene.markers import build_map_markers, build_scene_markers, yaw_quaternion
 from egosim.msgs import get_profile
+from egosim.sensors.rotation import quaternion_from_euler
 from egosim.world import World
 from egosim.world.map import build_builtin_map
 from egosim.world.scenario import load_default_scenario, parse_scenario
@@ -98,3 +99,12 @@ def test_the_row_is_on_by_default_and_can_be_turned_off_renamed_rerated() -> Non
     assert (settings.row("markers").name, settings.row("markers").rate_hz) == ("/viz/scene", 5)
     off = parse_network_settings("rows:\n  markers: {enabled: false}\n", "n.yaml")
     assert "markers" not in {row.key for row in off.enabled_rows()}
+
+
+def test_a_heading_of_minus_zero_keeps_its_own_orientation() -> None:
+    """Orientations are worked out once per heading; -0.0 equals 0.0 but turns z's sign."""
+    for first, second in ((0.0, -0.0), (-0.0, 0.0)):
+        yaw_quaternion(first)
+        assert [math.copysign(1.0, q) for q in yaw_quaternion(second)] == [
+            math.copysign(1.0, q) for q in quaternion_from_euler(0.0, 0.0, second)
+        ]

@@ -43,3 +43,33 @@ def test_compiled_and_numpy_scans_give_identical_points(monkeypatch: pytest.Monk
         assert scans[0].tobytes() == scans[1].tobytes()
         hits += int(np.count_nonzero(scans[0][:, 2] > -1.0))
     assert hits > 1000  # the boxes were seen, not only the ground
+
+
+@pytest.mark.parametrize(
+    ("config", "pose"),
+    [
+        # Tilted on a slope, the points' ranges gated close in.
+        (LidarConfig(min_range_m=6.0, max_range_m=40.0), Pose(roll=0.04, pitch=-0.09, yaw=2.9)),
+        # Below the ground plane: no ground returns, only boxes.
+        (LidarConfig(channels=8), Pose(z=-3.0, yaw=-1.2)),
+        # Steep beams and a coarse spin, no range gate to speak of.
+        (
+            LidarConfig(
+                channels=32, min_elevation_deg=-60.0, max_elevation_deg=30.0,
+                horizontal_resolution_deg=1.0, min_range_m=0.0,
+            ),
+            Pose(pitch=0.3, yaw=0.5),
+        ),
+    ],
+)  # fmt: skip
+def test_compiled_and_numpy_returns_agree_on_slopes_gates_and_heights(
+    monkeypatch: pytest.MonkeyPatch, config: LidarConfig, pose: Pose
+) -> None:
+    model = LidarModel(config)
+    scene = traffic(np.random.default_rng(5), 60)
+    scans = []
+    for compiled in (True, False):
+        monkeypatch.setattr(kernels, "ACTIVE", compiled)
+        scans.append(model.scan(pose, scene, exclude_index=0))
+    assert len(scans[0]) > 100
+    assert scans[0].tobytes() == scans[1].tobytes()

@@ -19,6 +19,7 @@ from .definitions import (
     load_package_definitions,
 )
 from .errors import DefinitionError, SerializationError, UnknownTypeError
+from .packing import Packer, packer
 
 # rosbags' stand-ins for ROS 1's time and duration built-ins: not types a user names.
 ROSBAGS_INTERNAL = "builtin_interfaces/"
@@ -60,10 +61,13 @@ class MessageType:
     """The name in rosbags' store (`pkg/msg/Name`), worked out once: builders need it for
     every message they make."""
     defaults: DefaultsPlan = field(init=False, repr=False)
+    pack: Packer = field(init=False, repr=False)
+    """The type's precompiled serialiser, tried first (packing.py)."""
 
     def __post_init__(self) -> None:
         self.store_name = normalize_msgtype(self.name)
         self.defaults = defaults_plan(self.store, self.store_name)
+        self.pack = packer(self.store, self.store_name)
 
     @property
     def fields(self) -> list[tuple[str, Any]]:
@@ -75,6 +79,9 @@ class MessageType:
         return self.defaults.new(values)
 
     def serialize(self, message: Any) -> bytes:
+        data = self.pack(message)
+        if data is not None:
+            return data
         try:
             return bytes(self.store.serialize_ros1(message, self.store_name))
         except Exception as exc:

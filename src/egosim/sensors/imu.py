@@ -13,7 +13,6 @@ The mount rotation then turns every body vector into the sensor's axes.
 from __future__ import annotations
 
 import functools
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -21,12 +20,12 @@ import numpy as np
 from egosim.sensors.frames import MountPose, rotation_of
 from egosim.sensors.noise import gaussian, require_non_negative
 from egosim.sensors.rotation import Matrix3, Quaternion, quaternion_from_matrix, rotation_matrix
-from egosim.world.arrays import FloatArray
+from egosim.sensors.vectors import Vector3Tuple, add3, cross3, floats3
 
 STANDARD_GRAVITY = 9.80665
 """m/s^2, the conventional standard gravity (CGPM 1901), used everywhere on the map."""
 
-Vector3Tuple = tuple[float, float, float]
+NO_ATTITUDE_ERROR = rotation_matrix(0.0, 0.0, 0.0)
 Covariance = tuple[float, float, float, float, float, float, float, float, float]
 
 
@@ -56,7 +55,7 @@ class EgoKinematics:
     @property
     def inertial_acceleration(self) -> Vector3Tuple:
         """Acceleration of base_link in an inertial (map) frame, in body axes, m/s^2."""
-        return _add(_floats(self.velocity_rate), _cross(self.angular_velocity, self.velocity))
+        return add3(floats3(self.velocity_rate), cross3(self.angular_velocity, self.velocity))
 
 
 @dataclass(frozen=True)
@@ -99,34 +98,13 @@ def _diagonal_covariance(std: float) -> Covariance:
 
 
 # One reading is a handful of 3-vector operations, done 100 times a second: on plain
-# floats they cost a tenth of numpy's per-call overhead, with the same IEEE operations in
-# the same order (np.cross and elementwise adds), hence the same bits. Matrix products
-# stay numpy's: BLAS rounds them its own way.
-
-
-def _floats(vector: Sequence[float] | FloatArray) -> Vector3Tuple:
-    return (float(vector[0]), float(vector[1]), float(vector[2]))
-
-
-def _add(first: Vector3Tuple, *others: Vector3Tuple) -> Vector3Tuple:
-    """Left to right, as numpy evaluates a + b + c."""
-    x, y, z = first
-    for other_x, other_y, other_z in others:
-        x, y, z = x + other_x, y + other_y, z + other_z
-    return (x, y, z)
-
-
-def _cross(a: Sequence[float], b: Sequence[float]) -> Vector3Tuple:
-    """a x b, term by term as np.cross computes it."""
-    a0, a1, a2 = _floats(a)
-    b0, b1, b2 = _floats(b)
-    return (a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0)
+# floats (sensors/vectors.py). Matrix products stay numpy's: BLAS rounds them its own way.
 
 
 def _noise(std: float, rng: np.random.Generator | None) -> Vector3Tuple:
     if std == 0.0:  # gaussian() would make the same zeros, through numpy
         return (0.0, 0.0, 0.0)
-    return _floats(gaussian(np.full(3, std), rng, "IMU"))
+    return floats3(gaussian(np.full(3, std), rng, "IMU"))
 
 
 def _rotated(matrix: Matrix3, vector: Vector3Tuple) -> Vector3Tuple:
@@ -150,35 +128,38 @@ class ImuModel:
         """One reading; `rng` is required only when noise std is configured."""
         body_to_map = rotation_matrix(kinematics.roll, kinematics.pitch, kinematics.yaw)
         sensor_to_body = self._sensor_to_body
-        omega = _floats(kinematics.angular_velocity)
+        omega = floats3(kinematics.angular_velocity)
         mount = self.mount
         lever = (float(mount.x), float(mount.y), float(mount.z))
 
-        mount_acceleration = _add(
+        mount_acceleration = add3(
             kinematics.inertial_acceleration,
-            _cross(kinematics.angular_acceleration, lever),
-            _cross(omega, _cross(omega, lever)),
+            cross3(kinematics.angular_acceleration, lever),
+            cross3(omega, cross3(omega, lever)),
         )
         # -g in map axes is straight up; its body components are the map z row of R.
         up_x, up_y, up_z = body_to_map[2].tolist()
-        specific_force = _add(
+        specific_force = add3(
             mount_acceleration,
             (STANDARD_GRAVITY * up_x, STANDARD_GRAVITY * up_y, STANDARD_GRAVITY * up_z),
         )
 
         noise = self.noise
-        linear_acceleration = _add(
+        linear_acceleration = add3(
             _rotated(sensor_to_body.T, specific_force),
-            _floats(noise.linear_acceleration_bias_m_s2),
+            floats3(noise.linear_acceleration_bias_m_s2),
             _noise(noise.linear_acceleration_std_m_s2, rng),
         )
-        angular_velocity = _add(
+        angular_velocity = add3(
             _rotated(sensor_to_body.T, omega),
-            _floats(noise.angular_velocity_bias_rad_s),
+            floats3(noise.angular_velocity_bias_rad_s),
             _noise(noise.angular_velocity_std_rad_s, rng),
         )
-        attitude_error = _noise(noise.orientation_std_rad, rng)
-        sensor_to_map = body_to_map @ sensor_to_body @ rotation_matrix(*attitude_error)
+        if noise.orientation_std_rad == 0.0:  # the zero error _noise gives, turned once
+            attitude_error = NO_ATTITUDE_ERROR
+        else:
+            attitude_error = rotation_matrix(*_noise(noise.orientation_std_rad, rng))
+        sensor_to_map = body_to_map @ sensor_to_body @ attitude_error
 
         return ImuReading(
             orientation=quaternion_from_matrix(sensor_to_map),

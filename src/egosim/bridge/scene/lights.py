@@ -14,6 +14,7 @@ from typing import Any
 
 from ...world.signals import OFF, SignalError
 from ..context import BridgeContext
+from ..protocol.messages import message_class
 from ..protocol.table import Row
 
 log = logging.getLogger(__name__)
@@ -39,9 +40,9 @@ def publish_traffic_light_status(context: BridgeContext, row: Row) -> Any:
 
 def publish_intersection_status(context: BridgeContext, row: Row) -> list[Any]:
     """/InsnStatus: one message per signalised intersection, in index order, each period."""
-    message = context.profile.message("morai_msgs/IntersectionStatus")
+    message = message_class(context.profile, "morai_msgs/IntersectionStatus")
     return [
-        message.new(
+        message(
             header=context.header(),
             intersection_index=status.intersection_id,
             intersection_status=status.phase_index,

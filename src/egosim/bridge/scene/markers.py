@@ -10,6 +10,8 @@ Namespaces (`ns`) let RViz show or hide each layer.
 
 from __future__ import annotations
 
+import functools
+import math
 from collections import defaultdict
 from collections.abc import Iterable, Sequence
 from typing import Any
@@ -18,13 +20,13 @@ import numpy as np
 import numpy.typing as npt
 
 from ...msgs import Profile
-from ...sensors.rotation import quaternion_from_euler
+from ...sensors.rotation import Quaternion, quaternion_from_euler
 from ...world.map import LaneMap
 from ...world.map.sections import lane_cross_section
 from ...world.signals.aspects import shown_colour
 from ...world.traffic import ObjectType
 from ..context import BridgeContext
-from ..protocol.messages import quaternion, vector3
+from ..protocol.messages import message_class, point, quaternion, vector3
 from ..protocol.table import Row
 
 LIFETIME_PERIODS = 5
@@ -73,20 +75,26 @@ ROAD_Z_M, LINE_Z_M, TEXT_Z_M = -0.05, 0.02, 1.0
 
 
 class _Builder:
-    """Makes Marker messages of one profile (geometry and colour types looked up once)."""
+    """Makes the Marker messages of one MarkerArray (message classes looked up once; one
+    colour and one lifetime message per value, shared by the markers that have it)."""
 
     def __init__(self, context: BridgeContext) -> None:
         self.profile: Profile = context.profile
         self.header = context.header()
-        self.marker = self.profile.message("visualization_msgs/Marker")
-        point = self.profile.message("geometry_msgs/Point")
-        colour = self.profile.message("std_msgs/ColorRGBA")
-        self.point_type = point.store.types[point.store_name]
-        self.colour_type = colour.store.types[colour.store_name]
-        self.duration_type = type(self.marker.new().lifetime)
+        self.marker_type = message_class(self.profile, "visualization_msgs/Marker")
+        self.pose_type = message_class(self.profile, "geometry_msgs/Pose")
+        self.point_type = message_class(self.profile, "geometry_msgs/Point")
+        self.colour_type = message_class(self.profile, "std_msgs/ColorRGBA")
+        self.duration_type = message_class(self.profile, "builtin_interfaces/msg/Duration")
+        self._colours: dict[RGBA, Any] = {}
+        self._durations: dict[float, Any] = {}
 
     def colour(self, rgba: RGBA) -> Any:
-        return self.colour_type(r=rgba[0], g=rgba[1], b=rgba[2], a=rgba[3])
+        if (shared := self._colours.get(rgba)) is None:
+            shared = self._colours[rgba] = self.colour_type(
+                r=rgba[0], g=rgba[1], b=rgba[2], a=rgba[3]
+            )
+        return shared
 
     def points(self, xyz: Iterable[Sequence[float]] | npt.NDArray[np.float64]) -> list[Any]:
         rows = xyz.tolist() if isinstance(xyz, np.ndarray) else xyz
@@ -103,29 +111,49 @@ class _Builder:
         position: Sequence[float] = (0.0, 0.0, 0.0),
         yaw: float = 0.0,
         lifetime_s: float = 0.0,
-        **fields: Any,
+        points: list[Any] | None = None,
+        colors: list[Any] | None = None,
+        text: str = "",
     ) -> Any:
-        return self.marker.new(
+        return self.marker_type(
             header=self.header,
             ns=ns,
             id=marker_id,
             type=marker_type,
             action=ADD,
-            pose=self.profile.message("geometry_msgs/Pose").new(
-                position=self.profile.message("geometry_msgs/Point").new(
-                    x=float(position[0]), y=float(position[1]), z=float(position[2])
-                ),
-                orientation=quaternion(self.profile, quaternion_from_euler(0.0, 0.0, yaw)),
+            pose=self.pose_type(
+                position=point(self.profile, position),
+                orientation=quaternion(self.profile, yaw_quaternion(yaw)),
             ),
             scale=vector3(self.profile, scale),
             color=self.colour(rgba),
             lifetime=self._duration(lifetime_s),
-            **fields,
+            frame_locked=False,
+            points=[] if points is None else points,
+            colors=[] if colors is None else colors,
+            text=text,
+            mesh_resource="",
+            mesh_use_embedded_materials=False,
         )
 
     def _duration(self, seconds: float) -> Any:
-        sec, nanosec = divmod(round(seconds * 1e9), 1_000_000_000)
-        return self.duration_type(sec=sec, nanosec=nanosec)
+        if (shared := self._durations.get(seconds)) is None:
+            sec, nanosec = divmod(round(seconds * 1e9), 1_000_000_000)
+            shared = self._durations[seconds] = self.duration_type(sec=sec, nanosec=nanosec)
+        return shared
+
+
+def yaw_quaternion(yaw: float) -> Quaternion:
+    """The orientation of a marker turned by `yaw`: most objects keep their heading from
+    one message to the next (parked, stopped, driving straight), so it is worked out once
+    per heading."""
+    # -0.0 == 0.0, but their quaternions differ in the sign of z: the key tells them apart.
+    return _yaw_quaternion(yaw, math.copysign(1.0, yaw))
+
+
+@functools.lru_cache(maxsize=4096)
+def _yaw_quaternion(yaw: float, sign: float) -> Quaternion:
+    return quaternion_from_euler(0.0, 0.0, yaw)
 
 
 def build_map_markers(context: BridgeContext, row: Row) -> Any:
@@ -218,19 +246,32 @@ def build_scene_markers(context: BridgeContext, row: Row) -> Any:
         )  # fmt: skip
     signals = world.signals
     if len(signals.light_ids):
-        sites = world.map.traffic_lights
         markers.append(
             make.new(
                 "lights", 0, SPHERE_LIST, LIGHT_COLOURS[None], (LIGHT_SIZE_M,) * 3,
                 lifetime_s=lifetime,
-                points=make.points(sites[i].position for i in signals.light_ids),
-                colors=[
-                    make.colour(LIGHT_COLOURS[shown_colour(int(aspect))])
-                    for aspect in signals.aspects().tolist()
-                ],
+                points=list(light_sites(make.profile, world.map, signals.light_ids)),
+                colors=list(light_colours(make.profile, tuple(signals.aspects().tolist()))),
             )
         )  # fmt: skip
     return context.profile.message("visualization_msgs/MarkerArray").new(markers=markers)
+
+
+@functools.lru_cache(maxsize=2)  # a map held here at most until the next run's
+def light_sites(profile: Profile, lane_map: LaneMap, light_ids: tuple[str, ...]) -> tuple[Any, ...]:
+    """The lights' points of the lights marker: the map's, so made once."""
+    sites = lane_map.traffic_lights
+    return tuple(point(profile, sites[i].position) for i in light_ids)
+
+
+@functools.lru_cache(maxsize=64)
+def light_colours(profile: Profile, aspects: tuple[int, ...]) -> tuple[Any, ...]:
+    """The lights' colours of the lights marker, made again only when an aspect changes."""
+    colour = message_class(profile, "std_msgs/ColorRGBA")
+    made = {
+        rgba: colour(r=rgba[0], g=rgba[1], b=rgba[2], a=rgba[3]) for rgba in LIGHT_COLOURS.values()
+    }
+    return tuple(made[LIGHT_COLOURS[shown_colour(aspect)]] for aspect in aspects)
 
 
 def _roads(make: _Builder, lane_map: LaneMap, segments: dict[str, list[Any]]) -> list[Any]:

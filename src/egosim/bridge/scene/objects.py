@@ -16,35 +16,41 @@ from ...msgs import Profile
 from ...world.collision import VehicleCollision
 from ...world.traffic import ObjectState
 from ..context import BridgeContext
-from ..protocol.messages import vector3
+from ..protocol.messages import message_class, vector3
 from ..protocol.table import Row
 from ..protocol.units import heading_deg, kmh, swap_length_width
 
 
 def to_object_frame(vector: Sequence[float], heading: float) -> tuple[float, float, float]:
     """A map-frame vector in the frame of an object heading `heading` (rad)."""
-    c, s = math.cos(heading), math.sin(heading)
+    return _turned(vector, math.cos(heading), math.sin(heading))
+
+
+def _turned(vector: Sequence[float], c: float, s: float) -> tuple[float, float, float]:
+    """`vector` turned by the heading whose cosine and sine are `c` and `s`."""
     x, y, z = vector
     return (c * x + s * y, -s * x + c * y, z)
 
 
 def object_status_fields(profile: Profile, state: ObjectState) -> dict[str, Any]:
     """The fields ObjectStatus and ObjectStatusExtended share, in protocol units."""
-    velocity = to_object_frame(state.velocity, state.heading)
+    c, s = math.cos(state.heading), math.sin(state.heading)
+    vx, vy, vz = _turned(state.velocity, c, s)
     return {
         "unique_id": state.unique_id,
         "type": int(state.object_type),
         "name": state.name,
         "heading": heading_deg(state.heading),
-        "velocity": vector3(profile, [kmh(v) for v in velocity]),
-        "acceleration": vector3(profile, to_object_frame(state.acceleration, state.heading)),
+        "velocity": vector3(profile, (kmh(vx), kmh(vy), kmh(vz))),
+        "acceleration": vector3(profile, _turned(state.acceleration, c, s)),
         "size": vector3(profile, swap_length_width(state.size)),
         "position": vector3(profile, state.position),
     }
 
 
 def object_status(profile: Profile, state: ObjectState) -> Any:
-    return profile.message("morai_msgs/ObjectStatus").new(**object_status_fields(profile, state))
+    # Every field is given: the class itself, not MessageType.new (a list has dozens).
+    return message_class(profile, "morai_msgs/ObjectStatus")(**object_status_fields(profile, state))
 
 
 def publish_object_list(context: BridgeContext, row: Row) -> Any:

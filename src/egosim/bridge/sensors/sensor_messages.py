@@ -11,7 +11,7 @@ from ...msgs import Profile
 from ...sensors import GpsFix, ImuReading, Transform
 from ...sensors.radar import RadarDetections
 from ..protocol.messages import header as make_header
-from ..protocol.messages import quaternion, vector3
+from ..protocol.messages import message_class, point, quaternion, vector3
 from ..protocol.units import deg
 
 POINT_FIELDS = ("x", "y", "z", "intensity")
@@ -31,7 +31,7 @@ def gps_message(profile: Profile, header: Any, fix: GpsFix) -> Any:
 
 
 def imu_message(profile: Profile, header: Any, reading: ImuReading) -> Any:
-    return profile.message("sensor_msgs/Imu").new(
+    return message_class(profile, "sensor_msgs/Imu")(
         header=header,
         orientation=quaternion(profile, reading.orientation),
         orientation_covariance=np.array(reading.orientation_covariance, dtype=np.float64),
@@ -66,14 +66,14 @@ def point_cloud(profile: Profile, header: Any, points: np.ndarray) -> Any:
 
 
 def tf_message(profile: Profile, stamp_ns: int, transforms: Iterable[Transform]) -> Any:
-    stamped = profile.message("geometry_msgs/TransformStamped")
-    transform_type = profile.message("geometry_msgs/Transform")
+    stamped = message_class(profile, "geometry_msgs/TransformStamped")
+    transform_type = message_class(profile, "geometry_msgs/Transform")
     return profile.message("tf2_msgs/TFMessage").new(
         transforms=[
-            stamped.new(
+            stamped(
                 header=make_header(profile, stamp_ns, transform.parent_frame),
                 child_frame_id=transform.child_frame,
-                transform=transform_type.new(
+                transform=transform_type(
                     translation=vector3(profile, transform.translation),
                     rotation=quaternion(profile, transform.rotation),
                 ),
@@ -85,19 +85,18 @@ def tf_message(profile: Profile, stamp_ns: int, transforms: Iterable[Transform])
 
 def radar_message(profile: Profile, header: Any, detections: RadarDetections) -> Any:
     """morai_msgs/RadarDetections: azimuth in degrees, detection_id the object's id (16 bit)."""
-    detection = profile.message("morai_msgs/RadarDetection")
-    point = profile.message("geometry_msgs/Point")
+    detection = message_class(profile, "morai_msgs/RadarDetection")
     return profile.message("morai_msgs/RadarDetections").new(
         header=header,
         detections=[
-            detection.new(
-                detection_id=int(uid) & 0xFFFF,
-                position=point.new(x=float(p[0]), y=float(p[1]), z=float(p[2])),
-                azimuth=deg(float(azimuth)),
-                rangerate=float(rate),
-                amplitude=float(amplitude),
+            detection(
+                detection_id=uid & 0xFFFF,
+                position=point(profile, position),
+                azimuth=deg(azimuth),
+                rangerate=rate,
+                amplitude=amplitude,
             )
-            for uid, p, azimuth, rate, amplitude in zip(
+            for uid, position, azimuth, rate, amplitude in zip(
                 detections.unique_ids.tolist(),
                 detections.positions.tolist(),
                 detections.azimuths.tolist(),

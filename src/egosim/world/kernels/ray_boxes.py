@@ -30,14 +30,14 @@ def nearest_box_hits(
     each ray's nearest entry in place (on equal distances, the later pair's cos).
 
     offset (N, 3): box centres from the origin; box_frame rows: cos yaw, sin yaw, then the
-    origin in each box's frame (x, y, z); half_size (3, N).
+    origin in each box's frame (x, y, z); half_size (3, N); directions (3, rays).
     """
     for k in range(interval_box.shape[0]):
         b = interval_box[k]
         cos_yaw, sin_yaw = box_frame[0, b], box_frame[1, b]
         for position in range(first[k], stop[k]):
             ray = sorted_rays[position]
-            east, north, up = directions[ray, 0], directions[ray, 1], directions[ray, 2]
+            east, north, up = directions[0, ray], directions[1, ray], directions[2, ray]
             along = east * offset[b, 0] + north * offset[b, 1] + up * offset[b, 2]
             if not along >= tangent_length[b]:
                 continue
