@@ -172,12 +172,16 @@ def test_a_bad_request_is_answered(running: Running) -> None:
             await ws.send_str("{not json")
             first = await receive_until(ws, "reply")
             await ws.send_str(json.dumps({"op": "load", "name": "/etc/passwd"}))
-            return [first, await receive_until(ws, "reply")]
+            second = await receive_until(ws, "reply")
+            await ws.send_str(json.dumps({"op": ["keys"]}))
+            return [first, second, await receive_until(ws, "reply")]
 
-    first, second = asyncio.run(send_garbage())
+    first, second, third = asyncio.run(send_garbage())
     assert not first["ok"]
     assert not second["ok"]
     assert "outside the data roots" in second["error"]
+    assert not third["ok"]
+    assert "'op' string" in third["error"]
 
 
 def test_a_taken_port_is_a_clear_error(town: BridgeContext) -> None:

@@ -10,14 +10,8 @@ import numpy as np
 import pytest
 
 from egosim.bridge.context import BridgeContext
-from egosim.view.snapshot import (
-    COLLISION_FLASH_S,
-    FrameInfo,
-    SensorImage,
-    capture_frame,
-    encode,
-    map_snapshot,
-)
+from egosim.view.messages import SensorImage
+from egosim.view.snapshot import COLLISION_FLASH_S, FrameInfo, capture_frame, encode, map_snapshot
 from egosim.world.map.markings import STOP_LINE_WIDTH_M, MarkingKind, map_markings
 from egosim.world.signals import RED
 from egosim.world.traffic import ObjectType

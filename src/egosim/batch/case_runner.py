@@ -11,16 +11,17 @@ import shutil
 import signal
 import time
 from pathlib import Path
-from typing import Any, NamedTuple
+from typing import Final, NamedTuple
 
 from egosim.batch.case import CaseSpec
-from egosim.batch.files import BAG_FILE, CASE_FILE, SCORE_FILE, SIMULATOR_LOG, STACK_LOG
+from egosim.batch.documents import CaseResult, CaseStatus, ScoreFile, read_score_file
+from egosim.batch.files import BAG_FILE, CASE_FILE, SIMULATOR_LOG, STACK_LOG
 from egosim.batch.interrupt import Interrupt
 from egosim.batch.logs import log_tail
 from egosim.batch.processes import GRACE_S, GroupProcess
 from egosim.batch.warm_simulator import WarmSimulator
 from egosim.batch.worker_protocol import ENDED, MASTER, MASTER_LINE, PREFIX, RUNNING
-from egosim.evaluation import METRIC_NAMES, parse_criterion
+from egosim.evaluation import METRIC_NAMES, Metrics, parse_criterion
 
 # The simulator's last acts are closing the bag and writing the score; a loaded node may
 # take seconds over them, and killing it before then loses both.
@@ -29,7 +30,9 @@ SIMULATOR_GRACE_S = 30.0
 SIMULATOR_START_S = 60.0
 POLL_S = 0.05
 
-PASSED, FAILED, ERROR = "passed", "failed", "error"
+PASSED: Final = "passed"
+FAILED: Final = "failed"
+ERROR: Final = "error"
 """A case passes its criteria, fails them, or could not be scored as asked (the stack
 crashed, hung or never connected; the simulator failed)."""
 
@@ -59,9 +62,8 @@ def run_case(
     out_dir: str,
     simulator: WarmSimulator,
     interrupt: Interrupt | None = None,
-) -> dict[str, Any]:
-    """Run `case` with its folder under `out_dir` on `simulator`; its result (see
-    results.py)."""
+) -> CaseResult:
+    """Run `case` with its folder under `out_dir` on `simulator`; its result."""
     started = time.monotonic()
     folder = Path(out_dir) / case_folder_name(case.name)
     if folder.exists():
@@ -75,15 +77,16 @@ def run_case(
         problem = INTERRUPTED
     finally:
         supervisor.stop_all()
-    result = _result(case, folder, problem)
-    if case.bags == "failed" and result["status"] == PASSED and result["bag"] is not None:
+    drive = read_score_file(folder)
+    result = _result(case, folder, problem, drive)
+    if case.bags == "failed" and result["status"] == PASSED and result.get("bag") is not None:
         (folder / BAG_FILE).unlink()
         result["bag"] = None
     stack_cpu_s = None if supervisor.stack is None else supervisor.stack.cpu_s
     result["timings"] = {
         "case_wall_s": round(time.monotonic() - started, 3),
-        "drive_wall_s": result.pop("drive_wall_s", None),
-        "simulator_cpu_s": result.pop("simulator_cpu_s", None),
+        "drive_wall_s": None if drive is None else round(drive["drive_wall_s"], 3),
+        "simulator_cpu_s": None if drive is None else round(drive["cpu_s"], 3),
         "stack_cpu_s": None if stack_cpu_s is None else round(stack_cpu_s, 3),
     }
     return result
@@ -211,14 +214,26 @@ def _stack_problem(what: str) -> Problem:
     return Problem(f"stack {what}", STACK_LOG)
 
 
-def _result(case: CaseSpec, folder: Path, problem: Problem | None) -> dict[str, Any]:
-    score_path = folder / SCORE_FILE
-    try:
-        drive = json.loads(score_path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        drive = None
+def _result(
+    case: CaseSpec, folder: Path, problem: Problem | None, drive: ScoreFile | None
+) -> CaseResult:
     score = None if drive is None else drive.get("score")
-    result: dict[str, Any] = {
+    outcome = None if drive is None else drive.get("scenario")
+    if problem is None and drive is not None and drive["end"].startswith("bad route"):
+        problem = Problem(drive["end"])
+    if problem is None and score is None:
+        problem = Problem("the drive was not scored (the simulator wrote no score)", SIMULATOR_LOG)
+    checks = (
+        []
+        if score is None
+        else [parse_criterion(c, METRIC_NAMES).check(score["metrics"]) for c in case.criteria]
+    )
+    failed = [c.text + (f" ({c.reason})" if c.reason else "") for c in checks if not c.passed]
+    if outcome is not None and outcome.get("verdict") == "failure":
+        failed.append("the scenario's evaluation failed")
+    status: CaseStatus = ERROR if problem is not None else FAILED if failed else PASSED
+    explained_by = None if problem is None else problem.log
+    result: CaseResult = {
         "name": case.name,
         "parameters": case.parameters,
         "scenario": os.path.relpath(case.scenario_file, case.suite_dir),
@@ -226,36 +241,17 @@ def _result(case: CaseSpec, folder: Path, problem: Problem | None) -> dict[str, 
         "bag": f"{folder.name}/{BAG_FILE}" if (folder / BAG_FILE).exists() else None,
         "end": None if drive is None else drive["end"],
         "sim_time_s": None if drive is None else round(drive["sim_time_s"], 6),
-        "drive_wall_s": None if drive is None else round(drive["drive_wall_s"], 3),
-        "simulator_cpu_s": None if drive is None else round(drive["cpu_s"], 3),
         "metrics": None if score is None else _rounded(score["metrics"]),
         "infractions": None if score is None else score["infractions"],
-        "criteria": [],
+        "criteria": [c.as_dict() for c in checks],
+        "status": status,
+        "reason": problem.reason if problem is not None else "; ".join(failed),
+        "log_tail": None if explained_by is None else log_tail(folder, explained_by),
     }
-    outcome = None if drive is None else drive.get("scenario")
     if outcome is not None:
         result["scenario_outcome"] = outcome
-    if problem is None and drive is not None and drive["end"].startswith("bad route"):
-        problem = Problem(drive["end"])
-    if problem is None and score is None:
-        problem = Problem("the drive was not scored (the simulator wrote no score)", SIMULATOR_LOG)
-    if score is not None:
-        checks = [parse_criterion(c, METRIC_NAMES).check(score["metrics"]) for c in case.criteria]
-        result["criteria"] = [c.as_dict() for c in checks]
-        failed = [c.text + (f" ({c.reason})" if c.reason else "") for c in checks if not c.passed]
-    else:
-        failed = []
-    if outcome is not None and outcome.get("verdict") == "failure":
-        failed.append("the scenario's evaluation failed")
-    if problem is not None:
-        tail = None if problem.log is None else log_tail(folder, problem.log)
-        result.update(status=ERROR, reason=problem.reason, log_tail=tail)
-    elif failed:
-        result.update(status=FAILED, reason="; ".join(failed), log_tail=None)
-    else:
-        result.update(status=PASSED, reason="", log_tail=None)
     return result
 
 
-def _rounded(metrics: dict[str, Any]) -> dict[str, Any]:
+def _rounded(metrics: Metrics) -> Metrics:
     return {k: round(v, 6) if isinstance(v, float) else v for k, v in metrics.items()}

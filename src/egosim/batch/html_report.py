@@ -5,14 +5,15 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from egosim.batch.files import CASE_FILE, SCORE_FILE
+from egosim.batch.documents import CaseResult, ResultsDocument, read_score_file
+from egosim.batch.files import CASE_FILE
 from egosim.batch.logs import tail_report
+from egosim.evaluation import ScoreRecord
 from egosim.maps import MapLoadError, load_map
 from egosim.plots import (
     Block,
@@ -38,13 +39,13 @@ MAX_DETAILED_CASES = 50
 """Failing cases drawn in full; the table lists every case whatever their number."""
 
 
-def _fmt(value: Any, digits: int = 3) -> str:
+def _fmt(value: float | None, digits: int = 3) -> str:
     if value is None:
         return "-"
     return f"{value:.{digits}g}" if isinstance(value, float) else str(value)
 
 
-def summary_table(cases: list[dict[str, Any]]) -> TableBlock:
+def summary_table(cases: list[CaseResult]) -> TableBlock:
     rows = []
     for case in cases:
         metrics = case.get("metrics") or {}
@@ -63,14 +64,19 @@ def summary_table(cases: list[dict[str, Any]]) -> TableBlock:
     return TableBlock("Cases", columns, rows)
 
 
-def verdict_block(case: dict[str, Any]) -> TextBlock:
+def verdict_block(case: CaseResult) -> TextBlock:
     """A case's status and reason, with the end of the log that explains it."""
     lines = [case.get("reason") or "", *tail_report(case.get("log_tail"))]
     return TextBlock(f"{case['name']}: {case['status']}", "\n".join(lines))
 
 
-def score_histogram(cases: list[dict[str, Any]]) -> Figure:
-    scores = [c["metrics"]["driving_score"] for c in cases if c.get("metrics") is not None]
+def score_histogram(cases: list[CaseResult]) -> Figure:
+    scores = [
+        score
+        for c in cases
+        if (metrics := c.get("metrics")) is not None
+        and (score := metrics.get("driving_score")) is not None
+    ]
     figure = Figure(figsize=(6.0, 2.6), dpi=110)
     FigureCanvasAgg(figure)
     axes = figure.add_subplot()
@@ -82,11 +88,9 @@ def score_histogram(cases: list[dict[str, Any]]) -> Figure:
     return figure
 
 
-def _case_figures(
-    case: dict[str, Any], drive: dict[str, Any], lane_map: LaneMap, key: str
-) -> list[Block]:
-    trajectory = np.asarray(drive["score"]["trajectory"], dtype=np.float64).reshape(-1, 4)
-    infractions = drive["score"]["infractions"]
+def _case_figures(case: CaseResult, score: ScoreRecord, lane_map: LaneMap, key: str) -> list[Block]:
+    trajectory = np.asarray(score["trajectory"], dtype=np.float64).reshape(-1, 4)
+    infractions = score["infractions"]
     places = [(i["x"], i["y"]) for i in infractions]
     xy = np.vstack([trajectory[:, 1:3], np.asarray(places).reshape(-1, 2)])
     figure, axes = map_axes(points_view(xy) if len(xy) else lane_map.bounds(), max_px=700)
@@ -113,7 +117,7 @@ def _case_figures(
     ]
 
 
-def write_html_report(out_dir: Path, title: str, document: dict[str, Any]) -> Path:
+def write_html_report(out_dir: Path, title: str, document: ResultsDocument) -> Path:
     cases = document["cases"]
     counts = document["summary"]
     text = ", ".join(f"{v} {k}" for k, v in counts.items())
@@ -121,13 +125,18 @@ def write_html_report(out_dir: Path, title: str, document: dict[str, Any]) -> Pa
     if any(c.get("metrics") for c in cases):
         blocks.append(FigureBlock("Driving scores", score_histogram(cases), "scores"))
     maps: dict[str, LaneMap | None] = {}
-    failing = [c for c in cases if c["status"] in ("failed", "error") and c.get("folder")]
-    for k, case in enumerate(failing[:MAX_DETAILED_CASES]):
-        drive = _drive(out_dir / case["folder"])
-        if drive is None or drive.get("score") is None:
+    failing = [
+        (c, folder)
+        for c in cases
+        if c["status"] in ("failed", "error") and (folder := c.get("folder"))
+    ]
+    for k, (case, folder) in enumerate(failing[:MAX_DETAILED_CASES]):
+        drive = read_score_file(out_dir / folder)
+        score = None if drive is None else drive["score"]
+        if score is None:
             blocks.append(verdict_block(case))
             continue
-        map_name = _map_name(out_dir / case["folder"])
+        map_name = _map_name(out_dir / folder)
         if map_name not in maps:
             try:
                 maps[map_name] = load_map(map_name)
@@ -139,20 +148,12 @@ def write_html_report(out_dir: Path, title: str, document: dict[str, Any]) -> Pa
                 (verdict_block(case), TextBlock(case["name"], f"map {map_name} not found"))
             )
             continue
-        blocks.extend(_case_figures(case, drive, lane_map, f"case{k}"))
+        blocks.extend(_case_figures(case, score, lane_map, f"case{k}"))
     if len(failing) > MAX_DETAILED_CASES:
         blocks.append(TextBlock("More failures", f"{len(failing) - MAX_DETAILED_CASES} not drawn"))
     path = out_dir / REPORT_FILE
     write_report(path, title, blocks)
     return path
-
-
-def _drive(folder: Path) -> dict[str, Any] | None:
-    try:
-        drive: dict[str, Any] = json.loads((folder / SCORE_FILE).read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    return drive
 
 
 def _map_name(folder: Path) -> str:

@@ -5,17 +5,22 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 from pathlib import Path
-from typing import Any
 
+from egosim.batch.documents import CaseResult, ResultsDocument
 from egosim.batch.logs import tail_report
 
 JUNIT_FILE = "junit.xml"
 
 
-def junit_xml(suite_name: str, document: dict[str, Any]) -> ET.ElementTree:
+def _wall_s(case: CaseResult) -> float:
+    timings = case.get("timings")
+    return 0.0 if timings is None else timings["case_wall_s"]
+
+
+def junit_xml(suite_name: str, document: ResultsDocument) -> ET.ElementTree:
     cases = document["cases"]
     counts = document["summary"]
-    total_time = sum((c.get("timings") or {}).get("case_wall_s") or 0.0 for c in cases)
+    total_time = sum(_wall_s(c) for c in cases)
     suite = ET.Element(
         "testsuite",
         name=suite_name,
@@ -26,9 +31,8 @@ def junit_xml(suite_name: str, document: dict[str, Any]) -> ET.ElementTree:
         time=f"{total_time:.3f}",
     )
     for case in cases:
-        wall = (case.get("timings") or {}).get("case_wall_s") or 0.0
         element = ET.SubElement(
-            suite, "testcase", classname=suite_name, name=case["name"], time=f"{wall:.3f}"
+            suite, "testcase", classname=suite_name, name=case["name"], time=f"{_wall_s(case):.3f}"
         )
         status = case["status"]
         if status == "failed":
@@ -46,7 +50,7 @@ def junit_xml(suite_name: str, document: dict[str, Any]) -> ET.ElementTree:
     return ET.ElementTree(suite)
 
 
-def _details(case: dict[str, Any]) -> str:
+def _details(case: CaseResult) -> str:
     lines = [f"reason: {case['reason']}", f"end: {case.get('end')}"]
     for infraction in case.get("infractions") or []:
         lines.append(
@@ -57,7 +61,7 @@ def _details(case: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
-def write_junit(out_dir: Path, suite_name: str, document: dict[str, Any]) -> Path:
+def write_junit(out_dir: Path, suite_name: str, document: ResultsDocument) -> Path:
     path = out_dir / JUNIT_FILE
     junit_xml(suite_name, document).write(path, encoding="utf-8", xml_declaration=True)
     return path

@@ -7,7 +7,7 @@ import threading
 from collections import deque
 from collections.abc import Callable
 from pathlib import Path
-from typing import IO, Any
+from typing import IO, TypedDict
 
 DEFAULT_HEAD_BYTES = 256 * 1024
 DEFAULT_TAIL_BYTES = 256 * 1024
@@ -15,6 +15,14 @@ TAIL_LINES = 20
 """Lines of a log shown beside a case's verdict: a Python traceback's end fits."""
 MAX_LINE_CHARS = 300
 """A longer line is cut (a log line of megabytes must not flood a report)."""
+
+
+class LogTail(TypedDict):
+    """A result's `log_tail`: the log's file name in the case folder and its last lines
+    (none: the log is empty or missing)."""
+
+    file: str
+    lines: list[str]
 
 
 class BoundedFile:
@@ -87,9 +95,8 @@ class BoundedLog:
         self._thread.join(timeout_s)
 
 
-def log_tail(folder: Path, name: str, count: int = TAIL_LINES) -> dict[str, Any]:
-    """The last `count` non-blank lines of the log `name` in `folder`, as a result's
-    `log_tail`: {"file": name, "lines": [...]} (no lines: the log is empty or missing)."""
+def log_tail(folder: Path, name: str, count: int = TAIL_LINES) -> LogTail:
+    """The last `count` non-blank lines of the log `name` in `folder`."""
     data, whole = _end_of(folder / name, count * (MAX_LINE_CHARS + 1))
     lines = data.decode("utf-8", "replace").splitlines()
     if not whole:
@@ -114,7 +121,7 @@ def _cut(line: str) -> str:
     return line if len(line) <= MAX_LINE_CHARS else f"{line[:MAX_LINE_CHARS]} [...]"
 
 
-def tail_report(tail: dict[str, Any] | None) -> list[str]:
+def tail_report(tail: LogTail | None) -> list[str]:
     """A result's `log_tail` as lines for a person (console, JUnit, HTML): a heading, then
     the log's lines indented."""
     if tail is None:

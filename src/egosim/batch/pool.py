@@ -15,16 +15,20 @@ import queue
 import threading
 from collections import deque
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Protocol, cast
 
 from egosim.batch.case import CaseSpec
 from egosim.batch.case_runner import ERROR, PASSED, run_case
+from egosim.batch.documents import CaseResult
 from egosim.batch.interrupt import Interrupt
 from egosim.batch.warm_simulator import WarmSimulator
 
-Result = dict[str, Any]
+Result = CaseResult
 OnResult = Callable[[Result, int], None]
 """Called with each finished case's result and the number of cases still running."""
+
+ObjectRef = object
+"""A Ray future: only waited for, got and used as a key here."""
 
 POLL_S = 0.2
 RAY_CLOSE_S = 60.0
@@ -103,13 +107,14 @@ def run_ray(
     a time each, its simulator worker kept warm); results and `interrupt` as run_local's.
     `on_connected` runs once Ray is up (ray.init installs signal handlers of its own). The
     output folder must be on storage every node writes to."""
-    ray = importlib.import_module("ray")  # an optional extra: pip install egosim[ray]
+    # An optional extra (pip install egosim[ray]), so typed by the part used here.
+    ray = cast(_Ray, importlib.import_module("ray"))
     interrupt = interrupt or Interrupt()
     results = {} if results is None else results
     ray.init(address=address, include_dashboard=False, log_to_driver=False)
     if on_connected is not None:
         on_connected()
-    actors: list[Any] = []
+    actors: list[_CaseSlotActor] = []
     try:
         slots = min(len(cases), max(int(ray.cluster_resources().get("CPU", 1)), 1))
         # Three at once: a case, and the driver's calls to stop or hurry it.
@@ -127,8 +132,8 @@ def run_ray(
 
 
 def _dispatch(
-    ray: Any,
-    actors: list[Any],
+    ray: _Ray,
+    actors: list[_CaseSlotActor],
     cases: Sequence[CaseSpec],
     out_dir: str,
     on_result: OnResult,
@@ -138,17 +143,21 @@ def _dispatch(
     """Hand each idle actor the next case until every case has run or the batch stops."""
     todo = deque(cases)
     idle = list(actors)
-    running: dict[Any, tuple[Any, CaseSpec]] = {}
-    told = set[str]()
+    running: dict[ObjectRef, tuple[_CaseSlotActor, CaseSpec]] = {}
+    told: set[threading.Event] = set()
+    calls: tuple[tuple[threading.Event, Callable[[_CaseSlotActor], _RemoteMethod]], ...] = (
+        (interrupt.stop, lambda actor: actor.stop),
+        (interrupt.hurry, lambda actor: actor.hurry),
+    )
     while running or (todo and not interrupt.stop.is_set()):
         while idle and todo and not interrupt.stop.is_set():
             actor, case = idle.pop(), todo.popleft()
             running[actor.run.remote(case, out_dir)] = (actor, case)
-        for event, method in ((interrupt.stop, "stop"), (interrupt.hurry, "hurry")):
-            if event.is_set() and method not in told:
-                told.add(method)
+        for event, method in calls:
+            if event.is_set() and event not in told:
+                told.add(event)
                 for actor, _ in running.values():
-                    getattr(actor, method).remote()
+                    method(actor).remote()
         done, _ = ray.wait(list(running), num_returns=1, timeout=POLL_S)
         for ref in done:
             actor, case = running.pop(ref)
@@ -187,10 +196,10 @@ class CaseSlot:
         self.simulator.close(self.interrupt.hurry)
 
 
-def _ray_result(ray: Any, ref: Any, case: CaseSpec) -> Result | None:
+def _ray_result(ray: _Ray, ref: ObjectRef, case: CaseSpec) -> Result | None:
     """An actor call's result; None for a case the batch stopped before it began."""
     try:
-        result: Result | None = ray.get(ref)
+        result = ray.get(ref)
     except ray.exceptions.RayError as error:
         reason = f"Ray task failed: {error}"
         return {"name": case.name, "parameters": case.parameters, "status": ERROR, "reason": reason}
@@ -199,3 +208,51 @@ def _ray_result(ray: Any, ref: Any, case: CaseSpec) -> Result | None:
 
 def failed(result: Result) -> bool:
     return bool(result["status"] != PASSED)
+
+
+class _RemoteMethod(Protocol):
+    def remote(self, *args: object) -> ObjectRef: ...
+
+
+class _CaseSlotActor(Protocol):
+    """A CaseSlot on Ray: each method called with .remote(...)."""
+
+    @property
+    def run(self) -> _RemoteMethod: ...
+    @property
+    def stop(self) -> _RemoteMethod: ...
+    @property
+    def hurry(self) -> _RemoteMethod: ...
+    @property
+    def close(self) -> _RemoteMethod: ...
+
+
+class _ActorClass(Protocol):
+    def remote(self) -> _CaseSlotActor: ...
+
+
+class _RayExceptions(Protocol):
+    @property
+    def RayError(self) -> type[Exception]: ...  # noqa: N802 (Ray's name)
+
+
+class _Ray(Protocol):
+    """What of the `ray` module the pool uses."""
+
+    @property
+    def exceptions(self) -> _RayExceptions: ...
+    def init(
+        self, *, address: str | None, include_dashboard: bool, log_to_driver: bool
+    ) -> object: ...
+    def cluster_resources(self) -> dict[str, float]: ...
+    def remote(
+        self, *, num_cpus: int, max_concurrency: int, max_restarts: int
+    ) -> Callable[[type[CaseSlot]], _ActorClass]: ...
+    def wait(
+        self, refs: list[ObjectRef], *, num_returns: int, timeout: float | None
+    ) -> tuple[list[ObjectRef], list[ObjectRef]]: ...
+    def get(self, ref: ObjectRef) -> Result | None:
+        """(Every ref got here is a CaseSlot.run call's.)"""
+
+    def kill(self, actor: _CaseSlotActor) -> None: ...
+    def shutdown(self) -> None: ...

@@ -10,17 +10,19 @@ import json
 from collections import Counter
 from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Final, cast
 
 from egosim import __version__
 from egosim.batch.case import CaseSpec
 from egosim.batch.case_runner import PASSED
+from egosim.batch.documents import CaseResult, Execution, ResultsDocument, Summary
+from egosim.json_value import JsonValue
 
 RESULTS_FILE = "results.json"
-NOT_RUN = "not_run"
+NOT_RUN: Final = "not_run"
 
 
-def summary(results: Iterable[dict[str, Any]]) -> dict[str, int]:
+def summary(results: Iterable[CaseResult]) -> Summary:
     counts = Counter(result["status"] for result in results)
     return {
         "cases": sum(counts.values()),
@@ -31,7 +33,7 @@ def summary(results: Iterable[dict[str, Any]]) -> dict[str, int]:
     }
 
 
-def not_run(case: CaseSpec) -> dict[str, Any]:
+def not_run(case: CaseSpec) -> CaseResult:
     """The result of a case the batch was stopped before running."""
     return {"name": case.name, "parameters": case.parameters, "status": NOT_RUN, "reason": ""}
 
@@ -39,9 +41,9 @@ def not_run(case: CaseSpec) -> dict[str, Any]:
 def results_document(
     suite: Path,
     cases: Sequence[CaseSpec],
-    results: dict[str, dict[str, Any]],
-    execution: dict[str, Any],
-) -> dict[str, Any]:
+    results: dict[str, CaseResult],
+    execution: Execution,
+) -> ResultsDocument:
     """The document: `results` (by case name) in suite order; cases without one not run."""
     ordered = [results.get(case.name) or not_run(case) for case in cases]
     return {
@@ -53,21 +55,31 @@ def results_document(
     }
 
 
-def write_results(out_dir: Path, document: dict[str, Any]) -> Path:
+def write_results(out_dir: Path, document: ResultsDocument) -> Path:
     path = out_dir / RESULTS_FILE
     path.write_text(json.dumps(document, indent=1) + "\n", encoding="utf-8")
     return path
 
 
-def previous_results(out_dir: Path) -> dict[str, dict[str, Any]]:
+def previous_results(out_dir: Path) -> dict[str, CaseResult]:
     """The results of an earlier run in `out_dir`, by case name ({} if none)."""
     try:
-        document = json.loads((out_dir / RESULTS_FILE).read_text(encoding="utf-8"))
-        return {result["name"]: result for result in document["cases"]}
-    except (OSError, ValueError, KeyError, TypeError):
+        document: JsonValue = json.loads((out_dir / RESULTS_FILE).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
         return {}
+    cases = document.get("cases") if isinstance(document, dict) else None
+    if not isinstance(cases, list):
+        return {}
+    # Entries as write_results wrote them (one without a name and status is passed over).
+    return {
+        name: cast(CaseResult, result)
+        for result in cases
+        if isinstance(result, dict)
+        and isinstance(name := result.get("name"), str)
+        and isinstance(result.get("status"), str)
+    }
 
 
-def needs_rerun(result: dict[str, Any] | None) -> bool:
+def needs_rerun(result: CaseResult | None) -> bool:
     """A case to run again with --rerun-failed: anything but a pass."""
     return result is None or result["status"] != PASSED

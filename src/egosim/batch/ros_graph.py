@@ -38,7 +38,7 @@ class _TimeoutTransport(xmlrpc.client.Transport):
         super().__init__()
         self._timeout_s = timeout_s
 
-    def make_connection(self, host: Any) -> http.client.HTTPConnection:
+    def make_connection(self, host: str | tuple[str, dict[str, str]]) -> http.client.HTTPConnection:
         connection = super().make_connection(host)
         connection.timeout = self._timeout_s
         return connection

@@ -15,16 +15,17 @@ import os
 import resource
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any
 
+import numpy as np
 import yaml
 
 from egosim.app.attachments import RunningSimulator
 from egosim.app.options import RunOptions
 from egosim.app.runner import run
 from egosim.batch.case import CaseSpec
+from egosim.batch.documents import Drive, ScoreFile
 from egosim.batch.files import BAG_FILE, CASE_FILE, MORAI_SCENARIO_FILE, SCENARIO_FILE, SCORE_FILE
 from egosim.batch.ros_graph import stack_connected
 from egosim.batch.worker_protocol import ENDED, MASTER, PREFIX, RUNNING
@@ -43,27 +44,40 @@ CONNECT_POLL_S = 0.25
 PHYSICS_RATE_HZ = 100.0
 
 
-def evaluation_settings(scoring: dict[str, Any]) -> EvaluationSettings:
+def evaluation_settings(scoring: Mapping[str, object]) -> EvaluationSettings:
+    """A suite's `scoring` (its schema checked the kinds and numbers)."""
     defaults = EvaluationSettings()
     penalties = dict(defaults.penalties)
-    penalties.update({InfractionKind(k): float(v) for k, v in scoring.get("penalties", {}).items()})
+    given = scoring.get("penalties")
+    if isinstance(given, Mapping):
+        penalties.update({InfractionKind(k): _number(v, 1.0) for k, v in given.items()})
     return EvaluationSettings(
         penalties=penalties,
-        blocked_after_s=float(scoring.get("blocked_after_s", defaults.blocked_after_s)),
-        lane_departure_margin_m=float(
-            scoring.get("lane_departure_margin_m", defaults.lane_departure_margin_m)
+        blocked_after_s=_number(scoring.get("blocked_after_s"), defaults.blocked_after_s),
+        lane_departure_margin_m=_number(
+            scoring.get("lane_departure_margin_m"), defaults.lane_departure_margin_m
         ),
     )
 
 
-def build_route(lane_map: LaneMap, spec: dict[str, Any] | None) -> Route | None:
+def _number(value: object, default: float) -> float:
+    return float(value) if isinstance(value, int | float) else default
+
+
+def build_route(lane_map: LaneMap, spec: Mapping[str, object] | None) -> Route | None:
+    """A case's `route`: {"waypoints": [[x, y], ...]} or {"lanes": [...]}, optionally with
+    "first_m" (its schema checked the shapes)."""
     if spec is None:
         return None
     if "lanes" in spec:
-        route = Route.through_lanes(lane_map, spec["lanes"])
+        lanes = spec["lanes"]
+        if not isinstance(lanes, list):
+            raise RouteError(f"lanes are a list of lane ids, not {lanes!r}")
+        route = Route.through_lanes(lane_map, [str(lane) for lane in lanes])
     else:
-        route = Route(spec["waypoints"])
-    return route.first(spec["first_m"]) if "first_m" in spec else route
+        route = Route(np.asarray(spec["waypoints"], dtype=np.float64))
+    first_m = spec.get("first_m")
+    return route.first(first_m) if isinstance(first_m, int | float) else route
 
 
 class CaseDrive:
@@ -145,13 +159,18 @@ class CaseDrive:
         print(f"{PREFIX}{RUNNING}", flush=True)
         return False
 
-    def result(self) -> dict[str, Any]:
+    def result(self) -> Drive:
         wall = 0.0 if self.started_wall is None else time.monotonic() - self.started_wall
         score = None
         if self.evaluator is not None:
             score = self.evaluator.score(timed_out=self.end == "time_limit").as_dict()
         sim_time = 0.0 if self.world is None else self.world.sim_time - self.start_sim_s
-        result = {"end": self.end, "sim_time_s": sim_time, "drive_wall_s": wall, "score": score}
+        result: Drive = {
+            "end": self.end,
+            "sim_time_s": sim_time,
+            "drive_wall_s": wall,
+            "score": score,
+        }
         storyboard = None if self.world is None else self.world.storyboard
         if storyboard is not None:
             outcome = storyboard.outcome()
@@ -205,7 +224,11 @@ def simulate_case(
             keep_running=True,
         )
         status = run(options, [drive.attach], stop, handle_signals=False, renderer=renderer)
-        result = {"exit_status": status, **drive.result(), "cpu_s": _cpu_s() - cpu_before}
+        result: ScoreFile = {
+            "exit_status": status,
+            **drive.result(),
+            "cpu_s": _cpu_s() - cpu_before,
+        }
         (case_dir / SCORE_FILE).write_text(json.dumps(result), encoding="utf-8")
         return status
     finally:

@@ -13,6 +13,7 @@ from pathlib import Path
 
 from ..app.exit_codes import EXIT_BAD_INPUT
 from ..batch.case import CaseSpec
+from ..batch.documents import Execution
 from ..batch.errors import SuiteError
 from ..batch.html_report import write_html_report
 from ..batch.interrupt import EXIT_SIGNALLED, Interrupt, interrupted_by_signals
@@ -199,7 +200,7 @@ def _report(
     started: float,
 ) -> int:
     results.update(new)
-    execution = {
+    execution: Execution = {
         "runner": "ray" if args.ray is not None else "local",
         "workers": None if args.ray is not None else workers,
         "cases_run": len(to_run),

@@ -7,6 +7,7 @@ import operator
 import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from typing import TypedDict
 
 from egosim.evaluation.infractions import InfractionKind
 
@@ -46,6 +47,14 @@ class Criterion:
         )
 
 
+class CriterionRecord(TypedDict):
+    """A CriterionResult as JSON (results.json)."""
+
+    criterion: str
+    passed: bool
+    value: float | int | None
+
+
 @dataclass(frozen=True)
 class CriterionResult:
     text: str
@@ -53,7 +62,7 @@ class CriterionResult:
     value: float | int | None
     reason: str = ""
 
-    def as_dict(self) -> dict[str, object]:
+    def as_dict(self) -> CriterionRecord:
         return {"criterion": self.text, "passed": self.passed, "value": self.value}
 
 

@@ -5,9 +5,15 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import TypedDict
 
 from egosim.evaluation.comfort import comfort_figures, lane_error_figures
-from egosim.evaluation.infractions import COLLISION_KINDS, Infraction, InfractionKind
+from egosim.evaluation.infractions import (
+    COLLISION_KINDS,
+    Infraction,
+    InfractionKind,
+    InfractionRecord,
+)
 from egosim.evaluation.lead import lead_gap
 from egosim.evaluation.penalties import CARLA_LEADERBOARD_1_PENALTIES, driving_score, penalty_factor
 from egosim.evaluation.route import Route, RouteProgress
@@ -33,16 +39,29 @@ class EvaluationSettings:
     object); everything else is watched at every step."""
 
 
+Metrics = dict[str, float | int | None]
+"""A drive's figures by name (flat, JSON-ready; None: not measured)."""
+
+
+class ScoreRecord(TypedDict):
+    """A DriveScore as JSON (score.json)."""
+
+    metrics: Metrics
+    infractions: list[InfractionRecord]
+    trajectory: list[list[float]]
+    """[t s, x m, y m, speed m/s] rows."""
+
+
 @dataclass(frozen=True)
 class DriveScore:
     """A scored drive: the figures (flat, JSON-ready), the infractions, the trajectory."""
 
-    metrics: dict[str, float | int | None]
+    metrics: Metrics
     infractions: tuple[Infraction, ...]
     trajectory: tuple[tuple[float, float, float, float], ...]
     """(t s, x m, y m, speed m/s) every TRAJECTORY_PERIOD_S."""
 
-    def as_dict(self) -> dict[str, object]:
+    def as_dict(self) -> ScoreRecord:
         return {
             "metrics": dict(self.metrics),
             "infractions": [i.as_dict() for i in self.infractions],

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import Enum
+from typing import TypedDict
 
 
 class InfractionKind(str, Enum):
@@ -34,6 +35,17 @@ COLLISION_KINDS = (
 )
 
 
+class InfractionRecord(TypedDict):
+    """An Infraction as JSON (score.json, results.json)."""
+
+    kind: str
+    time_s: float
+    x: float
+    y: float
+    detail: str
+    magnitude: float | None
+
+
 @dataclass(frozen=True)
 class Infraction:
     """One infraction: when (simulation time, s) and where (map frame, m) it began."""
@@ -48,7 +60,7 @@ class Infraction:
     excursion, s for wrong-way driving, m/s for a collision (the ego's speed just before
     the contact)."""
 
-    def as_dict(self) -> dict[str, object]:
+    def as_dict(self) -> InfractionRecord:
         return {
             "kind": self.kind.value,
             "time_s": round(self.time_s, 6),

@@ -5,6 +5,7 @@ Public API:
     live_view(ViewOptions) -> Attach     what `egosim run` attaches to the loop
     ViewOptions, DEFAULT_HOST, DEFAULT_PORT
     snapshot.map_snapshot, snapshot.capture_frame, snapshot.encode   world -> JSON
+    messages: the shapes of the map, frames, history and replies the page gets
 """
 
 from .attach import DEFAULT_HOST, DEFAULT_PORT, ViewOptions, live_view

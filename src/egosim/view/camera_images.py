@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from ..bridge import BridgeContext
 from ..sensors.camera import CameraMode
-from .snapshot import ImageSource, SensorImage
+from .messages import ImageSource, SensorImage
 
 #: How often the page's copy of a camera's image is renewed, Hz of simulation time.
 IMAGE_RATE_HZ = 2.0

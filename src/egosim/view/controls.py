@@ -11,17 +11,19 @@ import logging
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import ClassVar
 
 from ..bridge import BridgeContext, ControlMode
 from ..bridge.scene.scenarios import log_scenario_loaded, scenario_path
 from ..bridge.scene.storyboard import scenario_drives_ego
 from ..datapaths import PathOutsideRootsError
+from ..json_value import JsonObject, JsonValue
 from ..replay.codes import SET_START_TIME, CommandResult, PlaybackStatus, ProcessCommand
 from ..scenario_files import looks_like_scenario, read_scenario_file
 from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions
 from ..world.vehicle import Vehicle
 from .keyboard import HeldKeys, KeyboardDriver
+from .messages import Reply, ReplyFields
 
 log = logging.getLogger(__name__)
 
@@ -54,6 +56,15 @@ def _read_file(path: Path, roots: tuple[Path, ...]) -> _Read | ControlError:
 
 
 @dataclass(frozen=True)
+class PreparedRequest:
+    """A page request with its file work done on the server thread (ViewControls.prepare):
+    a load's or reload's scenario read, or why it could not be."""
+
+    request: JsonValue
+    read: _Read | ControlError | None = None
+
+
+@dataclass(frozen=True)
 class _ReplayCommand:
     """A MoraiSimProcHandle as the replay session reads it, made by the page."""
 
@@ -76,19 +87,24 @@ class ViewControls:
     """Set by a single-step request: the view stage pauses the world after the next step."""
     _keyboards: dict[int, KeyboardDriver] = field(default_factory=dict)
 
-    def apply(self, request: Any) -> dict[str, Any]:
-        """Run one request; the reply for the page ({"ok": ...} and an "error" text)."""
-        if not isinstance(request, dict) or not isinstance(request.get("op"), str):
+    def apply(self, request: JsonValue | PreparedRequest) -> Reply:
+        """Run one request (as the page sent it, or prepared); the reply for the page
+        ({"ok": ...} and an "error" text)."""
+        prepared = request if isinstance(request, PreparedRequest) else PreparedRequest(request)
+        fields = prepared.request
+        op = fields.get("op") if isinstance(fields, dict) else None
+        if not isinstance(fields, dict) or not isinstance(op, str):
             return {"ok": False, "error": "a request is an object with an 'op' string"}
-        handler = self._HANDLERS.get(request["op"])
+        handler = self._HANDLERS.get(op)
         if handler is None:
-            return {"ok": False, "error": f"unknown request {request['op']!r}"}
+            return {"ok": False, "error": f"unknown request {op!r}"}
         try:
-            result = handler(self, request)
+            result = handler(self, fields, prepared.read)
         except ControlError as error:
-            log.warning("view: %s refused: %s", request["op"], error)
-            return {"ok": False, "op": request["op"], "error": str(error)}
-        return {"ok": True, "op": request["op"], **(result or {})}
+            log.warning("view: %s refused: %s", op, error)
+            return {"ok": False, "op": op, "error": str(error)}
+        done: Reply = {"ok": True, "op": op}
+        return {**done, **(result or {})}
 
     # -- time -------------------------------------------------------------------------
 
@@ -96,23 +112,23 @@ class ViewControls:
         if self.context.sync.holds_time:
             raise ControlError(f"cannot {action} in sync mode: the client steps the simulation")
 
-    def pause(self, _: dict[str, Any]) -> None:
+    def pause(self, _: JsonObject, __: _Read | ControlError | None) -> None:
         self._own_time("pause")
         self.context.world.paused = True
 
-    def resume(self, _: dict[str, Any]) -> None:
+    def resume(self, _: JsonObject, __: _Read | ControlError | None) -> None:
         self._own_time("resume")
         self.pause_after_step = False
         self.context.world.paused = False
 
-    def step(self, _: dict[str, Any]) -> None:
+    def step(self, _: JsonObject, __: _Read | ControlError | None) -> None:
         self._own_time("step")
         self.context.world.paused = False
         self.pause_after_step = True
 
     # -- scenarios --------------------------------------------------------------------
 
-    def scenarios(self, _: dict[str, Any]) -> dict[str, Any]:
+    def scenarios(self, _: JsonObject, __: _Read | ControlError | None) -> ReplyFields:
         """Scenario files in the data roots, as names a load request takes."""
         names: list[str] = []
         for root in self.context.data_roots:
@@ -124,17 +140,17 @@ class ViewControls:
                     names.append(path.relative_to(base).as_posix())
         return {"scenarios": names}
 
-    def prepare(self, request: Any) -> Any:
+    def prepare(self, request: JsonValue) -> PreparedRequest:
         """`request` with its file work done (server thread): a load or reload reads and
         parses its scenario here, so the loop only applies it."""
         op = request.get("op") if isinstance(request, dict) else None
-        if op == "load":
-            return {**request, "read": self._read_named(request.get("name"))}
+        if op == "load" and isinstance(request, dict):
+            return PreparedRequest(request, self._read_named(request.get("name")))
         if op == "reload":
-            return {**request, "read": self._read_again()}
-        return request
+            return PreparedRequest(request, self._read_again())
+        return PreparedRequest(request)
 
-    def _read_named(self, name: Any) -> _Read | ControlError:
+    def _read_named(self, name: JsonValue) -> _Read | ControlError:
         if not isinstance(name, str) or not name:
             return ControlError("load needs a scenario 'name'")
         try:
@@ -152,16 +168,18 @@ class ViewControls:
         except (OSError, UnicodeDecodeError, ScenarioError) as error:
             return ControlError(f"scenario not reloaded: {error}")
 
-    def load(self, request: dict[str, Any]) -> dict[str, Any]:
-        read = request.get("read") or self._read_named(request.get("name"))
+    def load(self, request: JsonObject, read: _Read | ControlError | None) -> ReplyFields:
+        name = request.get("name")
+        read = read or self._read_named(name)
         if isinstance(read, ControlError):
             raise read
+        assert isinstance(name, str)  # a read scenario was named
         self._load(read.scenario)
         self.reload_source = read.again
-        return {"loaded": request["name"]}
+        return {"loaded": name}
 
-    def reload(self, request: dict[str, Any]) -> None:
-        read = request.get("read") or self._read_again()
+    def reload(self, _: JsonObject, read: _Read | ControlError | None) -> None:
+        read = read or self._read_again()
         if isinstance(read, ControlError):
             raise read
         self._load(read.scenario)
@@ -177,20 +195,20 @@ class ViewControls:
 
     # -- driving ----------------------------------------------------------------------
 
-    def _ego_index(self, request: dict[str, Any]) -> int:
+    def _ego_index(self, request: JsonObject) -> int:
         index = request.get("ego", 0)
         if not isinstance(index, int) or not 0 <= index < len(self.context.world.egos):
             raise ControlError(f"no ego {index!r}")
         return index
 
-    def ctrl_mode(self, request: dict[str, Any]) -> None:
+    def ctrl_mode(self, request: JsonObject, _: _Read | ControlError | None) -> None:
         mode = request.get("mode")
         if mode not in PAGE_CTRL_MODES:
             raise ControlError(f"control mode {mode!r} is not one of {PAGE_CTRL_MODES}")
         ego = self.context.world.egos[self._ego_index(request)]
-        self.context.ego_session(ego).set_ctrl_mode(ControlMode(mode), by="the view")
+        self.context.ego_session(ego).set_ctrl_mode(ControlMode(int(mode)), by="the view")
 
-    def keys(self, request: dict[str, Any]) -> None:
+    def keys(self, request: JsonObject, _: _Read | ControlError | None) -> None:
         ego = self.context.world.egos[self._ego_index(request)]
         if self.context.ego_session(ego).ctrl_mode is not ControlMode.KEYBOARD:
             raise ControlError("the ego is not in keyboard control mode")
@@ -221,7 +239,7 @@ class ViewControls:
 
     # -- replay -----------------------------------------------------------------------
 
-    def replay(self, request: dict[str, Any]) -> None:
+    def replay(self, request: JsonObject, _: _Read | ControlError | None) -> None:
         session = self.context.replay
         if session.timeline is None:
             raise ControlError("no bag loaded for replay")
@@ -246,7 +264,10 @@ class ViewControls:
             raise ControlError(f"replay {action} failed: {result.name.lower()}")
 
     _HANDLERS: ClassVar[
-        dict[str, Callable[[ViewControls, dict[str, Any]], dict[str, Any] | None]]
+        dict[
+            str,
+            Callable[[ViewControls, JsonObject, _Read | ControlError | None], ReplyFields | None],
+        ]
     ] = {
         "pause": pause,
         "resume": resume,

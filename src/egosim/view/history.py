@@ -14,16 +14,18 @@ from __future__ import annotations
 import math
 import threading
 from collections import deque
-from typing import Any
+from typing import Literal, get_args
 
 import numpy as np
 
 from ..bridge import BridgeContext
+from .messages import HistoryMessage, HistorySeries
 from .snapshot import ego_entries
 
 HISTORY_S = 60.0
 SPACING_S = 0.1
-FIELDS = ("x", "y", "speed", "steer", "accel_pedal", "brake_pedal", "lane_offset")
+PlottedField = Literal["x", "y", "speed", "steer", "accel_pedal", "brake_pedal", "lane_offset"]
+FIELDS: tuple[PlottedField, ...] = get_args(PlottedField)
 """What is kept of an ego's frame entry, besides the time."""
 
 Sample = tuple[float, ...]
@@ -60,11 +62,11 @@ class PlotHistory:
                 egos[entry["id"]] = ring
             self._egos = egos  # egos that are gone are forgotten
 
-    def message(self) -> dict[str, Any]:
+    def message(self) -> HistoryMessage:
         """Everything kept, as a "history" message (any thread; `encode` makes its JSON)."""
         with self._lock:
             kept = {unique_id: list(ring) for unique_id, ring in self._egos.items()}
-        egos = []
+        egos: list[HistorySeries] = []
         for unique_id, samples in kept.items():
             columns = np.array(samples, dtype=np.float64).reshape(-1, len(FIELDS) + 1).T
             egos.append({"id": unique_id, **dict(zip(("t", *FIELDS), columns, strict=True))})

@@ -10,9 +10,9 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable
-from typing import Any
 
 from ..bridge.rate_schedule import RateSchedule
+from .messages import CapturedFrame
 from .snapshot import encode
 
 #: Frames per second the loop offers at most (and so the browsers receive at most).
@@ -30,7 +30,7 @@ class FrameHub:
         self._rate = RateSchedule(max_rate_hz)
         self._monotonic = monotonic
         self._lock = threading.Lock()
-        self._frame: dict[str, Any] | None = None
+        self._frame: CapturedFrame | None = None
         self._sequence = 0
         self._encoded: tuple[int, str] | None = None
         self.clients = 0
@@ -44,7 +44,7 @@ class FrameHub:
         """A frame should be taken now: someone watches and the rate allows it."""
         return self.clients > 0 and self._rate.is_due(self._monotonic())
 
-    def offer(self, frame: dict[str, Any]) -> None:
+    def offer(self, frame: CapturedFrame) -> None:
         """Publish a captured frame (loop thread); replaces any not yet sent."""
         self._rate.advance(self._monotonic())
         with self._lock:

@@ -20,13 +20,15 @@ import threading
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 from aiohttp import WSMsgType, web
 
 from ..app.inbox import Inbox, LoopStoppedError
+from ..json_value import JsonValue
+from .controls import PreparedRequest
 from .hub import FrameHub
-from .ros_graph import nodes_of
+from .messages import Hello, Reply
+from .ros_graph import SystemState, nodes_of
 
 log = logging.getLogger(__name__)
 
@@ -62,17 +64,17 @@ class ViewBackend:
 
     hub: FrameHub
     inbox: Inbox
-    prepare: Callable[[Any], Any]
+    prepare: Callable[[JsonValue], PreparedRequest]
     """Does a request's file work on a worker thread (ViewControls.prepare)."""
-    apply: Callable[[Any], dict[str, Any]]
+    apply: Callable[[JsonValue | PreparedRequest], Reply]
     """Runs one page request on the loop thread (ViewControls.apply)."""
     capture: Callable[[], None]
     """Takes a frame now, on the loop thread (ViewStage.capture)."""
     history: Callable[[], str]
     """The "history" message's JSON: the plotted series so far (PlotHistory)."""
     map_json: Callable[[], str]
-    system_state: Callable[[], tuple[list[Any], list[Any], list[Any]]]
-    hello: dict[str, Any]
+    system_state: Callable[[], SystemState]
+    hello: Hello
 
 
 class _Client:
@@ -279,12 +281,13 @@ class ViewServer:
 
     async def _on_request(self, client: _Client, text: str) -> None:
         try:
-            request = json.loads(text)
+            request: JsonValue = json.loads(text)
         except ValueError:
             await self._reply(client, {"ok": False, "error": "a request is JSON"})
             return
         op = request.get("op") if isinstance(request, dict) else None
-        if op == "layers":  # which layers this browser draws: the server's own business
+        if op == "layers" and isinstance(request, dict):
+            # Which layers this browser draws: the server's own business.
             client.lidar = request.get("lidar") is True
             self._set_watchers()
             return
@@ -293,18 +296,19 @@ class ViewServer:
             return
         inbox = self.backend.inbox
         apply, capture = self.backend.apply, self.backend.capture
-        if op in FIRE_AND_FORGET:
+        if isinstance(op, str) and op in FIRE_AND_FORGET:
             inbox.post(functools.partial(apply, request))
             return
 
         loop = asyncio.get_running_loop()
         prepared = await loop.run_in_executor(None, self.backend.prepare, request)
 
-        def run() -> dict[str, Any]:
+        def run() -> Reply:
             reply = apply(prepared)
             capture()  # show the result at once, even paused or in sync mode
             return reply
 
+        reply: Reply
         try:
             reply = await loop.run_in_executor(
                 None, functools.partial(inbox.call, run, REQUEST_TIMEOUT_S)
@@ -313,7 +317,7 @@ class ViewServer:
             reply = {"ok": False, "op": op, "error": f"the simulation did not answer: {error}"}
         await self._reply(client, reply)
 
-    async def _reply(self, client: _Client, reply: dict[str, Any]) -> None:
+    async def _reply(self, client: _Client, reply: Reply) -> None:
         await self._send(client, json.dumps({"type": "reply", **reply}))
 
     async def _poll_graph(self) -> None:

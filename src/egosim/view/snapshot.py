@@ -11,9 +11,8 @@ from __future__ import annotations
 
 import base64
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -33,6 +32,21 @@ from ..world.map.markings import (
 from ..world.signals import OFF, RED
 from ..world.signals.aspects import GREEN, GREEN_LEFT, YELLOW
 from ..world.traffic import ObjectState, ObjectTable, ObjectType
+from .messages import (
+    CapturedFrame,
+    Collision,
+    EgoEntry,
+    ImageSource,
+    MapLane,
+    MapMarking,
+    MapMessage,
+    Message,
+    ObjectColumns,
+    Point,
+    Polyline,
+    ReplayState,
+    SensorImage,
+)
 
 #: How long a collision keeps flashing on the page, s of simulation time.
 COLLISION_FLASH_S = 2.0
@@ -41,83 +55,74 @@ METRE_DIGITS = 2
 RADIAN_DIGITS = 3
 
 
-@dataclass(frozen=True)
-class SensorImage:
-    """The latest image of one image sensor (a camera), ready for an <img> tag."""
-
-    name: str
-    mime: str
-    """e.g. image/jpeg."""
-    data: bytes
-    stamp: float
-    """Simulation time it was taken, s."""
-
-
-ImageSource = Callable[[], SensorImage | None]
-"""Called on the loop thread when a frame is taken; its latest image or None."""
-
-
 # -- the map -----------------------------------------------------------------------------
 
 
-def _round(values: npt.ArrayLike, digits: int = METRE_DIGITS) -> Any:
-    return np.round(np.asarray(values, dtype=np.float64), digits).tolist()
+def _point(values: npt.ArrayLike) -> Point:
+    """A point or any flat row of lengths, to the centimetre."""
+    point: Point = np.round(np.asarray(values, dtype=np.float64), METRE_DIGITS).tolist()
+    return point
 
 
-def _paint(marking: RoadMarking) -> dict[str, Any]:
+def _polyline(points: npt.ArrayLike) -> Polyline:
+    """(N, 2) points, to the centimetre."""
+    polyline: Polyline = np.round(np.asarray(points, dtype=np.float64), METRE_DIGITS).tolist()
+    return polyline
+
+
+def _paint(marking: RoadMarking) -> MapMarking:
     """One marking as the page draws it: its points, colour and whether it is dashed."""
     dashed = LineStyle.DASHED in marking.lines
     return {
-        "points": _round(marking.points[:, :2]),
+        "points": _polyline(marking.points[:, :2]),
         "style": "dashed" if dashed else "solid",
         "color": marking.color.value,
         "double": len(marking.lines) > 1,
     }
 
 
-def map_snapshot(lane_map: LaneMap) -> dict[str, Any]:
+def map_snapshot(lane_map: LaneMap) -> MapMessage:
     """Everything static the page draws: lanes (as road surface outlines), the map's
     paint (the same markings the cameras see), junctions, crosswalks, sidewalks and the
     light heads."""
-    lanes = []
+    lanes: list[MapLane] = []
     for lane in lane_map.lanes.values():
         left, right = lane_edges(lane)
         lanes.append(
             {
                 "id": lane.id,
                 "junction": lane.is_junction,
-                "outline": _round(np.concatenate((left, right[::-1]))[:, :2]),
+                "outline": _polyline(np.concatenate((left, right[::-1]))[:, :2]),
             }
         )
     paint = map_markings(lane_map)
     markings = [_paint(m) for m in paint if m.kind is MarkingKind.LANE_LINE]
-    stop_lines = [_round(m.points[:, :2]) for m in paint if m.kind is MarkingKind.STOP_LINE]
+    stop_lines = [_polyline(m.points[:, :2]) for m in paint if m.kind is MarkingKind.STOP_LINE]
     return {
         "type": "map",
         "name": lane_map.name,
-        "bounds": _round(lane_map.bounds()),
+        "bounds": _point(lane_map.bounds()),
         "lanes": lanes,
         "markings": markings,
         "stop_lines": stop_lines,
         "junctions": [
-            {"id": site.id, "centre": _round(site.center)}
+            {"id": site.id, "centre": _point(site.center)}
             for site in lane_map.intersections.values()
         ],
         "crosswalks": [
-            {"id": c.id, "start": _round(c.start), "end": _round(c.end), "width": c.width}
+            {"id": c.id, "start": _point(c.start), "end": _point(c.end), "width": c.width}
             for c in lane_map.crosswalks.values()
         ],
-        "sidewalks": [_round(s.points[:, :2]) for s in lane_map.sidewalks.values()],
+        "sidewalks": [_polyline(s.points[:, :2]) for s in lane_map.sidewalks.values()],
         "lights": [
             {
                 "id": light.id,
-                "position": _round(light.position[:2]),
+                "position": _point(light.position[:2]),
                 "heading": round(light.heading, RADIAN_DIGITS),
                 "type": light.light_type,
             }
             for light in lane_map.traffic_lights.values()
         ],
-        # The lamp bits of an aspect, so the page decodes aspects with the world's codes.
         "aspect_bits": {"red": RED, "yellow": YELLOW, "green": GREEN, "left": GREEN_LEFT},
         "aspect_off": OFF,
         "object_kinds": {kind.name.lower(): int(kind) for kind in ObjectType},
@@ -136,10 +141,10 @@ class FrameInfo:
     controls_enabled: bool
 
 
-def ego_entries(context: BridgeContext) -> list[dict[str, Any]]:
-    """Every ego as a frame lists it (the page's panel, plots and drawing read these)."""
+def ego_entries(context: BridgeContext) -> list[EgoEntry]:
+    """Every ego as a frame lists it."""
     world = context.world
-    egos = []
+    egos: list[EgoEntry] = []
     for index, ego in enumerate(world.egos):
         status = world.ego_status(index)
         lane = world.ego_lane_state(index)
@@ -153,7 +158,6 @@ def ego_entries(context: BridgeContext) -> list[dict[str, Any]]:
                 "yaw": status.pose.yaw,
                 "length": model.length,
                 "width": model.width,
-                # Footprint centre ahead of the reference point (rear axle).
                 "centre_offset": model.bounding_box_center_offset,
                 "speed": status.speed,
                 "forward_speed": status.velocity[0],
@@ -170,7 +174,7 @@ def ego_entries(context: BridgeContext) -> list[dict[str, Any]]:
     return egos
 
 
-def _collisions(world: World) -> list[dict[str, Any]]:
+def _collisions(world: World) -> list[Collision]:
     """Collisions of the last COLLISION_FLASH_S, newest first: when, and where the struck
     object stood (ego collisions) or the first vehicle of the pair (NPC collisions)."""
     since = world.sim_time - COLLISION_FLASH_S
@@ -186,11 +190,11 @@ def _collisions(world: World) -> list[dict[str, Any]]:
     return recent
 
 
-def _collision_at(time_s: float, thing: ObjectState) -> dict[str, Any]:
+def _collision_at(time_s: float, thing: ObjectState) -> Collision:
     return {"t": time_s, "x": thing.position[0], "y": thing.position[1]}
 
 
-def _replay(context: BridgeContext) -> dict[str, Any] | None:
+def _replay(context: BridgeContext) -> ReplayState | None:
     replay = context.replay
     if replay.timeline is None:
         return None
@@ -208,7 +212,7 @@ def capture_frame(
     info: FrameInfo,
     lidar: FloatArray | None = None,
     images: Sequence[ImageSource] = (),
-) -> dict[str, Any]:
+) -> CapturedFrame:
     """The world now, as numbers and array copies (loop thread; see `encode`).
 
     `lidar`: LiDAR points (N, 2+) already in the map frame, or None when not shown.
@@ -240,7 +244,7 @@ def capture_frame(
 _ANGLE_KEYS = frozenset({"yaw", "steer"})
 
 
-def _objects(tables: list[ObjectTable]) -> dict[str, Any]:
+def _objects(tables: list[ObjectTable]) -> ObjectColumns:
     """NPCs, pedestrians and obstacles as columns (server thread)."""
     table = ObjectTable.concatenate(tables)
     return {
@@ -255,7 +259,9 @@ def _objects(tables: list[ObjectTable]) -> dict[str, Any]:
     }
 
 
-def _plain(value: Any, key: str = "") -> Any:
+def _plain(value: object, key: str = "") -> object:
+    """`value` as orjson writes it: floats rounded (non-finite ones null), arrays flat,
+    images in base64."""
     digits = RADIAN_DIGITS if key in _ANGLE_KEYS else METRE_DIGITS
     if isinstance(value, np.ndarray):
         if value.dtype.kind == "f":
@@ -277,9 +283,10 @@ def _plain(value: Any, key: str = "") -> Any:
     return value
 
 
-def encode(message: dict[str, Any]) -> str:
-    """JSON text of a map or a captured frame (server thread)."""
-    if message.get("type") == "frame":
-        message = {**message, "objects": _objects(message["objects"])}
+def encode(message: Message) -> str:
+    """JSON text of a map, a captured frame or the plots' history (server thread)."""
+    plain: Mapping[str, object] = message
+    if "objects" in message:
+        plain = {**message, "objects": _objects(message["objects"])}
     # orjson writes numpy arrays itself (NaN as null), several times faster than json.
-    return orjson.dumps(_plain(message), option=orjson.OPT_SERIALIZE_NUMPY).decode()
+    return orjson.dumps(_plain(plain), option=orjson.OPT_SERIALIZE_NUMPY).decode()

@@ -15,7 +15,8 @@ from ..world.vehicle import Pose
 from .controls import ViewControls
 from .history import PlotHistory
 from .hub import FrameHub
-from .snapshot import FrameInfo, ImageSource, capture_frame
+from .messages import ImageSource
+from .snapshot import FrameInfo, capture_frame
 
 #: LiDAR scans the view casts itself, per second at most, while a browser shows them.
 LIDAR_RATE_HZ = 5.0
