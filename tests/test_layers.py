@@ -33,6 +33,7 @@ LAYERS = (
     "yamltext",
     "datapaths",
     "logthrottle",
+    "json_value",
 )
 # Below in the order, yet out of reach: the pure core knows no ROS, ROS knows no driving.
 PURE = ("evaluation", "scenario_files", "maps", "sensors", "world")
