@@ -12,7 +12,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import partial
-from typing import Any
+from typing import TYPE_CHECKING
 
 from egosim.world.openscenario.actions import NoteAction
 from egosim.world.openscenario.catalogs import Catalogs, catalog_directories
@@ -32,6 +32,7 @@ from egosim.world.openscenario.signal_controllers import Phase, SignalController
 from egosim.world.openscenario.signal_states import parse_state
 from egosim.world.openscenario.storyboard import (
     ActElement,
+    Action,
     ActionElement,
     EventElement,
     ManeuverElement,
@@ -42,6 +43,9 @@ from egosim.world.openscenario.storyboard import (
 from egosim.world.openscenario.xmltree import Node, parse_xml
 from egosim.world.scenario.errors import ScenarioError
 from egosim.yamltext import Problems
+
+if TYPE_CHECKING:
+    from egosim.world.world import World
 
 EGO_NAMES = ("ego", "hero", "ego_vehicle", "egovehicle")
 """Names that make an entity the ego (case-insensitive) when none has an external
@@ -260,7 +264,7 @@ class Reader:
         action.spec = self._spec(element.node, lambda: self._action_spec(element))
         return action
 
-    def _spec(self, node: Node, read: Callable[[], Any]) -> Any:
+    def _spec(self, node: Node, read: Callable[[], Action]) -> Action:
         """The action `read` gives; an unsupported one becomes a note when it runs."""
         try:
             return read()
@@ -268,7 +272,7 @@ class Reader:
             self.notes.append(f"{unsupported}; left out")
             return NoteAction(node, "")
 
-    def _action_spec(self, element: Element) -> Any:
+    def _action_spec(self, element: Element) -> Action:
         choice = element.only_child()
         if choice is None:
             raise element.node.error("holds no action")
@@ -389,7 +393,7 @@ class OpenScenario:
     _catalogs: Catalogs = field(repr=False)
 
     def start(
-        self, world: Any, load_ego: bool, kinds: frozenset[str], drives_ego: bool
+        self, world: World, load_ego: bool, kinds: frozenset[str], drives_ego: bool
     ) -> ScenarioRun:
         notes: list[str] = []
         reader = Reader(self._root, self._scope, self._catalogs, notes)

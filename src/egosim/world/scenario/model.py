@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 from pathlib import PurePath
 from typing import Any, Protocol
 
+from egosim.json_value import JsonObject
 from egosim.world.map.georef import GeoReference
 from egosim.world.scenario.errors import ScenarioError
 from egosim.world.signals import IntersectionProgram, PhaseTiming
@@ -189,7 +190,7 @@ class Scenario:
     pedestrians: tuple[PedestrianSpec, ...] = ()
     obstacles: tuple[ObstacleSpec, ...] = ()
     signals: SignalsSpec = field(default_factory=SignalsSpec)
-    network: dict[str, Any] | None = None
+    network: JsonObject | None = None
     """The file's network settings, handed to the simulator as they are."""
     map_reference: str = ""
     """The `map` field as written: a map name, or a path relative to the scenario file
