@@ -12,7 +12,6 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import partial
-from typing import TYPE_CHECKING
 
 from egosim.world.openscenario.actions import NoteAction
 from egosim.world.openscenario.catalogs import Catalogs, catalog_directories
@@ -42,10 +41,8 @@ from egosim.world.openscenario.storyboard import (
 )
 from egosim.world.openscenario.xmltree import Node, parse_xml
 from egosim.world.scenario.errors import ScenarioError
+from egosim.world.scenario.model import StoryboardWorld
 from egosim.yamltext import Problems
-
-if TYPE_CHECKING:
-    from egosim.world.world import World
 
 EGO_NAMES = ("ego", "hero", "ego_vehicle", "egovehicle")
 """Names that make an entity the ego (case-insensitive) when none has an external
@@ -393,7 +390,7 @@ class OpenScenario:
     _catalogs: Catalogs = field(repr=False)
 
     def start(
-        self, world: World, load_ego: bool, kinds: frozenset[str], drives_ego: bool
+        self, world: StoryboardWorld, load_ego: bool, kinds: frozenset[str], drives_ego: bool
     ) -> ScenarioRun:
         notes: list[str] = []
         reader = Reader(self._root, self._scope, self._catalogs, notes)
