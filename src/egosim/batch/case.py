@@ -76,7 +76,7 @@ class CaseSpec:
     """Values of the OpenSCENARIO file's parameters for this case."""
 
     def as_dict(self) -> CaseFields:
-        # asdict gives each field as it is, the stack as its fields' dict.
+        # asdict turns the stack into the dict of its fields, as CaseFields has it.
         return cast(CaseFields, asdict(self))
 
     @classmethod
