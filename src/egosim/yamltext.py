@@ -9,9 +9,11 @@ from __future__ import annotations
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any
+from typing import cast
 
 import yaml
+
+from egosim.json_value import JsonObject, JsonValue
 
 FieldPath = tuple[str | int, ...]
 
@@ -92,7 +94,7 @@ class YamlDocument:
     """Plain data parsed from YAML, plus where each field sits in the file (1-based lines)."""
 
     label: str
-    data: Any
+    data: JsonValue
     lines: dict[FieldPath, int] = field(default_factory=dict)
     error_type: type[YamlFileError] = YamlFileError
 
@@ -147,7 +149,7 @@ def parse_yaml(
     budget = [MAX_VALUES]
     ancestors: set[int] = set()
 
-    def convert(node: yaml.Node, path: FieldPath) -> Any:
+    def convert(node: yaml.Node, path: FieldPath) -> JsonValue:
         line = node.start_mark.line + 1
         lines[path] = line
         # Aliases make a graph of a few lines expand without bound, or loop.
@@ -164,15 +166,17 @@ def parse_yaml(
                 ancestors.discard(id(node))
         return construct(node, path)
 
-    def convert_collection(node: yaml.Node, path: FieldPath) -> Any:
+    def convert_collection(node: yaml.Node, path: FieldPath) -> JsonValue:
         if isinstance(node, yaml.SequenceNode):
             return [convert(item, (*path, k)) for k, item in enumerate(node.value)]
-        result: dict[Any, Any] = {}
+        result: JsonObject = {}
         for key_node, value_node in node.value:
             key_line = key_node.start_mark.line + 1
             if not isinstance(key_node, yaml.ScalarNode):
                 raise error_type(label, key_line, field_name(path), "a key must be a plain value")
-            key = construct(key_node, path)
+            # A plain key that reads as a number or a flag stays one (`1: x`), as YAML
+            # builds it; readers compare keys with the names they know, so it is unknown.
+            key = cast(str, construct(key_node, path))
             # Named once: mypy (run by Python >= 3.11) misreads `lines[(*path, key)]` as
             # Python 3.11's unparenthesised star index when checking for Python 3.10.
             key_path = (*path, key)
@@ -182,12 +186,114 @@ def parse_yaml(
             lines[key_path] = key_line
         return result
 
-    def construct(node: yaml.Node, path: FieldPath) -> Any:
+    def construct(node: yaml.Node, path: FieldPath) -> JsonValue:
         try:
-            return constructor.construct_object(node, deep=True)
+            # YAML's safe scalars beyond JSON's (dates, binary) are kept as built: every
+            # reader checks a value's type before it uses it, and refuses those.
+            return cast(JsonValue, constructor.construct_object(node, deep=True))
         except (yaml.YAMLError, ValueError) as error:
             # ValueError: e.g. an int of more digits than Python converts.
             line = node.start_mark.line + 1
             raise error_type(label, line, field_name(path), f"bad value: {error}") from None
 
     return YamlDocument(label, convert(root, ()), lines, error_type)
+
+
+# Typed reads of a document's tree. For a document already checked against its schema
+# these only narrow; a value of another type is the reader's mistake, not the user's.
+
+
+def as_object(value: JsonValue) -> JsonObject:
+    """`value` as a mapping (TypeError if it is not one)."""
+    if not isinstance(value, dict):
+        raise TypeError(f"expected a mapping, got {value!r}")
+    return value
+
+
+def as_list(value: JsonValue) -> list[JsonValue]:
+    """`value` as a list (TypeError if it is not one)."""
+    if not isinstance(value, list):
+        raise TypeError(f"expected a list, got {value!r}")
+    return value
+
+
+def as_number(value: JsonValue) -> float:
+    """`value` as a float: an int or a float, never a flag (TypeError otherwise)."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise TypeError(f"expected a number, got {value!r}")
+    return float(value)
+
+
+def as_text(value: JsonValue) -> str:
+    """`value` as a string (TypeError if it is not one)."""
+    if not isinstance(value, str):
+        raise TypeError(f"expected a string, got {value!r}")
+    return value
+
+
+def object_at(data: JsonObject, key: str) -> JsonObject | None:
+    """The mapping at data[key]; None when the key is absent or null."""
+    value = data.get(key)
+    return None if value is None else as_object(value)
+
+
+def list_at(data: JsonObject, key: str) -> list[JsonValue]:
+    """The list at data[key]; empty when the key is absent or null."""
+    value = data.get(key)
+    return [] if value is None else as_list(value)
+
+
+def objects_at(data: JsonObject, key: str) -> list[JsonObject]:
+    """The mappings listed at data[key]; empty when the key is absent or null."""
+    return [as_object(item) for item in list_at(data, key)]
+
+
+def number_at(data: JsonObject, key: str, default: float | None = None) -> float:
+    """The number at data[key], as a float; `default` when absent (None: required)."""
+    value = data.get(key)
+    if value is None and default is not None:
+        return default
+    return as_number(value)
+
+
+def optional_number_at(data: JsonObject, key: str) -> float | None:
+    """The number at data[key], as a float; None when the key is absent or null."""
+    value = data.get(key)
+    return None if value is None else as_number(value)
+
+
+def integer_at(data: JsonObject, key: str, default: int | None = None) -> int:
+    """The integer at data[key] (JSON Schema's integers include 2.0); `default` when
+    absent (None: required)."""
+    value = data.get(key)
+    if value is None and default is not None:
+        return default
+    if isinstance(value, int) and not isinstance(value, bool):
+        return value
+    if isinstance(value, float) and value.is_integer():
+        return int(value)
+    raise TypeError(f"{key}: expected an integer, got {value!r}")
+
+
+def text_at(data: JsonObject, key: str, default: str | None = None) -> str:
+    """The string at data[key]; `default` when absent (None: required)."""
+    value = data.get(key)
+    if value is None and default is not None:
+        return default
+    return as_text(value)
+
+
+def optional_text_at(data: JsonObject, key: str) -> str | None:
+    """The string at data[key]; None when the key is absent or null."""
+    value = data.get(key)
+    return None if value is None else as_text(value)
+
+
+def flag_at(data: JsonObject, key: str, default: bool) -> bool:
+    """The true or false at data[key]; `default` when absent or null."""
+    value = data.get(key)
+    if value is None:
+        return default
+    if not isinstance(value, bool):
+        raise TypeError(f"{key}: expected true or false, got {value!r}")
+    return value

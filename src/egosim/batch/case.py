@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
-from typing import Any
+from typing import TypedDict, cast
 
 from egosim.batch.sweep import Value, format_value
+from egosim.json_value import JsonObject
 
 
 @dataclass(frozen=True)
@@ -16,11 +18,41 @@ class StackSpec:
     connect_timeout_s: float = 30.0
 
 
+class StackFields(TypedDict):
+    """A StackSpec as plain data."""
+
+    command: str
+    env: dict[str, str]
+    connect_timeout_s: float
+
+
+class CaseFields(TypedDict):
+    """A CaseSpec as plain data (what a case's folder keeps as JSON)."""
+
+    name: str
+    scenario: JsonObject
+    scenario_file: str
+    parameters: dict[str, Value]
+    stack: StackFields
+    suite_dir: str
+    map: str
+    route: JsonObject | None
+    clock: str
+    rtf: float
+    time_limit_s: float
+    wall_limit_s: float
+    criteria: Sequence[str]
+    scoring: JsonObject
+    bags: str
+    openscenario: str
+    scenario_parameters: dict[str, str]
+
+
 @dataclass(frozen=True)
 class CaseSpec:
     name: str
     """Stable: the case's name and its parameters, `lap[seed=1,speed=20]`."""
-    scenario: dict[str, Any]
+    scenario: JsonObject
     """The scenario data with the case's parameters applied."""
     scenario_file: str
     parameters: dict[str, Value]
@@ -28,14 +60,14 @@ class CaseSpec:
     suite_dir: str
     map: str
     """egosim run --map: a built-in map's name or a path."""
-    route: dict[str, Any] | None = None
+    route: JsonObject | None = None
     """{"waypoints": [[x, y], ...]} or {"lanes": [...]}, optionally with "first_m"."""
     clock: str = "sim"
     rtf: float = 0.0
     time_limit_s: float = 60.0
     wall_limit_s: float = 720.0
     criteria: tuple[str, ...] = ()
-    scoring: dict[str, Any] = field(default_factory=dict)
+    scoring: JsonObject = field(default_factory=dict)
     bags: str = "all"
     """Which cases keep their bag: "all", "failed" (those that did not pass), "none"."""
     openscenario: str = ""
@@ -43,15 +75,31 @@ class CaseSpec:
     scenario_parameters: dict[str, str] = field(default_factory=dict)
     """Values of the OpenSCENARIO file's parameters for this case."""
 
-    def as_dict(self) -> dict[str, Any]:
-        return asdict(self)
+    def as_dict(self) -> CaseFields:
+        # asdict turns the stack into the dict of its fields, as CaseFields has it.
+        return cast(CaseFields, asdict(self))
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> CaseSpec:
-        fields = dict(data)
-        fields["stack"] = StackSpec(**fields["stack"])
-        fields["criteria"] = tuple(fields["criteria"])
-        return cls(**fields)
+    def from_dict(cls, data: CaseFields) -> CaseSpec:
+        return cls(
+            name=data["name"],
+            scenario=data["scenario"],
+            scenario_file=data["scenario_file"],
+            parameters=data["parameters"],
+            stack=StackSpec(**data["stack"]),
+            suite_dir=data["suite_dir"],
+            map=data["map"],
+            route=data["route"],
+            clock=data["clock"],
+            rtf=data["rtf"],
+            time_limit_s=data["time_limit_s"],
+            wall_limit_s=data["wall_limit_s"],
+            criteria=tuple(data["criteria"]),
+            scoring=data["scoring"],
+            bags=data["bags"],
+            openscenario=data["openscenario"],
+            scenario_parameters=data["scenario_parameters"],
+        )
 
     def placeholders(self, case_dir: str) -> dict[str, str]:
         """What {name} stands for in the stack's command and environment."""

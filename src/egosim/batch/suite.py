@@ -7,11 +7,10 @@ import csv
 import json
 import string
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cache
 from importlib import resources
 from pathlib import Path
-from typing import Any
 
 import jsonschema
 
@@ -19,6 +18,7 @@ from egosim.batch.case import CaseSpec, StackSpec
 from egosim.batch.errors import SuiteError
 from egosim.batch.sweep import Value, case_name, format_value, parameter_sets
 from egosim.evaluation import METRIC_NAMES, CriterionError, InfractionKind, parse_criterion
+from egosim.json_value import JsonObject, JsonValue
 from egosim.maps import scenario_map_location
 from egosim.scenario_files import is_morai_scenario, is_openscenario, read_openscenario_file
 from egosim.world.map import BUILTIN_MAP_NAMES
@@ -26,7 +26,22 @@ from egosim.world.openscenario.distributions import is_distribution, read_distri
 from egosim.world.openscenario.program import root_of
 from egosim.world.scenario import ScenarioError, parse_scenario
 from egosim.world.scenario.morai import morai_document, read_morai_scenario
-from egosim.yamltext import FieldPath, YamlDocument, YamlFileError, parse_yaml
+from egosim.yamltext import (
+    FieldPath,
+    YamlDocument,
+    YamlFileError,
+    as_list,
+    as_number,
+    as_object,
+    as_text,
+    list_at,
+    number_at,
+    object_at,
+    objects_at,
+    optional_text_at,
+    parse_yaml,
+    text_at,
+)
 
 DEFAULT_TIME_LIMIT_S = 60.0
 DEFAULT_CRITERIA = ("no_collision",)
@@ -41,7 +56,7 @@ class ScenarioLayout:
     """Parameters that keep the first N entries of a scenario list."""
     fields: Mapping[str, str]
     """Parameters that set a scenario field directly."""
-    check: Callable[[dict[str, Any], str], object]
+    check: Callable[[JsonValue, str], object]
     """Raises ScenarioError for a scenario (data, label) that cannot be used."""
 
 
@@ -56,11 +71,10 @@ MORAI_LAYOUT = ScenarioLayout(
 
 
 @cache
-def suite_schema() -> dict[str, Any]:
+def suite_schema() -> JsonObject:
     """The JSON Schema of suite files."""
     text = resources.files(__package__).joinpath("suite.schema.json").read_text("utf-8")
-    schema: dict[str, Any] = json.loads(text)
-    return schema
+    return as_object(json.loads(text))
 
 
 def load_suite(path: Path) -> list[CaseSpec]:
@@ -76,7 +90,7 @@ def scenario_suite(path: Path, stack: str, time_limit_s: float, clock: str) -> l
     """The cases of one OpenSCENARIO file, ParameterValueDistribution file or MORAI
     scenario file run with the stack command `stack` (`egosim batch FILE.xosc --stack
     COMMAND`)."""
-    data = {
+    data: JsonObject = {
         "stack": {"command": stack},
         "clock": clock,
         "time_limit_s": time_limit_s,
@@ -87,9 +101,9 @@ def scenario_suite(path: Path, stack: str, time_limit_s: float, clock: str) -> l
 
 def _cases(source: YamlDocument, suite_dir: Path) -> list[CaseSpec]:
     _validate(source)
-    data = source.data
+    data = as_object(source.data)
     cases: list[CaseSpec] = []
-    for k, entry in enumerate(data["cases"]):
+    for k, entry in enumerate(objects_at(data, "cases")):
         cases.extend(_expand(source, ("cases", k), entry, suite_dir))
     names = [case.name for case in cases]
     for k, name in enumerate(names):
@@ -103,7 +117,7 @@ def _validate(source: YamlDocument) -> None:
     error = jsonschema.exceptions.best_match(validator.iter_errors(source.data))
     if error is not None:
         raise source.error(tuple(error.absolute_path), error.message)
-    data = source.data
+    data = as_object(source.data)
     for path, criteria in _criteria_lists(data):
         for k, text in enumerate(criteria):
             try:
@@ -111,34 +125,61 @@ def _validate(source: YamlDocument) -> None:
             except CriterionError as problem:
                 raise source.error((*path, k), str(problem)) from None
     kinds = {kind.value for kind in InfractionKind}
-    for kind in data.get("scoring", {}).get("penalties", {}):
+    for kind in object_at(object_at(data, "scoring") or {}, "penalties") or {}:
         if kind not in kinds:
             known = ", ".join(sorted(kinds))
             raise source.error(("scoring", "penalties", kind), f"no infraction {kind!r}; {known}")
 
 
-def _criteria_lists(data: dict[str, Any]) -> list[tuple[FieldPath, list[str]]]:
+def _criteria_lists(data: JsonObject) -> list[tuple[FieldPath, list[str]]]:
     found: list[tuple[FieldPath, list[str]]] = []
     if "criteria" in data:
-        found.append((("criteria",), data["criteria"]))
-    for k, case in enumerate(data["cases"]):
+        found.append((("criteria",), _texts(data["criteria"])))
+    for k, case in enumerate(objects_at(data, "cases")):
         if "criteria" in case:
-            found.append((("cases", k, "criteria"), case["criteria"]))
+            found.append((("cases", k, "criteria"), _texts(case["criteria"])))
     return found
 
 
+def _texts(value: JsonValue) -> list[str]:
+    return [as_text(item) for item in as_list(value)]
+
+
+def _value(value: JsonValue) -> Value:
+    """A parameter's value (the schema's number, string or boolean)."""
+    if not isinstance(value, bool | int | float | str):
+        raise TypeError(f"expected a parameter value, got {value!r}")
+    return value
+
+
+def _values(data: JsonObject | None) -> dict[str, Value]:
+    return {key: _value(value) for key, value in (data or {}).items()}
+
+
+def _parameter_sets(entry: JsonObject) -> list[dict[str, Value]]:
+    """The parameter sets of an entry's `sweep` and `combinations`."""
+    sweep: dict[str, list[Value] | dict[str, float]] = {}
+    for name, spec in (object_at(entry, "sweep") or {}).items():
+        if isinstance(spec, dict):
+            sweep[name] = {key: as_number(bound) for key, bound in spec.items()}
+        else:
+            sweep[name] = [_value(item) for item in as_list(spec)]
+    combinations = [_values(as_object(c)) for c in list_at(entry, "combinations")]
+    return parameter_sets(sweep, combinations)
+
+
 def _expand(
-    source: YamlDocument, path: FieldPath, entry: dict[str, Any], suite_dir: Path
+    source: YamlDocument, path: FieldPath, entry: JsonObject, suite_dir: Path
 ) -> list[CaseSpec]:
-    data = source.data
-    scenario_path = suite_dir / entry["scenario"]
+    data = as_object(source.data)
+    scenario_path = suite_dir / text_at(entry, "scenario")
     if is_openscenario(scenario_path):
         return _openscenario_cases(source, path, entry, scenario_path, suite_dir)
     morai = is_morai_scenario(scenario_path)
     layout = MORAI_LAYOUT if morai else YAML_LAYOUT
     try:
         scenario_text = scenario_path.read_text(encoding="utf-8")
-        scenario_data = (
+        scenario_data: JsonValue = (
             morai_document(scenario_text, str(scenario_path))
             if morai
             else parse_yaml(scenario_text, str(scenario_path), ScenarioError).data
@@ -148,101 +189,110 @@ def _expand(
     except YamlFileError as error:
         raise source.error((*path, "scenario"), str(error)) from None
     try:
-        sets = parameter_sets(entry.get("sweep"), entry.get("combinations"))
+        sets = _parameter_sets(entry)
     except ValueError as error:
         raise source.error((*path, "sweep"), str(error)) from None
     stack_spec = _stack(data)
-    route = _route(source, path, entry.get("route"), suite_dir)
+    route = _route(source, path, object_at(entry, "route"), suite_dir)
     if morai:
-        map_name = _morai_map(entry, scenario_data, scenario_path, suite_dir)
+        map_name: JsonValue = _morai_map(entry, scenario_data, scenario_path, suite_dir)
     else:
         map_name = entry.get(
             "map", scenario_data.get("map") if isinstance(scenario_data, dict) else None
         )
-        if map_name is not None and map_name not in BUILTIN_MAP_NAMES and "map" in entry:
+        if isinstance(map_name, str) and map_name not in BUILTIN_MAP_NAMES and "map" in entry:
             map_name = str(suite_dir / map_name)
     cases = []
-    defaults = {**data.get("parameters", {}), **entry.get("parameters", {})}
+    defaults = {**_parameters(data), **_parameters(entry)}
     for swept in sets:
-        name = case_name(entry["name"], swept)
+        name = case_name(text_at(entry, "name"), swept)
         where = (*path, "sweep") if swept else path
         parameters = {**defaults, **swept}
         scenario = _apply(source, where, name, scenario_data, parameters, stack_spec, layout)
-        cases.append(
-            _case(data, entry, name, scenario_path, parameters, suite_dir, str(map_name), route)
-            | {"scenario": scenario}
-        )
-    return [CaseSpec(**case) for case in cases]
+        case = _case(data, entry, name, scenario_path, parameters, suite_dir, str(map_name), route)
+        cases.append(replace(case, scenario=scenario))
+    return cases
+
+
+def _parameters(data: JsonObject) -> dict[str, Value]:
+    return _values(object_at(data, "parameters"))
 
 
 def _morai_map(
-    entry: dict[str, Any], data: dict[str, Any], scenario_path: Path, suite_dir: Path
+    entry: JsonObject, data: JsonValue, scenario_path: Path, suite_dir: Path
 ) -> str | None:
     """The map a MORAI case runs: the entry's `map`, else the file's mapInfo.mapName (a
     map name, or a map folder beside the file)."""
     if "map" in entry:
         given = str(entry["map"])
         return given if given in BUILTIN_MAP_NAMES else str(suite_dir / given)
-    info = data.get("mapInfo")
+    info = data.get("mapInfo") if isinstance(data, dict) else None
     name = info.get("mapName") if isinstance(info, dict) else None
     if not isinstance(name, str) or not name:
         return None
     return scenario_map_location(name, scenario_path.parent)
 
 
-def _stack(data: dict[str, Any]) -> StackSpec:
-    stack = data["stack"]
+def _stack(data: JsonObject) -> StackSpec:
+    stack = as_object(data["stack"])
     return StackSpec(
-        command=stack["command"],
-        env={k: str(v) for k, v in stack.get("env", {}).items()},
-        connect_timeout_s=float(stack.get("connect_timeout_s", 30.0)),
+        command=text_at(stack, "command"),
+        env={k: str(v) for k, v in (object_at(stack, "env") or {}).items()},
+        connect_timeout_s=number_at(stack, "connect_timeout_s", 30.0),
     )
 
 
 def _case(
-    data: dict[str, Any],
-    entry: dict[str, Any],
+    data: JsonObject,
+    entry: JsonObject,
     name: str,
     scenario_path: Path,
     parameters: dict[str, Value],
     suite_dir: Path,
     map_name: str,
-    route: dict[str, Any] | None,
-) -> dict[str, Any]:
-    """A case's fields that do not depend on the scenario's format."""
+    route: JsonObject | None,
+) -> CaseSpec:
+    """A case with the fields that do not depend on the scenario's format (its scenario
+    still empty)."""
     clock = data.get("clock", "sim")
-    mode, rtf = (clock, 0.0) if isinstance(clock, str) else (clock["mode"], clock.get("rtf", 0.0))
-    time_limit = float(entry.get("time_limit_s", data.get("time_limit_s", DEFAULT_TIME_LIMIT_S)))
-    return {
-        "name": name,
-        "scenario": {},
-        "scenario_file": str(scenario_path),
-        "parameters": parameters,
-        "stack": _stack(data),
-        "suite_dir": str(suite_dir),
-        "map": map_name,
-        "route": route,
-        "clock": mode,
-        "rtf": float(rtf),
-        "time_limit_s": time_limit,
-        "wall_limit_s": float(data.get("wall_limit_s", 120.0 + 10.0 * time_limit)),
-        "criteria": tuple(entry.get("criteria", data.get("criteria", DEFAULT_CRITERIA))),
-        "scoring": dict(data.get("scoring", {})),
-        "bags": data.get("bags", "all"),
-    }
+    if isinstance(clock, str):
+        mode, rtf = clock, 0.0
+    else:
+        clock = as_object(clock)
+        mode, rtf = text_at(clock, "mode"), number_at(clock, "rtf", 0.0)
+    suite_limit = number_at(data, "time_limit_s", DEFAULT_TIME_LIMIT_S)
+    time_limit = number_at(entry, "time_limit_s", suite_limit)
+    criteria = entry.get("criteria", data.get("criteria"))
+    return CaseSpec(
+        name=name,
+        scenario={},
+        scenario_file=str(scenario_path),
+        parameters=parameters,
+        stack=_stack(data),
+        suite_dir=str(suite_dir),
+        map=map_name,
+        route=route,
+        clock=mode,
+        rtf=rtf,
+        time_limit_s=time_limit,
+        wall_limit_s=number_at(data, "wall_limit_s", 120.0 + 10.0 * time_limit),
+        criteria=DEFAULT_CRITERIA if criteria is None else tuple(_texts(criteria)),
+        scoring=dict(object_at(data, "scoring") or {}),
+        bags=text_at(data, "bags", "all"),
+    )
 
 
 def _openscenario_cases(
     source: YamlDocument,
     path: FieldPath,
-    entry: dict[str, Any],
+    entry: JsonObject,
     file: Path,
     suite_dir: Path,
 ) -> list[CaseSpec]:
     """The cases of an OpenSCENARIO file (the suite's sweep sets its declared
     parameters), or of a ParameterValueDistribution file: one case per concrete
     parameter set, named by the values the distribution gives."""
-    data = source.data
+    data = as_object(source.data)
     where = (*path, "scenario")
     try:
         text = file.read_bytes()
@@ -264,18 +314,18 @@ def _openscenario_cases(
     else:
         scenario_file = file
         try:
-            variants = parameter_sets(entry.get("sweep"), entry.get("combinations"))
+            variants = _parameter_sets(entry)
         except ValueError as error:
             raise source.error((*path, "sweep"), str(error)) from None
         named = None
     stack = _stack(data)
-    route = _route(source, path, entry.get("route"), suite_dir)
-    defaults = {**data.get("parameters", {}), **entry.get("parameters", {})}
+    route = _route(source, path, object_at(entry, "route"), suite_dir)
+    defaults = {**_parameters(data), **_parameters(entry)}
     cases = []
     declared: set[str] | None = None
     for variant in variants:
         shown = variant if named is None else {k: v for k, v in variant.items() if k in named}
-        name = case_name(entry["name"], shown)
+        name = case_name(text_at(entry, "name"), shown)
         parameters = {**defaults, **variant}
         declared = declared if declared is not None else _declared(source, where, scenario_file)
         unused = [k for k in parameters if k not in declared and k not in _stack_fields(stack)]
@@ -287,14 +337,14 @@ def _openscenario_cases(
             scenario = read_openscenario_file(scenario_file, parameters=values, log_notes=False)
         except (OSError, ScenarioError) as error:
             raise source.error(where, f"case {name}: {error}") from None
-        map_name = entry.get("map")
+        map_name = optional_text_at(entry, "map")
         location = (
             str(suite_dir / map_name)
             if map_name is not None and map_name not in BUILTIN_MAP_NAMES
             else map_name or scenario_map_location(scenario.map_reference, scenario_file.parent)
         )
         case = _case(data, entry, name, file, parameters, suite_dir, location, route)
-        cases.append(CaseSpec(**case, openscenario=str(scenario_file), scenario_parameters=values))
+        cases.append(replace(case, openscenario=str(scenario_file), scenario_parameters=values))
     return cases
 
 
@@ -312,14 +362,16 @@ def _declared(source: YamlDocument, where: FieldPath, file: Path) -> set[str]:
 
 
 def _route(
-    source: YamlDocument, path: FieldPath, route: dict[str, Any] | None, suite_dir: Path
-) -> dict[str, Any] | None:
+    source: YamlDocument, path: FieldPath, route: JsonObject | None, suite_dir: Path
+) -> JsonObject | None:
     if route is None or "csv" not in route:
         return route
-    csv_path = suite_dir / route["csv"]
+    csv_path = suite_dir / text_at(route, "csv")
     try:
         with csv_path.open(encoding="utf-8", newline="") as file:
-            points = [[float(row["x"]), float(row["y"])] for row in csv.DictReader(file)]
+            points: list[JsonValue] = [
+                [float(row["x"]), float(row["y"])] for row in csv.DictReader(file)
+            ]
     except (OSError, UnicodeDecodeError, KeyError, ValueError, TypeError) as error:
         message = f"cannot read x, y columns from {csv_path}: {error!r}"
         raise source.error((*path, "route", "csv"), message) from None
@@ -332,17 +384,17 @@ def _apply(
     source: YamlDocument,
     path: FieldPath,
     name: str,
-    scenario: dict[str, Any],
+    scenario: JsonValue,
     parameters: Mapping[str, Value],
     stack: StackSpec,
     layout: ScenarioLayout,
-) -> dict[str, Any]:
+) -> JsonObject:
     """The scenario with `$parameter` values replaced, its fields set and lists cut to
     their counts (as `layout` says); every parameter must be used somewhere (scenario or
     stack)."""
     used: set[str] = set()
 
-    def substitute(value: Any) -> Any:
+    def substitute(value: JsonValue) -> JsonValue:
         if isinstance(value, dict):
             return {k: substitute(v) for k, v in value.items()}
         if isinstance(value, list):
@@ -355,17 +407,22 @@ def _apply(
             return parameters[key]
         return value
 
-    result: dict[str, Any] = substitute(copy.deepcopy(scenario))
+    substituted = substitute(copy.deepcopy(scenario))
+    # Not a mapping: the check below refuses it, once every parameter is accounted for.
+    result = substituted if isinstance(substituted, dict) else {}
     for key, value in parameters.items():
         if key in layout.fields:
             result[layout.fields[key]] = value
             used.add(key)
         elif key in layout.counted_lists:
-            entries = result.get(layout.counted_lists[key], [])
+            listed = result.get(layout.counted_lists[key], [])
+            # Not a list: the check below refuses it.
+            entries = listed if isinstance(listed, list) else []
             if not isinstance(value, int) or not 0 <= value <= len(entries):
                 message = f"case {name}: {key} must be 0..{len(entries)} (the scenario's list)"
                 raise source.error(path, message)
-            result[layout.counted_lists[key]] = entries[:value]
+            if isinstance(listed, list):
+                result[layout.counted_lists[key]] = entries[:value]
             used.add(key)
     used |= _stack_fields(stack) & set(parameters)
     unused = [key for key in parameters if key not in used]
@@ -373,7 +430,7 @@ def _apply(
         message = f"case {name}: parameter {unused[0]!r} is used by neither scenario nor stack"
         raise source.error(path, message)
     try:
-        layout.check(result, f"{name} ({source.label})")
+        layout.check(substituted, f"{name} ({source.label})")
     except ScenarioError as error:
         raise source.error(path, str(error)) from None
     return result

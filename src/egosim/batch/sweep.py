@@ -6,7 +6,6 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Mapping, Sequence
-from typing import Any
 
 Value = float | int | str | bool
 MAX_CASES = 1_000_000
@@ -42,7 +41,7 @@ def parameter_sets(
     return [{**fixed, **swept} for fixed in explicit for swept in product]
 
 
-def format_value(value: Any) -> str:
+def format_value(value: Value) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, float):

@@ -14,10 +14,10 @@ from __future__ import annotations
 import itertools
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
+from egosim.json_value import JsonObject
 from egosim.world.collision import EgoCollision, VehicleCollision
 from egosim.world.contact import ContactModel
 from egosim.world.contact_handling import ContactHandler, StepContacts
@@ -185,7 +185,7 @@ class World:
         """What each ego (by unique id) touches now, as it is now: contacts that last."""
         self.vehicle_contacts: list[VehicleCollision] = []
         """The NPC-NPC contacts of now, time-stamped when they began."""
-        self.network_settings_request: dict[str, Any] | None = None
+        self.network_settings_request: JsonObject | None = None
         """The network settings of the last ScenarioLoad that asked for them."""
         self._contacts = ContactHandler(self.objects())
         if scenario is not None:

@@ -23,21 +23,23 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable
-from typing import Any, TypeVar, cast
+from typing import ParamSpec, TypeVar, cast
 
-KernelFunction = TypeVar("KernelFunction", bound=Callable[..., Any])
+Parameters = ParamSpec("Parameters")
+Result = TypeVar("Result")
+Compiler = Callable[[Callable[..., object]], Callable[..., object]]
 
 SWITCH_VARIABLE = "EGOSIM_COMPILED"
 
 
-def _numba_jit() -> Callable[[Any], Any] | None:
+def _numba_jit() -> Compiler | None:
     if os.environ.get(SWITCH_VARIABLE, "1").strip().lower() in ("0", "false", "no", "off"):
         return None
     try:
         import numba  # noqa: PLC0415 (optional: no wheel on some platforms)
     except ImportError:
         return None
-    jit: Callable[[Any], Any] = numba.njit(cache=True, fastmath=False, nogil=True)
+    jit: Compiler = numba.njit(cache=True, fastmath=False, nogil=True)
     return jit
 
 
@@ -49,12 +51,13 @@ ACTIVE = AVAILABLE
 """The compiled path runs (read at every call: tests may switch it off)."""
 
 
-def kernel(function: KernelFunction) -> KernelFunction:
+def kernel(function: Callable[Parameters, Result]) -> Callable[Parameters, Result]:
     """`function` compiled (lazily, on its first call) where numba is available; as
     written elsewhere, though the callers then take the numpy path instead."""
     if _JIT is None:
         return function
-    return cast(KernelFunction, _JIT(function))
+    # numba's dispatcher is called as the function it compiles, with the same result.
+    return cast(Callable[Parameters, Result], _JIT(function))
 
 
 __all__ = ["ACTIVE", "AVAILABLE", "SWITCH_VARIABLE", "kernel"]

@@ -6,9 +6,10 @@ import re
 import warnings
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Any, TypeVar, overload
+from typing import TypeAlias, TypeVar, overload
 
 import numpy as np
+from numpy.typing import ArrayLike
 from pyproj import CRS, Transformer, get_ellps_map
 from pyproj.exceptions import CRSError
 
@@ -134,28 +135,26 @@ class GeoReference:
 
 
 @overload
-def _like_input(sample: float, values: tuple[Any, Any, Any]) -> tuple[float, float, float]: ...
+def _like_input(
+    sample: float, values: tuple[ArrayLike, ArrayLike, ArrayLike]
+) -> tuple[float, float, float]: ...
 
 
 @overload
 def _like_input(
-    sample: FloatArray, values: tuple[Any, Any, Any]
+    sample: FloatArray, values: tuple[ArrayLike, ArrayLike, ArrayLike]
 ) -> tuple[FloatArray, FloatArray, FloatArray]: ...
 
 
 def _like_input(
-    sample: float | FloatArray, values: tuple[Any, Any, Any]
+    sample: float | FloatArray, values: tuple[ArrayLike, ArrayLike, ArrayLike]
 ) -> tuple[float, float, float] | tuple[FloatArray, FloatArray, FloatArray]:
     """Scalars in, Python floats out; arrays in, float64 arrays out (`values` are pyproj's
-    and numpy's results, which their stubs leave untyped)."""
-    first, second, third = values
+    and numpy's results)."""
+    first, second, third = (np.asarray(value, dtype=np.float64) for value in values)
     if np.ndim(sample) == 0:
         return float(first), float(second), float(third)
-    return (
-        np.asarray(first, dtype=np.float64),
-        np.asarray(second, dtype=np.float64),
-        np.asarray(third, dtype=np.float64),
-    )
+    return first, second, third
 
 
 @lru_cache(maxsize=16)
@@ -172,8 +171,12 @@ def _projection_to_geodetic(projection: str) -> Transformer:
     return Transformer.from_crs(crs, crs.geodetic_crs, always_xy=True)
 
 
+ProjValue: TypeAlias = str | int | float | bool | None
+"""A value of a PROJ parameter (`+k_0=0.9996`; a bare `+no_defs` is None)."""
+
+
 @lru_cache(maxsize=16)
-def _projection_dict(projection: str) -> dict[str, Any]:
+def _projection_dict(projection: str) -> dict[str, ProjValue]:
     with warnings.catch_warnings():
         # to_dict goes through a PROJ string; its lossy-conversion warning is about datums.
         warnings.simplefilter("ignore", UserWarning)

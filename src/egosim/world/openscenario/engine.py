@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -24,13 +23,10 @@ from egosim.world.openscenario.motion import move_all
 from egosim.world.openscenario.runtime import Runtime, UnknownEntityError
 from egosim.world.openscenario.signal_controllers import SignalController
 from egosim.world.openscenario.storyboard import COMPLETE, Storyboard
-from egosim.world.scenario.model import Outcome
+from egosim.world.scenario.model import Outcome, StoryboardWorld
 from egosim.world.traffic.scripted import ScriptedObject
 from egosim.world.vehicle import Pose, Vehicle
 from egosim.world.vehicle.catalogue import VehicleModel
-
-if TYPE_CHECKING:
-    from egosim.world.world import World
 
 
 @dataclass
@@ -56,7 +52,7 @@ class ScenarioRun:
 
     def __init__(
         self,
-        world: World,
+        world: StoryboardWorld,
         storyboard: Storyboard,
         evaluation: Evaluation,
         signal_controllers: dict[str, SignalController],

@@ -15,21 +15,21 @@ import math
 import operator
 import re
 from collections.abc import Callable, Mapping
-from typing import Any
 
 Value = float | bool | str
 
 _REFERENCE = re.compile(r"\$([A-Za-z_][A-Za-z0-9_]*)")
 _PREFIX = "__p_"
 
-_BINARY: dict[type[ast.operator], Callable[[Any, Any], Any]] = {
+_BINARY: dict[type[ast.operator], Callable[[float, float], float]] = {
     ast.Add: operator.add,
     ast.Sub: operator.sub,
     ast.Mult: operator.mul,
     ast.Div: operator.truediv,
     ast.Mod: math.fmod,
 }
-_COMPARE: dict[type[ast.cmpop], Callable[[Any, Any], bool]] = {
+# Both sides are numbers, or both texts (a text on either side compares as text).
+_COMPARE: dict[type[ast.cmpop], Callable[[float | str, float | str], bool]] = {
     ast.Eq: operator.eq,
     ast.NotEq: operator.ne,
     ast.Lt: operator.lt,

@@ -12,7 +12,6 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import partial
-from typing import Any
 
 from egosim.world.openscenario.actions import NoteAction
 from egosim.world.openscenario.catalogs import Catalogs, catalog_directories
@@ -32,6 +31,7 @@ from egosim.world.openscenario.signal_controllers import Phase, SignalController
 from egosim.world.openscenario.signal_states import parse_state
 from egosim.world.openscenario.storyboard import (
     ActElement,
+    Action,
     ActionElement,
     EventElement,
     ManeuverElement,
@@ -41,6 +41,7 @@ from egosim.world.openscenario.storyboard import (
 )
 from egosim.world.openscenario.xmltree import Node, parse_xml
 from egosim.world.scenario.errors import ScenarioError
+from egosim.world.scenario.model import StoryboardWorld
 from egosim.yamltext import Problems
 
 EGO_NAMES = ("ego", "hero", "ego_vehicle", "egovehicle")
@@ -260,7 +261,7 @@ class Reader:
         action.spec = self._spec(element.node, lambda: self._action_spec(element))
         return action
 
-    def _spec(self, node: Node, read: Callable[[], Any]) -> Any:
+    def _spec(self, node: Node, read: Callable[[], Action]) -> Action:
         """The action `read` gives; an unsupported one becomes a note when it runs."""
         try:
             return read()
@@ -268,7 +269,7 @@ class Reader:
             self.notes.append(f"{unsupported}; left out")
             return NoteAction(node, "")
 
-    def _action_spec(self, element: Element) -> Any:
+    def _action_spec(self, element: Element) -> Action:
         choice = element.only_child()
         if choice is None:
             raise element.node.error("holds no action")
@@ -389,7 +390,7 @@ class OpenScenario:
     _catalogs: Catalogs = field(repr=False)
 
     def start(
-        self, world: Any, load_ego: bool, kinds: frozenset[str], drives_ego: bool
+        self, world: StoryboardWorld, load_ego: bool, kinds: frozenset[str], drives_ego: bool
     ) -> ScenarioRun:
         notes: list[str] = []
         reader = Reader(self._root, self._scope, self._catalogs, notes)

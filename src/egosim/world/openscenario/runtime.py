@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Protocol
+from typing import Protocol
 
 from egosim.world.map import LaneMap
 from egosim.world.map.lane_roads import road_coordinates_of
@@ -13,9 +13,7 @@ from egosim.world.map.road_coordinates import RoadCoordinates
 from egosim.world.openscenario.entities import EntityState
 from egosim.world.openscenario.expressions import Value
 from egosim.world.openscenario.signal_controllers import SignalController
-
-if TYPE_CHECKING:
-    from egosim.world.world import World
+from egosim.world.scenario.model import StoryboardWorld
 
 
 class UnknownEntityError(LookupError):
@@ -37,7 +35,7 @@ class ElementState(Protocol):
 
 @dataclass
 class Runtime:
-    world: World
+    world: StoryboardWorld
     entities: dict[str, EntityState]
     parameters: dict[str, Value]
     variables: dict[str, Value]

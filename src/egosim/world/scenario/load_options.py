@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+
+from egosim.json_value import JsonObject
 
 
 @dataclass(frozen=True)
@@ -39,7 +40,7 @@ class ScenarioLoadReport:
     npcs_spawned: int
     pedestrians_spawned: int
     obstacles_spawned: int
-    network_settings: dict[str, Any] | None
+    network_settings: JsonObject | None
     """The file's `network` section when load_network_connection_data was set (else None)."""
     paused: bool
     notes: tuple[str, ...] = ()

@@ -5,11 +5,15 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import PurePath
-from typing import Any, Protocol
+from typing import Protocol
 
+from egosim.json_value import JsonObject
+from egosim.world.map import LaneMap
 from egosim.world.map.georef import GeoReference
+from egosim.world.populations import Ego
 from egosim.world.scenario.errors import ScenarioError
-from egosim.world.signals import IntersectionProgram, PhaseTiming
+from egosim.world.signals import IntersectionProgram, PhaseTiming, TrafficSignals
+from egosim.world.traffic.scripted import ScriptedObjects
 from egosim.world.vehicle import Gear
 from egosim.yamltext import FieldPath, YamlDocument
 
@@ -160,11 +164,53 @@ class StoryboardRun(Protocol):
         ...
 
 
+class EgoLanePlace(Protocol):
+    """Where an ego sits on its lane, as a storyboard reads it."""
+
+    @property
+    def lane_id(self) -> str: ...
+
+    @property
+    def s(self) -> float: ...
+
+    @property
+    def lateral_offset(self) -> float: ...
+
+
+class StoryboardWorld(Protocol):
+    """What a running storyboard uses of the world it runs on (egosim.world.World, whose
+    module imports this one)."""
+
+    @property
+    def map(self) -> LaneMap: ...
+
+    @property
+    def signals(self) -> TrafficSignals: ...
+
+    @property
+    def egos(self) -> list[Ego]: ...
+
+    @property
+    def scripted(self) -> ScriptedObjects: ...
+
+    @property
+    def scripted_egos(self) -> set[int]:
+        """The egos the storyboard moves (their stacks' commands are not applied)."""
+        ...
+
+    @property
+    def command_timeout_s(self) -> float | None: ...
+
+    def reserve_ids(self, count: int) -> list[int]: ...
+
+    def ego_lane_state(self, index: int = 0) -> EgoLanePlace: ...
+
+
 class StoryboardProgram(Protocol):
     """A storyboard ready to run: `start` places its entities (its Init) on a world."""
 
     def start(
-        self, world: Any, load_ego: bool, kinds: frozenset[str], drives_ego: bool
+        self, world: StoryboardWorld, load_ego: bool, kinds: frozenset[str], drives_ego: bool
     ) -> StoryboardRun:
         """Run Init on `world`; load_ego: place the ego as Init says; kinds: the entity
         kinds to create (vehicle, pedestrian, miscellaneous object); drives_ego: the
@@ -189,7 +235,7 @@ class Scenario:
     pedestrians: tuple[PedestrianSpec, ...] = ()
     obstacles: tuple[ObstacleSpec, ...] = ()
     signals: SignalsSpec = field(default_factory=SignalsSpec)
-    network: dict[str, Any] | None = None
+    network: JsonObject | None = None
     """The file's network settings, handed to the simulator as they are."""
     map_reference: str = ""
     """The `map` field as written: a map name, or a path relative to the scenario file

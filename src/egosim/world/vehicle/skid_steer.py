@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING
 
 from egosim.world.vehicle.catalogue import GRAVITY
 from egosim.world.vehicle.control import DEFAULT_COMMAND_TIMEOUT
@@ -27,9 +27,12 @@ from egosim.world.vehicle.skid_steer_commands import (
     SkidSteerCommand,
     SkidSteerGate,
 )
-from egosim.world.vehicle.stepping import GatedVehicle
+from egosim.world.vehicle.stepping import GatedVehicle, VehicleOptions
 from egosim.world.vehicle.vehicle import DEFAULT_MAX_SUBSTEP, Pose, RoadSurface, VehicleStatus
 from egosim.world.vehicle.wheels import Wheels, WheelStatus
+
+if TYPE_CHECKING:
+    from typing_extensions import Unpack  # typing's own from Python 3.11
 
 STANDSTILL_SPEED = 0.01
 """A side commanded to stop that is slower than this (m/s) is held at rest, as the
@@ -71,7 +74,7 @@ class SkidSteerVehicle(GatedVehicle[SkidSteerCommand]):
 
     @classmethod
     def from_catalogue(
-        cls, name: str, pose: Pose | None = None, **options: Any
+        cls, name: str, pose: Pose | None = None, **options: Unpack[VehicleOptions]
     ) -> SkidSteerVehicle:
         """A vehicle of the ground vehicle model `name`; options as for the constructor."""
         return cls(GROUND_VEHICLE_CATALOGUE[name], pose, **options)

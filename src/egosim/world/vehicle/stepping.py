@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
-from typing import Generic, Protocol, TypeVar
+from typing import Generic, Protocol, TypedDict, TypeVar
 
 from egosim.world.vehicle.control import CommandVerdict
 from egosim.world.vehicle.gear import Gear
@@ -21,6 +21,14 @@ class Gate(Protocol[CommandT]):
     def active_command(self, sim_time: float) -> CommandT: ...
 
     def release(self) -> None: ...
+
+
+class VehicleOptions(TypedDict, total=False):
+    """A vehicle constructor's keyword options, as `from_catalogue` passes them on."""
+
+    gear: Gear
+    command_timeout: float | None
+    max_substep: float
 
 
 class GatedVehicle(Generic[CommandT]):

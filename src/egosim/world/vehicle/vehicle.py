@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 from egosim.world.vehicle.catalogue import DEFAULT_EGO_MODEL, VehicleModel, vehicle_model
 from egosim.world.vehicle.control import (
@@ -17,8 +17,11 @@ from egosim.world.vehicle.dynamics import ActuatorInputs, advance, kinematic_lat
 from egosim.world.vehicle.gear import Gear
 from egosim.world.vehicle.pedal_control import AccelerationTracker, Pedals, SpeedController
 from egosim.world.vehicle.state import VehicleState
-from egosim.world.vehicle.stepping import GatedVehicle
+from egosim.world.vehicle.stepping import GatedVehicle, VehicleOptions
 from egosim.world.vehicle.wheels import Wheels, wheel_statuses
+
+if TYPE_CHECKING:
+    from typing_extensions import Unpack  # typing's own from Python 3.11
 
 DEFAULT_MAX_SUBSTEP = 0.005
 """Longest integration step (s); a step(dt) is split into equal substeps no longer than this."""
@@ -108,7 +111,10 @@ class Vehicle(GatedVehicle[ControlCommand]):
 
     @classmethod
     def from_catalogue(
-        cls, name: str = DEFAULT_EGO_MODEL, pose: Pose | None = None, **options: Any
+        cls,
+        name: str = DEFAULT_EGO_MODEL,
+        pose: Pose | None = None,
+        **options: Unpack[VehicleOptions],
     ) -> Vehicle:
         """A vehicle of the catalogue model `name`; options as for the constructor."""
         return cls(vehicle_model(name), pose, **options)

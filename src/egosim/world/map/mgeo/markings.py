@@ -12,8 +12,7 @@ has no known word, is reported and left out (boundaries that are not painted).
 
 from __future__ import annotations
 
-from typing import Any
-
+from egosim.json_value import JsonValue
 from egosim.world.map.errors import MapGeometryError
 from egosim.world.map.markings import (
     DASH_GAP_M,
@@ -68,11 +67,11 @@ def read_markings(items: list[Record], notes: list[str]) -> list[RoadMarking]:
     return markings
 
 
-def _first(value: Any) -> Any:
+def _first(value: JsonValue) -> JsonValue:
     return value[0] if isinstance(value, list) and value else value
 
 
-def _words(value: Any) -> list[str]:
+def _words(value: JsonValue) -> list[str]:
     if isinstance(value, str):
         return value.split()
     if isinstance(value, list):

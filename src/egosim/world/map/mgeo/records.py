@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 
+from egosim.json_value import JsonObject
 from egosim.world.arrays import FloatArray
 from egosim.world.map.errors import MapRecordError
 
@@ -19,7 +18,7 @@ class Record:
         self.source = source
         if not isinstance(data, dict):
             raise MapRecordError(source, f"record #{position}", "is not a JSON object")
-        self.data: dict[str, Any] = data
+        self.data: JsonObject = data
         self.label = f"record #{position} (idx {data.get('idx')!r})"
 
     def fail(self, reason: str) -> MapRecordError:
@@ -47,7 +46,7 @@ class Record:
         if value is None or value == "":
             return None
         try:
-            if isinstance(value, bool):
+            if isinstance(value, bool | list | dict):
                 raise ValueError
             result = float(value)
         except (TypeError, ValueError):

@@ -15,8 +15,8 @@ import json
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
 
+from egosim.json_value import JsonObject, JsonValue
 from egosim.world.map.georef import GeoReference
 from egosim.world.scenario.errors import ScenarioError
 from egosim.world.scenario.model import (
@@ -82,7 +82,7 @@ def read_morai_scenario(document: str | bytes, label: str = "<scenario>") -> Mor
     return _Reader(Reading(label), morai_document(document, label)).scenario()
 
 
-def morai_document(document: str | bytes, label: str = "<scenario>") -> dict[str, Any]:
+def morai_document(document: str | bytes, label: str = "<scenario>") -> JsonObject:
     """A MORAI scenario file's JSON object, not yet read; ScenarioError names the line and
     column of a syntax error."""
     try:
@@ -159,7 +159,7 @@ _OBJECT_COPIES = frozenset({"initPos", "initRot"})
 
 
 class _Reader:
-    def __init__(self, r: Reading, data: dict[str, Any]) -> None:
+    def __init__(self, r: Reading, data: JsonObject) -> None:
         self.r = r
         self.data = data
         self.paths = self._waypoint_paths()
@@ -259,7 +259,10 @@ class _Reader:
     # -- shared pieces --------------------------------------------------------------
 
     def _vector(
-        self, data: Mapping[str, Any], path: FieldPath, keys: tuple[str, str, str] = ("x", "y", "z")
+        self,
+        data: Mapping[str, JsonValue],
+        path: FieldPath,
+        keys: tuple[str, str, str] = ("x", "y", "z"),
     ) -> tuple[float, float, float] | None:
         values = [number(self.r, data, key, path) for key in keys]
         self.r.check_fields(data, path, frozenset(keys) | _POSITION_COPY, {})
@@ -268,7 +271,7 @@ class _Reader:
         x, y, z = (float(v) for v in values if v is not None)
         return x, y, z
 
-    def _yaw(self, data: Mapping[str, Any], path: FieldPath) -> float:
+    def _yaw(self, data: Mapping[str, JsonValue], path: FieldPath) -> float:
         """The heading of a `rot` object (rad); roll and pitch come from the road."""
         rot = mapping(self.r, data, "rot", path)
         if rot is None:
@@ -282,7 +285,7 @@ class _Reader:
         self.r.check_fields(rot, where, frozenset({"yaw", "roll", "pitch"}), {})
         return heading_of(yaw)
 
-    def _pose(self, data: Mapping[str, Any], path: FieldPath) -> PoseStart | None:
+    def _pose(self, data: Mapping[str, JsonValue], path: FieldPath) -> PoseStart | None:
         pos = mapping(self.r, data, "pos", path, required=True)
         vector = None if pos is None else self._vector(pos, (*path, "pos"))
         heading = self._yaw(data, path)
@@ -291,7 +294,7 @@ class _Reader:
         x, y, z = vector
         return PoseStart(x, y, z, heading)
 
-    def _start(self, data: Mapping[str, Any], path: FieldPath) -> Start | None:
+    def _start(self, data: Mapping[str, JsonValue], path: FieldPath) -> Start | None:
         """An initPosition: `pos` and `rot`, or a link and the ratio along it."""
         r = self.r
         mode = text(r, data, "initPositionMode", path, ABSOLUTE)
@@ -305,7 +308,7 @@ class _Reader:
             return None if ratio is None else LaneStart(link, ratio=ratio)
         return self._pose(data, path)
 
-    def _vehicle_model(self, data: Mapping[str, Any], path: FieldPath, default: str) -> str:
+    def _vehicle_model(self, data: Mapping[str, JsonValue], path: FieldPath, default: str) -> str:
         data_id = integer(self.r, data, "DataID", path)
         if data_id is None:
             return default
@@ -319,7 +322,7 @@ class _Reader:
 
     # -- the ego --------------------------------------------------------------------
 
-    def _ego(self, data: Mapping[str, Any], path: FieldPath) -> EgoSpec | None:
+    def _ego(self, data: Mapping[str, JsonValue], path: FieldPath) -> EgoSpec | None:
         r = self.r
         model = self._vehicle_model(data, path, DEFAULT_EGO_MODEL)
         speed = number(r, data, "currentVelocity", path, default=0.0, minimum=0.0)
@@ -334,7 +337,7 @@ class _Reader:
             return None
         return EgoSpec(path=path, model=model, start=start, speed=mps(speed), gear=gear)
 
-    def _gear(self, data: Mapping[str, Any], path: FieldPath) -> Gear | None:
+    def _gear(self, data: Mapping[str, JsonValue], path: FieldPath) -> Gear | None:
         value = integer(self.r, data, "gear", path, default=0)
         if value is None or "gear" not in data:
             return None
@@ -346,7 +349,7 @@ class _Reader:
 
     # -- NPC vehicles ---------------------------------------------------------------
 
-    def _npc(self, data: Mapping[str, Any], path: FieldPath) -> NpcSpec | None:
+    def _npc(self, data: Mapping[str, JsonValue], path: FieldPath) -> NpcSpec | None:
         r = self.r
         model = self._vehicle_model(data, path, DEFAULT_EGO_MODEL)
         init = mapping(r, data, "initPosition", path, required=True)
@@ -378,7 +381,7 @@ class _Reader:
         )
 
     def _desired_speed(
-        self, data: Mapping[str, Any], path: FieldPath
+        self, data: Mapping[str, JsonValue], path: FieldPath
     ) -> tuple[float | None, float] | None:
         """(target speed m/s or None, share of the lane's limit) of velocityType and
         desiredVelocity."""
@@ -401,7 +404,7 @@ class _Reader:
 
     # -- pedestrians ----------------------------------------------------------------
 
-    def _pedestrian(self, data: Mapping[str, Any], path: FieldPath) -> PedestrianSpec | None:
+    def _pedestrian(self, data: Mapping[str, JsonValue], path: FieldPath) -> PedestrianSpec | None:
         r = self.r
         data_id = integer(r, data, "DataID", path)
         if data_id is not None:
@@ -445,7 +448,7 @@ class _Reader:
 
     def _walk(
         self,
-        data: Mapping[str, Any],
+        data: Mapping[str, JsonValue],
         path: FieldPath,
         pose: PoseStart | None,
         moving: float | None,
@@ -471,7 +474,7 @@ class _Reader:
         return _distinct([(pose.x, pose.y), ahead])
 
     def _standard_point(
-        self, data: Mapping[str, Any], path: FieldPath
+        self, data: Mapping[str, JsonValue], path: FieldPath
     ) -> tuple[float, float] | None:
         """Where the active distance is measured from (`standardPos`, Unity's axes)."""
         standard = mapping(self.r, data, "standardPos", path)
@@ -483,7 +486,7 @@ class _Reader:
 
     # -- objects --------------------------------------------------------------------
 
-    def _object(self, data: Mapping[str, Any], path: FieldPath) -> ObstacleSpec | None:
+    def _object(self, data: Mapping[str, JsonValue], path: FieldPath) -> ObstacleSpec | None:
         r = self.r
         data_id = integer(r, data, "DataID", path)
         pose = self._pose(data, path)
@@ -508,7 +511,7 @@ class _Reader:
 
     # -- traffic lights -------------------------------------------------------------
 
-    def _signal(self, data: Mapping[str, Any], path: FieldPath) -> SignalStart | None:
+    def _signal(self, data: Mapping[str, JsonValue], path: FieldPath) -> SignalStart | None:
         r = self.r
         index = integer(r, data, "index", path)
         phase = integer(r, data, "state", path)

@@ -11,8 +11,8 @@ import math
 import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
 
+from egosim.json_value import JsonObject, JsonValue
 from egosim.world.scenario.errors import ScenarioError
 from egosim.yamltext import FieldPath, Problems, field_name
 
@@ -22,16 +22,16 @@ MAX_PLACES_LISTED = 5
 _NUMBER_TEXT = re.compile(r"[+-]?(\d{1,3}(,\d{3})+|\d+)?(\.\d*)?([eE][+-]?\d+)?")
 
 
-def always(_: Any) -> bool:
+def always(_: JsonValue) -> bool:
     return True
 
 
-def switched_on(key: str) -> Callable[[Any], bool]:
+def switched_on(key: str) -> Callable[[JsonValue], bool]:
     """Matters when the value is an object whose flag `key` is true."""
     return lambda value: isinstance(value, dict) and value.get(key) is True
 
 
-def truthy(value: Any) -> bool:
+def truthy(value: JsonValue) -> bool:
     """A value that asks for something: a true flag, a non-zero number, a non-empty list
     or mapping or text."""
     return bool(value)
@@ -42,7 +42,7 @@ class Ignored:
     """A field egosim reads past: why, and which of its values ask for something."""
 
     reason: str
-    matters: Callable[[Any], bool] = always
+    matters: Callable[[JsonValue], bool] = always
 
 
 @dataclass
@@ -78,7 +78,7 @@ class Reading:
 
     def check_fields(
         self,
-        data: Mapping[str, Any],
+        data: Mapping[str, JsonValue],
         path: FieldPath,
         read: frozenset[str],
         ignored: Mapping[str, Ignored],
@@ -94,12 +94,9 @@ class Reading:
                 self.report((*path, key), f"not carried out: {rule.reason}")
 
 
-_MISSING = object()
-
-
 def number(
     r: Reading,
-    data: Mapping[str, Any],
+    data: Mapping[str, JsonValue],
     key: str,
     path: FieldPath,
     default: float | None = None,
@@ -108,11 +105,11 @@ def number(
     """A finite number (or numeric text) at data[key]; `default` when it is absent (None:
     the field is required). A problem yields None."""
     where = (*path, key)
-    value = data.get(key, _MISSING)
-    if value is _MISSING:
+    if key not in data:
         if default is None:
             r.fail(where, "missing")
         return default
+    value = data[key]
     result = _as_number(value)
     if result is None or not math.isfinite(result):
         r.fail(where, f"{value!r} is not a number")
@@ -123,7 +120,7 @@ def number(
     return result
 
 
-def _as_number(value: Any) -> float | None:
+def _as_number(value: JsonValue) -> float | None:
     if isinstance(value, bool):
         return None
     if isinstance(value, int | float):
@@ -137,20 +134,22 @@ def _as_number(value: Any) -> float | None:
 
 
 def integer(
-    r: Reading, data: Mapping[str, Any], key: str, path: FieldPath, default: int | None = None
+    r: Reading, data: Mapping[str, JsonValue], key: str, path: FieldPath, default: int | None = None
 ) -> int | None:
-    value = data.get(key, _MISSING)
-    if value is _MISSING:
+    if key not in data:
         if default is None:
             r.fail((*path, key), "missing")
         return default
+    value = data[key]
     if isinstance(value, bool) or not isinstance(value, int | float) or value != int(value):
         r.fail((*path, key), f"{value!r} is not an integer")
         return None
     return int(value)
 
 
-def flag(r: Reading, data: Mapping[str, Any], key: str, path: FieldPath, default: bool) -> bool:
+def flag(
+    r: Reading, data: Mapping[str, JsonValue], key: str, path: FieldPath, default: bool
+) -> bool:
     value = data.get(key, default)
     if not isinstance(value, bool):
         r.fail((*path, key), f"{value!r} is not true or false")
@@ -158,7 +157,7 @@ def flag(r: Reading, data: Mapping[str, Any], key: str, path: FieldPath, default
     return value
 
 
-def text(r: Reading, data: Mapping[str, Any], key: str, path: FieldPath, default: str) -> str:
+def text(r: Reading, data: Mapping[str, JsonValue], key: str, path: FieldPath, default: str) -> str:
     value = data.get(key, default)
     if not isinstance(value, str):
         r.fail((*path, key), f"{value!r} is not a string")
@@ -167,11 +166,11 @@ def text(r: Reading, data: Mapping[str, Any], key: str, path: FieldPath, default
 
 
 def mapping(
-    r: Reading, data: Mapping[str, Any], key: str, path: FieldPath, required: bool = False
-) -> dict[str, Any] | None:
+    r: Reading, data: Mapping[str, JsonValue], key: str, path: FieldPath, required: bool = False
+) -> JsonObject | None:
     """The object at data[key]; None when absent (a problem when required)."""
-    value = data.get(key, _MISSING)
-    if value is _MISSING or value is None:
+    value = data.get(key)
+    if value is None:
         if required:
             r.fail((*path, key), "missing")
         return None
@@ -181,7 +180,9 @@ def mapping(
     return value
 
 
-def entries(r: Reading, data: Mapping[str, Any], key: str) -> list[tuple[FieldPath, Any]]:
+def entries(
+    r: Reading, data: Mapping[str, JsonValue], key: str
+) -> list[tuple[FieldPath, JsonObject]]:
     """(path, item) of each object of the top-level list data[key]; items that are not
     objects are problems."""
     value = data.get(key)
@@ -190,7 +191,7 @@ def entries(r: Reading, data: Mapping[str, Any], key: str) -> list[tuple[FieldPa
     if not isinstance(value, list):
         r.fail((key,), f"expected a list, got {type(value).__name__}")
         return []
-    found: list[tuple[FieldPath, Any]] = []
+    found: list[tuple[FieldPath, JsonObject]] = []
     for k, item in enumerate(value):
         if isinstance(item, dict):
             found.append(((key, k), item))
