@@ -99,6 +99,7 @@ def test_the_dead_man_timeout_is_off_unless_set() -> None:
         ("rows:\n  ctrl_cmd: {rate_hz: 5}\n", 2, "rows.ctrl_cmd.rate_hz"),
         ("rows:\n  ctrl_cmd:\n    enabled: true\n", 3, "rows.ctrl_cmd.enabled"),
         ("ego_input: Joystick\n", 1, "ego_input"),
+        ("ego_input: [MoraiCmdController]\n", 1, "ego_input"),
         ("rows:\n  lamps: {name: 'bad name'}\n", 2, "rows.lamps.name"),
         ("command_timeout_s: 0\n", 1, "command_timeout_s"),
         ("command_timeout_s: -1\n", 1, "command_timeout_s"),

@@ -83,8 +83,9 @@ def network_settings_of(document: YamlDocument) -> NetworkSettings:
     for key in sorted(set(data) - set(SETTINGS), key=str):
         problems.add(document.error((key,), f"unknown setting (known: {', '.join(SETTINGS)})"))
     ego_input = data.get("ego_input", DEFAULT_EGO_INPUT)
-    if ego_input not in EGO_INPUT_ROWS:
+    if not isinstance(ego_input, str) or ego_input not in EGO_INPUT_ROWS:
         problems.add(document.error(("ego_input",), f"must be one of {', '.join(EGO_INPUT_ROWS)}"))
+        ego_input = DEFAULT_EGO_INPUT
     rows = data.get("rows") or {}
     overrides: dict[str, Row] = {}
     if not isinstance(rows, dict):
