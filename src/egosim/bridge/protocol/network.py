@@ -15,8 +15,8 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass, field, replace
-from typing import Any
 
+from ...json_value import JsonObject, JsonValue
 from ...yamltext import Problems, YamlDocument, YamlFileError, parse_yaml
 from .sensor_settings import SensorSettings, parse_sensor_settings
 from .table import DEFAULT_EGO_INPUT, EGO_INPUT_ROWS, ROWS, ROWS_BY_KEY, Direction, Row
@@ -104,7 +104,7 @@ def network_settings_of(document: YamlDocument) -> NetworkSettings:
     return replace(settings_for(ego_input, overrides), sensors=sensors, command_timeout_s=timeout)
 
 
-def _command_timeout(document: YamlDocument, value: Any) -> float | None:
+def _command_timeout(document: YamlDocument, value: JsonValue) -> float | None:
     if value is None:
         return None
     if isinstance(value, bool) or not isinstance(value, int | float):
@@ -116,7 +116,7 @@ def _command_timeout(document: YamlDocument, value: Any) -> float | None:
     return float(value)
 
 
-def _override(document: YamlDocument, key: Any, value: Any) -> Row:
+def _override(document: YamlDocument, key: str, value: JsonValue) -> Row:
     path = ("rows", str(key))
     if key not in ROWS_BY_KEY:
         raise document.error(path, "unknown row (see `egosim topics` for the keys)")
@@ -132,25 +132,28 @@ def _override(document: YamlDocument, key: Any, value: Any) -> Row:
     name = value.get("name", row.name)
     if not isinstance(name, str) or not ROS_NAME.match(name):
         problems.add(document.error((*path, "name"), f"not a valid ROS name: {name!r}"))
+        name = row.name
     enabled = value.get("enabled", row.enabled)
     if not isinstance(enabled, bool):
         problems.add(document.error((*path, "enabled"), "expected true or false"))
+        enabled = row.enabled
     if key in EGO_INPUT_ROWS.values() and "enabled" in value:
         problems.add(
             document.error((*path, "enabled"), "ego command inputs are chosen by ego_input")
         )
-    rate = value.get("rate_hz", row.rate_hz)
+    rate = row.rate_hz
     with problems.collecting():
-        _check_rate(document, path, row, value)
+        rate = _rate(document, path, row, value)
     problems.raise_any()
     return replace(row, name=name, enabled=enabled, rate_hz=rate)
 
 
-def _check_rate(
-    document: YamlDocument, path: tuple[str, ...], row: Row, value: dict[str, Any]
-) -> None:
+def _rate(
+    document: YamlDocument, path: tuple[str, ...], row: Row, value: JsonObject
+) -> float | None:
+    """The row's rate_hz, if the file sets one, checked."""
     if "rate_hz" not in value:
-        return
+        return row.rate_hz
     rate = value["rate_hz"]
     if row.direction is not Direction.PUBLISH:
         raise document.error((*path, "rate_hz"), "only publishers have a rate")
@@ -158,6 +161,7 @@ def _check_rate(
         raise document.error((*path, "rate_hz"), "expected a number of Hz")
     if not (math.isfinite(rate) and 0 < rate <= MAX_RATE_HZ):
         raise document.error((*path, "rate_hz"), f"must be in 0..{MAX_RATE_HZ:g} Hz (above 0)")
+    return rate
 
 
 #: No row publishes faster than this (the physics runs at 100 Hz by default).

@@ -54,8 +54,9 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields, replace
 from enum import Enum
-from typing import Any, TypeVar, cast
+from typing import Any, TypeVar
 
+from ...json_value import JsonObject, JsonValue
 from ...sensors import GpsNoise, ImuNoise, LidarConfig, MountPose, SensorConfigError
 from ...sensors.camera import CameraConfig, CameraMode, FovAxis
 from ...sensors.image_encoding import ImageFormat
@@ -65,6 +66,7 @@ from .table import DEPTH_TOPIC
 from .units import rad
 
 T = TypeVar("T")
+PointSettings = TypeVar("PointSettings", "GpsSettings", "ImuSettings")
 E = TypeVar("E", bound=Enum)
 
 SENSOR_KINDS = ("gps", "imu", "lidar")
@@ -203,7 +205,7 @@ class SensorSettings:
 Path = tuple[str, ...]
 
 
-def parse_sensor_settings(document: YamlDocument, data: Any) -> SensorSettings:
+def parse_sensor_settings(document: YamlDocument, data: JsonValue) -> SensorSettings:
     """The `sensors:` mapping of a network settings document; errors name file, line and
     field, every problem of the section at once."""
     path: Path = ("sensors",)
@@ -214,18 +216,19 @@ def parse_sensor_settings(document: YamlDocument, data: Any) -> SensorSettings:
         _check_keys(document, path, data, SECTION_KEYS)
     if not isinstance(data, dict):
         problems.raise_any()
+        return SensorSettings()  # not reached: a section that is no mapping is a problem
     seed = data.get("seed", 0)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         problems.add(document.error((*path, "seed"), "expected a non-negative integer"))
     else:
         with problems.collecting():
-            seed = _number(document, (*path, "seed"), seed, integer=True)
+            _number(document, (*path, "seed"), seed, integer=True)
     settings = SensorSettings(seed=seed if isinstance(seed, int) else 0)
     with problems.collecting():
-        gps = _point_sensor(document, (*path, "gps"), data.get("gps"), GpsSettings, GpsNoise)
+        gps = _point_sensor(document, (*path, "gps"), data.get("gps"), GpsSettings)
         settings = replace(settings, gps=gps)
     with problems.collecting():
-        imu = _point_sensor(document, (*path, "imu"), data.get("imu"), ImuSettings, ImuNoise)
+        imu = _point_sensor(document, (*path, "imu"), data.get("imu"), ImuSettings)
         settings = replace(settings, imu=imu)
     with problems.collecting():
         settings = replace(settings, lidar=_lidar(document, (*path, "lidar"), data.get("lidar")))
@@ -237,9 +240,7 @@ def parse_sensor_settings(document: YamlDocument, data: Any) -> SensorSettings:
     return settings
 
 
-def _cameras(
-    document: YamlDocument, path: Path, section: dict[str, Any]
-) -> tuple[CameraSettings, ...]:
+def _cameras(document: YamlDocument, path: Path, section: JsonObject) -> tuple[CameraSettings, ...]:
     if "cameras" not in section:
         return SensorSettings().cameras
     data = section["cameras"]
@@ -250,12 +251,12 @@ def _cameras(
     return tuple(_camera(document, (*path, str(k)), item) for k, item in enumerate(data))
 
 
-def _camera(document: YamlDocument, path: Path, data: Any) -> CameraSettings:
-    if data is None:
+def _camera(document: YamlDocument, path: Path, item: JsonValue) -> CameraSettings:
+    if item is None:
         return CameraSettings()
     known = ("frame_id", "topic", "mode", "fov_axis", "format", "mount", *CAMERA_NUMBERS)
-    _check_keys(document, path, data, known)
-    values: dict[str, Any] = {}
+    data = _check_keys(document, path, item, known)
+    values: dict[str, Any] = {}  # CameraConfig's fields by name, for replace()
     for name in CAMERA_NUMBERS:
         if name in data:
             values[name] = _number(
@@ -281,12 +282,12 @@ def _camera(document: YamlDocument, path: Path, data: Any) -> CameraSettings:
     return CameraSettings(config, frame_id, topic, rate, image_format)
 
 
-def _radar(document: YamlDocument, path: Path, data: Any) -> RadarSettings:
+def _radar(document: YamlDocument, path: Path, section: JsonValue) -> RadarSettings:
     defaults = RadarSettings()
-    if data is None:
+    if section is None:
         return defaults
-    _check_keys(document, path, data, ("frame_id", "mount", "noise", *RADAR_NUMBERS))
-    values: dict[str, Any] = {}
+    data = _check_keys(document, path, section, ("frame_id", "mount", "noise", *RADAR_NUMBERS))
+    values: dict[str, Any] = {}  # RadarConfig's fields by name, for replace()
     for name in RADAR_NUMBERS:
         if name in data:
             values[name] = _number(
@@ -298,7 +299,7 @@ def _radar(document: YamlDocument, path: Path, data: Any) -> RadarSettings:
     return RadarSettings(frame_id=_frame_id(document, path, data, defaults.frame_id), config=config)
 
 
-def _choice(document: YamlDocument, path: Path, value: Any, kind: type[E]) -> E:
+def _choice(document: YamlDocument, path: Path, value: JsonValue, kind: type[E]) -> E:
     for member in kind:
         if value == member.value:
             return member
@@ -307,32 +308,35 @@ def _choice(document: YamlDocument, path: Path, value: Any, kind: type[E]) -> E:
 
 
 def _point_sensor(
-    document: YamlDocument, path: Path, data: Any, settings: type[T], noise: type
-) -> T:
+    document: YamlDocument,
+    path: Path,
+    section: JsonValue,
+    settings: type[PointSettings],
+) -> PointSettings:
     """GPS or IMU settings: a frame id, a mount and a noise model, each defaulted."""
-    defaults: Any = settings()
-    if data is None:
-        return cast(T, defaults)
-    _check_keys(document, path, data, ("frame_id", "mount", "noise"))
-    problems = Problems()
-    values: dict[str, Any] = {}
-    with problems.collecting():
-        values["frame_id"] = _frame_id(document, path, data, defaults.frame_id)
-    with problems.collecting():
-        values["mount"] = _mount(document, (*path, "mount"), data.get("mount"), defaults.mount)
-    with problems.collecting():
-        values["noise"] = _noise(document, (*path, "noise"), data.get("noise"), noise)
-    problems.raise_any()
-    return settings(**values)
-
-
-def _lidar(document: YamlDocument, path: Path, data: Any) -> LidarSettings:
-    defaults = LidarSettings()
-    if data is None:
+    defaults = settings()
+    if section is None:
         return defaults
-    _check_keys(document, path, data, ("frame_id", "mount", *LIDAR_FIELDS))
+    data = _check_keys(document, path, section, ("frame_id", "mount", "noise"))
     problems = Problems()
-    geometry: dict[str, Any] = {}
+    frame_id, mount, model = defaults.frame_id, defaults.mount, defaults.noise
+    with problems.collecting():
+        frame_id = _frame_id(document, path, data, defaults.frame_id)
+    with problems.collecting():
+        mount = _mount(document, (*path, "mount"), data.get("mount"), defaults.mount)
+    with problems.collecting():
+        model = _noise(document, (*path, "noise"), data.get("noise"), type(defaults.noise))
+    problems.raise_any()
+    return replace(defaults, frame_id=frame_id, mount=mount, noise=model)
+
+
+def _lidar(document: YamlDocument, path: Path, section: JsonValue) -> LidarSettings:
+    defaults = LidarSettings()
+    if section is None:
+        return defaults
+    data = _check_keys(document, path, section, ("frame_id", "mount", *LIDAR_FIELDS))
+    problems = Problems()
+    geometry: dict[str, Any] = {}  # LidarConfig's fields by name, for replace()
     resolution = data.get("horizontal_resolution_deg")
     not_positive = (
         isinstance(resolution, int | float) and not isinstance(resolution, bool) and resolution <= 0
@@ -369,10 +373,10 @@ def _lidar(document: YamlDocument, path: Path, data: Any) -> LidarSettings:
     return LidarSettings(frame_id=frame_id, config=config)
 
 
-def _mount(document: YamlDocument, path: Path, data: Any, default: MountPose) -> MountPose:
-    if data is None:
+def _mount(document: YamlDocument, path: Path, section: JsonValue, default: MountPose) -> MountPose:
+    if section is None:
         return default
-    _check_keys(document, path, data, tuple(MOUNT_FIELDS))
+    data = _check_keys(document, path, section, tuple(MOUNT_FIELDS))
     problems = Problems()
     values = {}
     for key, attribute in MOUNT_FIELDS.items():
@@ -384,14 +388,14 @@ def _mount(document: YamlDocument, path: Path, data: Any, default: MountPose) ->
     return replace(default, **values)
 
 
-def _noise(document: YamlDocument, path: Path, data: Any, kind: Callable[..., T]) -> T:
+def _noise(document: YamlDocument, path: Path, section: JsonValue, kind: Callable[..., T]) -> T:
     """GpsNoise or ImuNoise from their own field names (std values, bias vectors)."""
-    if data is None:
+    if section is None:
         return kind()
     names = tuple(f.name for f in fields(kind))  # type: ignore[arg-type]
-    _check_keys(document, path, data, names)
+    data = _check_keys(document, path, section, names)
     problems = Problems()
-    values: dict[str, Any] = {}
+    values: dict[str, Any] = {}  # the noise model's fields by name
     for name, value in data.items():
         with problems.collecting():
             if name.endswith("_bias_rad_s") or name.endswith("_bias_m_s2"):
@@ -402,15 +406,17 @@ def _noise(document: YamlDocument, path: Path, data: Any, kind: Callable[..., T]
     return _built(document, path, lambda: kind(**values))
 
 
-def _frame_id(document: YamlDocument, path: Path, data: dict[str, Any], default: str) -> str:
+def _frame_id(document: YamlDocument, path: Path, data: JsonObject, default: str) -> str:
     frame_id = data.get("frame_id", default)
     if not isinstance(frame_id, str) or not frame_id or "/" in frame_id.strip("/"):
         raise document.error((*path, "frame_id"), f"not a tf frame name: {frame_id!r}")
     return frame_id
 
 
-def _check_keys(document: YamlDocument, path: Path, data: Any, known: tuple[str, ...]) -> None:
-    """A mapping of known keys only; every unknown key is reported."""
+def _check_keys(
+    document: YamlDocument, path: Path, data: JsonValue, known: tuple[str, ...]
+) -> JsonObject:
+    """`data` as a mapping of known keys only; every unknown key is reported."""
     if not isinstance(data, dict):
         raise document.error(path, f"expected a mapping ({', '.join(known)})")
     unknown = [
@@ -420,15 +426,16 @@ def _check_keys(document: YamlDocument, path: Path, data: Any, known: tuple[str,
     ]
     if unknown:
         raise YamlFileError.of_all(unknown)
+    return data
 
 
 def _number(
     document: YamlDocument,
     path: Path,
-    value: Any,
+    value: JsonValue,
     integer: bool = False,
     bounds: tuple[float, float] | None = None,
-) -> Any:
+) -> float:
     """A finite number within `bounds` (default: the range of the field `path` ends in)."""
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise document.error(path, "expected a number")
@@ -445,7 +452,7 @@ def _number(
 
 
 def _vector(
-    document: YamlDocument, path: Path, value: Any, bounds: tuple[float, float]
+    document: YamlDocument, path: Path, value: JsonValue, bounds: tuple[float, float]
 ) -> tuple[float, float, float]:
     if not isinstance(value, list) or len(value) != 3:
         raise document.error(path, "expected a list of 3 numbers (x, y, z)")
