@@ -130,17 +130,22 @@ class SimulatedEgos:
         statuses = [ego.vehicle.status() for ego in self.egos]
         n = len(statuses)
         self._lane_cache = (tuple(s.pose for s in statuses), placed.part(0, n))
-        centres = placed.part(n, 2 * n)
-        yaws = np.array([s.pose.yaw for s in statuses])
-        widths = np.array([ego.vehicle.model.width for ego in self.egos])
-        on_lane = np.abs(centres.lateral) <= (centres.width + widths) / 2.0
-        lengths = np.array([ego.vehicle.model.length for ego in self.egos])
-        along = np.cos(yaws - centres.heading) * np.array([s.velocity[0] for s in statuses])
+        # Ego by ego in floats: a world has a few egos, and a numpy call on so few
+        # values costs more than the arithmetic.
+        lanes, stations = placed.lane_index[n:].tolist(), placed.s[n:].tolist()
+        laterals, widths = placed.lateral[n:].tolist(), placed.width[n:].tolist()
+        headings = placed.heading[n:].tolist()
+        occupants: list[tuple[int, float, float, float]] = []
+        for k, (ego, status) in enumerate(zip(self.egos, statuses, strict=True)):
+            model = ego.vehicle.model
+            if abs(laterals[k]) <= (widths[k] + model.width) / 2.0:
+                along = math.cos(status.pose.yaw - headings[k]) * status.velocity[0]
+                occupants.append((lanes[k], stations[k], model.length / 2.0, along))
+        if not occupants:
+            return LaneOccupants.empty()
+        lane, s, half_length, speed = zip(*occupants, strict=True)
         return LaneOccupants(
-            centres.lane_index[on_lane],
-            centres.s[on_lane],
-            lengths[on_lane] / 2.0,
-            along[on_lane],
+            np.array(lane, np.int64), np.array(s), np.array(half_length), np.array(speed)
         )
 
     def inverse_masses(self) -> FloatArray:
