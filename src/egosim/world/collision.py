@@ -67,8 +67,11 @@ def touching_pairs(
     if i.size == 0:
         return np.empty((0, 2), np.int64)
     travel = (after.centres - before.centres)[i] - (after.centres - before.centres)[j]
-    substeps = np.clip(
-        np.ceil(np.hypot(travel[:, 0], travel[:, 1]) / max_substep_m), 1, MAX_SUBSTEPS
+    # fmax/fmin, not clip: a travel that is not a number (odd input: boxes at infinity)
+    # takes one sub-step rather than an undefined count.
+    substeps = np.fmin(
+        np.fmax(np.ceil(np.hypot(travel[:, 0], travel[:, 1]) / max_substep_m), 1.0),
+        MAX_SUBSTEPS,
     ).astype(np.int64)
     pair = np.repeat(np.arange(i.size), substeps)
     first = np.cumsum(substeps) - substeps

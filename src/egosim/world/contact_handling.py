@@ -43,12 +43,16 @@ class StepContacts:
     """The NPC-NPC collisions that began now."""
 
 
-def footprints_of(table: ObjectTable) -> Footprints:
+def footprints_of(tables: Sequence[ObjectTable]) -> Footprints:
+    """The footprints of the rows of `tables` (at least one) one after the other, without
+    joining the tables' other columns; np.concatenate copies, so none shares memory."""
+    filled = [t for t in tables if len(t.headings)] or tables[:1]
+    sizes = np.concatenate([t.sizes for t in filled])
     return Footprints(
-        table.positions[:, :2].copy(),
-        table.headings.copy(),
-        table.sizes[:, 0].copy(),
-        table.sizes[:, 1].copy(),
+        np.concatenate([t.positions[:, :2] for t in filled]),
+        np.concatenate([t.headings for t in filled]),
+        sizes[:, 0].copy(),
+        sizes[:, 1].copy(),
     )
 
 
@@ -59,12 +63,12 @@ class ContactHandler:
 
     def __init__(self, table: ObjectTable) -> None:
         self._tracker = ContactTracker()
-        self._footprints = footprints_of(table)
+        self._footprints = footprints_of([table])
 
     def forget(self, table: ObjectTable) -> None:
         """Start again from the objects of `table`, with no contact remembered."""
         self._tracker.clear()
-        self._footprints = footprints_of(table)
+        self._footprints = footprints_of([table])
 
     def step(
         self, populations: Sequence[Population], model: ContactModel, now: float
@@ -72,15 +76,16 @@ class ContactHandler:
         """The contacts among the objects of `populations` (in that order, the order of
         the object table), swept from where they stood after the last step; time `now`."""
         tables = [population.table() for population in populations]
-        table = ObjectTable.concatenate(tables)
         bounds = list(itertools.accumulate(map(len, tables), initial=0))
-        footprints = footprints_of(table)
-        before = self._footprints if len(self._footprints.headings) == len(table) else footprints
+        footprints = footprints_of(tables)
+        before = self._footprints if len(self._footprints.headings) == bounds[-1] else footprints
         self._footprints = footprints
         pairs = touching_pairs(before, footprints)
         if len(pairs) == 0:
             self._tracker.begin([], now)
             return StepContacts({}, [], [], [])
+        # The whole table only where something touches: most steps nothing does.
+        table = ObjectTable.concatenate(tables)
         kinds = table.object_types[pairs]
         vehicles = (kinds == ObjectType.EGO) | (kinds == ObjectType.NPC_VEHICLE)
         contacts, struck = self._record(table, pairs, kinds, now)

@@ -52,8 +52,10 @@ def _separated_along(axis_heading: float, corners_a: FloatArray, corners_b: Floa
     for k in range(4):
         pa = corners_a[k, 0] * ax + corners_a[k, 1] * ay
         pb = corners_b[k, 0] * ax + corners_b[k, 1] * ay
-        low_a, high_a = min(low_a, pa), max(high_a, pa)
-        low_b, high_b = min(low_b, pb), max(high_b, pb)
+        # np.minimum and np.maximum, as the numpy path's min() and max() reduce: a NaN
+        # corner (odd input) makes the bounds NaN, and NaN bounds separate nothing.
+        low_a, high_a = minimum(low_a, pa), maximum(high_a, pa)
+        low_b, high_b = minimum(low_b, pb), maximum(high_b, pb)
     return high_a < low_b or high_b < low_a
 
 
@@ -68,6 +70,17 @@ def overlap(
         if _separated_along(axis_heading, corners_a, corners_b):
             return False
     return True
+
+
+@kernel
+def _substeps(travel_in_substeps: float, max_substeps: int) -> int:
+    """collision.touching_pairs's sub-step count: ceil(travel), within 1..max_substeps;
+    1 where the travel is not a number (a cast of NaN or inf to an integer is undefined)."""
+    if not travel_in_substeps > 1.0:
+        return 1
+    if travel_in_substeps >= max_substeps:
+        return max_substeps
+    return math.ceil(travel_in_substeps)
 
 
 @kernel
@@ -111,9 +124,7 @@ def touching_pairs(
             travel_y = (after_centres[first, 1] - before_centres[first, 1]) - (
                 after_centres[second, 1] - before_centres[second, 1]
             )
-            steps = int(
-                min(max(math.ceil(math.hypot(travel_x, travel_y) / max_substep_m), 1), max_substeps)
-            )
+            steps = _substeps(math.hypot(travel_x, travel_y) / max_substep_m, max_substeps)
             for step in range(1, steps + 1):
                 fraction = step / steps
                 boxes = []

@@ -194,6 +194,8 @@ class SegmentTable:
         is_min = cost == np.minimum.reduceat(cost, group_start)[group]
         pair = np.arange(len(cost))
         first = np.minimum.reduceat(np.where(is_min, pair, len(cost)), group_start)
+        # A point that is not a number (odd input) has no least cost: its first pair.
+        first = np.where(first < len(cost), first, group_start)
         points = point[group_start]
         found[points] = True
         seg_best[points] = seg[first]

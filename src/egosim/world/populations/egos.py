@@ -16,6 +16,7 @@ from egosim.world.traffic import LaneOccupants, ObjectTable, ObjectType
 from egosim.world.vehicle import (
     EgoModel,
     EgoVehicle,
+    Motion,
     Pose,
     RoadSurface,
     VehicleStatus,
@@ -44,11 +45,11 @@ class Ego:
         self.vehicle = ego_vehicle(model, status.pose, command_timeout)
         self.vehicle.teleport(status.pose, status.velocity[0])
 
-    def box_centre(self, status: VehicleStatus) -> tuple[float, float]:
+    def box_centre(self, motion: Motion | VehicleStatus) -> tuple[float, float]:
         """Footprint centre, m: the reference point moved to the middle of the body."""
         offset = self.vehicle.model.box_centre_ahead_of_reference
-        yaw = status.pose.yaw
-        return status.pose.x + offset * math.cos(yaw), status.pose.y + offset * math.sin(yaw)
+        yaw = motion.pose.yaw
+        return motion.pose.x + offset * math.cos(yaw), motion.pose.y + offset * math.sin(yaw)
 
 
 class SimulatedEgos:
@@ -70,13 +71,13 @@ class SimulatedEgos:
         return self.egos[index].vehicle.status()
 
     def positions(self) -> FloatArray:
-        poses = [ego.vehicle.status().pose for ego in self.egos]
+        poses = [ego.vehicle.motion().pose for ego in self.egos]
         return np.array([(pose.x, pose.y) for pose in poses], dtype=np.float64)
 
     def lanes(self) -> LaneProjections:
         """Kept while no ego moves: the step, the ego status and the light lookup all
         ask, and each projection costs as much as stepping a vehicle."""
-        poses = tuple(ego.vehicle.status().pose for ego in self.egos)
+        poses = tuple(ego.vehicle.motion().pose for ego in self.egos)
         known = self._lane_cache
         if known is None or known[0] != poses:
             projection = self.map.project_many([(p.x, p.y) for p in poses], [p.yaw for p in poses])
@@ -86,16 +87,16 @@ class SimulatedEgos:
     def table(self) -> ObjectTable:
         rows = []
         for ego in self.egos:
-            status = ego.vehicle.status()
-            yaw = status.pose.yaw
+            motion = ego.vehicle.motion()
+            yaw = motion.pose.yaw
             c, s = math.cos(yaw), math.sin(yaw)
-            vx, vy, _ = status.velocity
-            ax, ay, _ = status.acceleration
-            x, y = ego.box_centre(status)
+            vx, vy, _ = motion.velocity
+            ax, ay, _ = motion.acceleration
+            x, y = ego.box_centre(motion)
             model = ego.vehicle.model
             rows.append(
                 (
-                    *(x, y, status.pose.z),
+                    *(x, y, motion.pose.z),
                     yaw,
                     *(c * vx - s * vy, s * vx + c * vy, 0.0),  # velocity, map frame
                     *(c * ax - s * ay, s * ax + c * ay, 0.0),  # acceleration
@@ -119,28 +120,33 @@ class SimulatedEgos:
     def lane_points(self) -> LanePoints:
         """Each ego's reference point, then each one's footprint centre, its yaw as hint:
         the first give the lanes (kept, see lanes), the second the lane occupants."""
-        statuses = [ego.vehicle.status() for ego in self.egos]
-        references = [(s.pose.x, s.pose.y) for s in statuses]
-        centres = [ego.box_centre(s) for ego, s in zip(self.egos, statuses, strict=True)]
-        yaws = np.array([s.pose.yaw for s in statuses])
+        motions = [ego.vehicle.motion() for ego in self.egos]
+        references = [(m.pose.x, m.pose.y) for m in motions]
+        centres = [ego.box_centre(m) for ego, m in zip(self.egos, motions, strict=True)]
+        yaws = np.array([m.pose.yaw for m in motions])
         xy = np.array(references + centres).reshape(-1, 2)
         return LanePoints(xy, np.concatenate((yaws, yaws)))
 
     def lane_occupants(self, placed: LaneProjections) -> LaneOccupants:
-        statuses = [ego.vehicle.status() for ego in self.egos]
-        n = len(statuses)
-        self._lane_cache = (tuple(s.pose for s in statuses), placed.part(0, n))
-        centres = placed.part(n, 2 * n)
-        yaws = np.array([s.pose.yaw for s in statuses])
-        widths = np.array([ego.vehicle.model.width for ego in self.egos])
-        on_lane = np.abs(centres.lateral) <= (centres.width + widths) / 2.0
-        lengths = np.array([ego.vehicle.model.length for ego in self.egos])
-        along = np.cos(yaws - centres.heading) * np.array([s.velocity[0] for s in statuses])
+        motions = [ego.vehicle.motion() for ego in self.egos]
+        n = len(motions)
+        self._lane_cache = (tuple(m.pose for m in motions), placed.part(0, n))
+        # Ego by ego in floats: a world has a few egos, and a numpy call on so few
+        # values costs more than the arithmetic.
+        lanes, stations = placed.lane_index[n:].tolist(), placed.s[n:].tolist()
+        laterals, widths = placed.lateral[n:].tolist(), placed.width[n:].tolist()
+        headings = placed.heading[n:].tolist()
+        occupants: list[tuple[int, float, float, float]] = []
+        for k, (ego, motion) in enumerate(zip(self.egos, motions, strict=True)):
+            model = ego.vehicle.model
+            if abs(laterals[k]) <= (widths[k] + model.width) / 2.0:
+                along = math.cos(motion.pose.yaw - headings[k]) * motion.velocity[0]
+                occupants.append((lanes[k], stations[k], model.length / 2.0, along))
+        if not occupants:
+            return LaneOccupants.empty()
+        lane, s, half_length, speed = zip(*occupants, strict=True)
         return LaneOccupants(
-            centres.lane_index[on_lane],
-            centres.s[on_lane],
-            lengths[on_lane] / 2.0,
-            along[on_lane],
+            np.array(lane, np.int64), np.array(s), np.array(half_length), np.array(speed)
         )
 
     def inverse_masses(self) -> FloatArray:
@@ -166,7 +172,7 @@ class SimulatedEgos:
         lane's grade gives a vehicle facing the ego's way (roll: none)."""
         projection = self.lanes()
         n = len(projection)
-        yaws = np.array([ego.vehicle.status().pose.yaw for ego in self.egos])
+        yaws = np.array([ego.vehicle.motion().pose.yaw for ego in self.egos])
         stations = np.concatenate(
             (projection.s, projection.s - GRADE_BASE_M / 2.0, projection.s + GRADE_BASE_M / 2.0)
         )

@@ -26,11 +26,16 @@ class LaneOccupants:
 
     @classmethod
     def concatenate(cls, parts: list[LaneOccupants]) -> LaneOccupants:
+        """The occupants of `parts` one after the other, in new arrays (most parts of a
+        step are empty: they are left out of the joining)."""
+        filled = [p for p in parts if len(p.lane)] or parts[:1]
+        if not filled:
+            return cls.empty()
         return cls(
-            np.concatenate([p.lane for p in parts]),
-            np.concatenate([p.s for p in parts]),
-            np.concatenate([p.half_length for p in parts]),
-            np.concatenate([p.speed for p in parts]),
+            np.concatenate([p.lane for p in filled]),
+            np.concatenate([p.s for p in filled]),
+            np.concatenate([p.half_length for p in filled]),
+            np.concatenate([p.speed for p in filled]),
         )
 
 

@@ -2,6 +2,7 @@
 
 Public API:
     Vehicle, Pose, RoadSurface, VehicleStatus   create, command, step and read a vehicle
+    Motion                                      a status's pose, velocity and acceleration
     ControlCommand, LongitudinalMode, CommandVerdict, CommandGate   CtrlCmd semantics
     Gear                                        P/R/N/D
     VehicleModel, VEHICLE_CATALOGUE, DEFAULT_EGO_MODEL, vehicle_model   the catalogue
@@ -42,7 +43,7 @@ from egosim.world.vehicle.ground_catalogue import GROUND_VEHICLE_CATALOGUE, Grou
 from egosim.world.vehicle.mount_origin import sensor_mount_origin
 from egosim.world.vehicle.skid_steer import SkidSteerVehicle
 from egosim.world.vehicle.skid_steer_commands import BodyVelocityCommand, SideEffortCommand
-from egosim.world.vehicle.vehicle import Pose, RoadSurface, Vehicle, VehicleStatus
+from egosim.world.vehicle.vehicle import Motion, Pose, RoadSurface, Vehicle, VehicleStatus
 from egosim.world.vehicle.wheels import Wheels, WheelStatus
 
 __all__ = [
@@ -61,6 +62,7 @@ __all__ = [
     "Gear",
     "GroundVehicleModel",
     "LongitudinalMode",
+    "Motion",
     "Pose",
     "RoadSurface",
     "SideEffortCommand",

@@ -28,7 +28,13 @@ from egosim.world.vehicle.skid_steer_commands import (
     SkidSteerGate,
 )
 from egosim.world.vehicle.stepping import GatedVehicle, VehicleOptions
-from egosim.world.vehicle.vehicle import DEFAULT_MAX_SUBSTEP, Pose, RoadSurface, VehicleStatus
+from egosim.world.vehicle.vehicle import (
+    DEFAULT_MAX_SUBSTEP,
+    Motion,
+    Pose,
+    RoadSurface,
+    VehicleStatus,
+)
 from egosim.world.vehicle.wheels import Wheels, WheelStatus
 
 if TYPE_CHECKING:
@@ -158,6 +164,11 @@ class SkidSteerVehicle(GatedVehicle[SkidSteerCommand]):
         """rad/s, counter-clockwise positive."""
         return (self._right - self._left) / self.model.effective_track_width
 
+    def motion(self) -> Motion:
+        """The pose and motion of the status, without the rest."""
+        speed = self.forward_speed
+        return Motion(self._pose, (speed, 0.0, 0.0), (self._speed_rate, speed * self.yaw_rate, 0.0))
+
     def status(self) -> VehicleStatus:
         """The vehicle's state after the last step; wheels carry only their static loads."""
         speed, yaw_rate = self.forward_speed, self.yaw_rate
@@ -165,10 +176,11 @@ class SkidSteerVehicle(GatedVehicle[SkidSteerCommand]):
         wheel = WheelStatus(
             lateral_force=0.0, slip_angle=0.0, cornering_stiffness=0.0, vertical_load=share
         )
+        pose, velocity, acceleration = self.motion()
         return VehicleStatus(
-            pose=self._pose,
-            velocity=(speed, 0.0, 0.0),
-            acceleration=(self._speed_rate, speed * yaw_rate, 0.0),
+            pose=pose,
+            velocity=velocity,
+            acceleration=acceleration,
             yaw_rate=yaw_rate,
             speed=abs(speed),
             accel_pedal=self._accel_pedal,

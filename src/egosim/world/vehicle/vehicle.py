@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 from egosim.world.vehicle.catalogue import DEFAULT_EGO_MODEL, VehicleModel, vehicle_model
 from egosim.world.vehicle.control import (
@@ -85,6 +85,18 @@ class VehicleStatus:
     wheels: Wheels
 
 
+class Motion(NamedTuple):
+    """Where a vehicle is and how it moves (VehicleStatus's pose, velocity and
+    acceleration), without the rest of its status: what the world asks of an ego at
+    every step."""
+
+    pose: Pose
+    velocity: Vector3
+    """Body-frame velocity of the reference point, m/s."""
+    acceleration: Vector3
+    """Body-frame kinematic acceleration of the reference point (no gravity), m/s²."""
+
+
 class Vehicle(GatedVehicle[ControlCommand]):
     """One vehicle of a catalogue model; advanced by step(dt) on the road it is given."""
 
@@ -107,6 +119,7 @@ class Vehicle(GatedVehicle[ControlCommand]):
         # Readers ask for the status many times per step; it changes only when the
         # vehicle is stepped, teleported or shifted.
         self._status: VehicleStatus | None = None
+        self._motion: Motion | None = None
         self.teleport(pose or Pose())
 
     @classmethod
@@ -129,7 +142,7 @@ class Vehicle(GatedVehicle[ControlCommand]):
 
     def set_gear(self, gear: Gear) -> None:
         self.gear = gear
-        self._status = None
+        self._status = self._motion = None
 
     def teleport(
         self, pose: Pose, speed: float = 0.0, front_steer: float = 0.0, rear_steer: float = 0.0
@@ -152,7 +165,7 @@ class Vehicle(GatedVehicle[ControlCommand]):
         )
         state.vx_rate = state.vy_rate = state.yaw_acceleration = 0.0
         self._acceleration_tracker.reset()
-        self._status = None
+        self._status = self._motion = None
 
     def shove(self, displacement: tuple[float, float], change: tuple[float, float]) -> None:
         """A contact's response: move by `displacement` (m) and change the velocity by
@@ -164,13 +177,13 @@ class Vehicle(GatedVehicle[ControlCommand]):
         cos_yaw, sin_yaw = math.cos(state.yaw), math.sin(state.yaw)
         state.vx += cos_yaw * change[0] + sin_yaw * change[1]
         state.vy += -sin_yaw * change[0] + cos_yaw * change[1]
-        self._status = None
+        self._status = self._motion = None
 
     def step(self, dt: float, surface: RoadSurface | None = None) -> None:
         """Advance dt seconds; surface, when given, is the road under the vehicle now."""
         substeps = self._substeps(dt)
         state = self._state
-        self._status = None
+        self._status = self._motion = None
         if surface is not None:
             state.z, state.pitch, state.roll = surface.z, surface.pitch, surface.roll
         for command, substep in substeps:
@@ -199,19 +212,31 @@ class Vehicle(GatedVehicle[ControlCommand]):
             self._status = self._current_status()
         return self._status
 
+    def motion(self) -> Motion:
+        """The pose and motion of the status after the last step, without the rest."""
+        if self._motion is None:
+            # The state integrates the CG; the rear axle lies b behind it: its velocity
+            # lacks the CG's b·r of lateral speed, its acceleration adds b·r²
+            # (centripetal) and -b·ṙ (lateral) to the CG's.
+            state = self._state
+            b = self.model.cg_to_rear_axle
+            r = state.yaw_rate
+            x = state.x - b * math.cos(state.yaw)
+            y = state.y - b * math.sin(state.yaw)
+            self._motion = Motion(
+                Pose(x, y, state.z, state.roll, state.pitch, state.yaw),
+                (state.vx, state.vy - b * r, 0.0),
+                (state.ax + b * r * r, state.ay - b * state.yaw_acceleration, 0.0),
+            )
+        return self._motion
+
     def _current_status(self) -> VehicleStatus:
-        # The state integrates the CG; the rear axle lies b behind it: its velocity lacks
-        # the CG's b·r of lateral speed, its acceleration adds b·r² (centripetal) and
-        # -b·ṙ (lateral) to the CG's.
         state = self._state
-        b = self.model.cg_to_rear_axle
-        r = state.yaw_rate
-        x = state.x - b * math.cos(state.yaw)
-        y = state.y - b * math.sin(state.yaw)
+        pose, velocity, acceleration = self.motion()
         return VehicleStatus(
-            pose=Pose(x, y, state.z, state.roll, state.pitch, state.yaw),
-            velocity=(state.vx, state.vy - b * r, 0.0),
-            acceleration=(state.ax + b * r * r, state.ay - b * state.yaw_acceleration, 0.0),
+            pose=pose,
+            velocity=velocity,
+            acceleration=acceleration,
             yaw_rate=state.yaw_rate,
             speed=math.hypot(state.vx, state.vy),
             accel_pedal=self._pedals.accel,
