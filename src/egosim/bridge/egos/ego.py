@@ -92,12 +92,11 @@ def publish_ego_status(context: BridgeContext, row: Row) -> Any:
 def ego_status_of(context: BridgeContext, index: int) -> Any:
     """EgoVehicleStatus of the ego at `index` of the world's egos."""
     world = context.world
+    status, lane = world.ego_status(index), world.ego_lane_state(index)
+    # The header last: the tick's first stamp reads the wall clock, and the lane query
+    # before it then does not count in /Ego_topic's latency.
     return ego_vehicle_status(
-        context.profile,
-        context.header(),
-        world.egos[index].unique_id,
-        world.ego_status(index),
-        world.ego_lane_state(index),
+        context.profile, context.header(), world.egos[index].unique_id, status, lane
     )
 
 
