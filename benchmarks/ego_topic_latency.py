@@ -62,8 +62,9 @@ class Latency:
 class Lines:
     """A process's stdout lines, read on a thread so every wait can have a deadline."""
 
-    def __init__(self, process: subprocess.Popen[str]) -> None:
+    def __init__(self, process: subprocess.Popen[str], name: str) -> None:
         self.process = process
+        self.name = name
         self._lines: queue.Queue[str | None] = queue.Queue()
         threading.Thread(target=self._read, daemon=True).start()
 
@@ -82,10 +83,10 @@ class Lines:
             except queue.Empty:
                 break
             if line is None:
-                raise RuntimeError(f"{self.process.args[:3]} exited before {what}")
+                raise RuntimeError(f"{self.name} exited before {what}")
             if (found := accept(line)) is not None:
                 return found
-        raise TimeoutError(f"no {what} within {timeout:g} s from {self.process.args[:3]}")
+        raise TimeoutError(f"no {what} within {timeout:g} s from {self.name}")
 
 
 def json_with(key: str) -> Callable[[str], dict[str, Any] | None]:
@@ -109,7 +110,7 @@ def started(args: list[str], env: dict[str, str]) -> Iterator[Lines]:
         start_new_session=True,
     )
     try:
-        yield Lines(process)
+        yield Lines(process, " ".join(args[:3]))
     finally:
         with contextlib.suppress(ProcessLookupError):
             os.killpg(process.pid, signal.SIGINT)
@@ -230,4 +231,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()
