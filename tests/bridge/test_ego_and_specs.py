@@ -7,7 +7,7 @@ import math
 import pytest
 
 from egosim.bridge import simulation_context
-from egosim.bridge.egos.ego import control_command, ego_vehicle_status, on_ctrl_cmd
+from egosim.bridge.egos.ego import control_command, ego_vehicle_status_fields, on_ctrl_cmd
 from egosim.bridge.protocol.messages import header
 from egosim.bridge.protocol.units import heading_deg
 from egosim.bridge.scene.specs import map_spec, vehicle_spec
@@ -25,8 +25,9 @@ def test_ego_status_reports_angles_in_degrees_and_lane_quantities() -> None:
     pose = Pose(x=100.0, y=-1.0, yaw=0.0)
     world.egos[0].vehicle.teleport(pose, speed=10.0, front_steer=0.05)
     lane = world.ego_lane_state()
-    message = ego_vehicle_status(
-        PROFILE, header(PROFILE, 1_000_000_000, "map"), -1, world.ego_status(), lane
+    message = PROFILE.message("morai_msgs/EgoVehicleStatus").new(
+        header=header(PROFILE, 1_000_000_000, "map"),
+        **ego_vehicle_status_fields(PROFILE, -1, world.ego_status(), lane),
     )
     assert message.heading == pytest.approx(0.0)
     assert message.front_steer_angle == pytest.approx(math.degrees(0.05))

@@ -19,8 +19,11 @@ class HeaderClock:
     """Header stamps, in whole nanoseconds: wall time in real mode, simulation time in
     sim and sync modes, and the world's time while synchronous mode holds time.
 
-    The wall time is read once per tick (`tick`), so every message of one tick carries
-    the same stamp. While a client holds time (`hold`), each tick advances the stamp by
+    The wall time is read once per tick, when the tick's first stamp is asked for (by then
+    the world has stepped), so every message of one tick carries the same stamp, and the
+    first row built has nothing between its stamp and its send but its own build: work
+    done in the tick before it (other stages, rows due with no subscriber) is not counted
+    in its latency. While a client holds time (`hold`), each tick advances the stamp by
     exactly its step from the stamp synchronous mode started at, so 20 ms ticks are
     stamped 20 ms apart whatever the wall clock does. When it lets go (`release`), the
     run's own clock goes on from the last stamp (shifted by a fixed offset from then on),
@@ -36,6 +39,7 @@ class HeaderClock:
         self._offset_ns = 0
         self._held = False
         self._now_ns = self._source_ns()
+        self._wall_due = False  # a real-time tick is done and its stamp not yet read
 
     @property
     def publishes_clock(self) -> bool:
@@ -60,14 +64,19 @@ class HeaderClock:
             self._offset_ns += self._now_ns - self._source_ns()
 
     def tick(self, dt: float) -> None:
-        """A tick of `dt` s is done: its stamp."""
+        """A tick of `dt` s is done: its stamp (in real time, read when first asked for)."""
         if self._held:
             self._now_ns += round(dt * 1e9)
         elif self.mode is ClockMode.REAL:
-            self._now_ns = self._source_ns()
+            self._wall_due = True
 
     def now_ns(self) -> int:
-        if self._held or self.mode is ClockMode.REAL:
+        if self._held:
+            return self._now_ns
+        if self.mode is ClockMode.REAL:
+            if self._wall_due:
+                self._wall_due = False
+                self._now_ns = self._source_ns()
             return self._now_ns
         return self._source_ns()
 

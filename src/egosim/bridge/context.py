@@ -112,8 +112,12 @@ class BridgeContext:
         """The header stamp of this tick, ns."""
         return self.clock.now_ns()
 
-    def header(self, frame_id: str = MAP_FRAME) -> Any:
-        return header(self.profile, self.stamp_ns(), frame_id)
+    def header(self, frame_id: str = MAP_FRAME, *, stamped: bool = True) -> Any:
+        """A std_msgs/Header of this tick. A row's own header (its message's first field)
+        may be left unstamped (`stamped=False`): its outlet writes the seq and the stamp
+        as the message goes out, so building it does not read the tick's stamp early (the
+        first stamp asked for in a tick reads the wall clock in real time)."""
+        return header(self.profile, self.stamp_ns() if stamped else 0, frame_id)
 
     def warn_throttled(self, key: str, text: str) -> None:
         """Log `text` when `key` comes up, at most once per window with a count of the

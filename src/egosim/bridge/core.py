@@ -11,7 +11,9 @@ inbox.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
+import struct
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any, Protocol, TypeVar
@@ -29,6 +31,7 @@ from ..ros1 import (
 )
 from ..ros1.types import TopicType
 from .context import BridgeContext
+from .protocol.messages import time_msg
 from .protocol.network import NetworkSettings
 from .protocol.releases import (
     CANONICAL_PROFILE,
@@ -106,6 +109,11 @@ class Handlers:
         )
 
 
+#: A std_msgs/Header's seq, stamp.sec and stamp.nanosec: the first 12 bytes of a message
+#: whose first field is its header.
+_HEADER_START = struct.Struct("<III")
+
+
 @dataclass
 class Outlet:
     """A publishing row: when it is next due and how many headers it has stamped."""
@@ -118,6 +126,12 @@ class Outlet:
     schedule: RateSchedule
     seq: int = 0
     static: Builder | None = None  # Handlers.latched's builder, until it has run
+    leads_with_header: bool = field(init=False)
+    """Its messages start with their header (every MORAI message with one does)."""
+
+    def __post_init__(self) -> None:
+        first = dataclasses.fields(self.message_type.new())[0]
+        self.leads_with_header = first.name == "header"
 
     def variant(self, message: Any, md5sum: str) -> bytes:
         """`message` serialized in the release a subscriber negotiated by `md5sum`."""
@@ -253,18 +267,34 @@ class Bridge:
         outlet.publisher.publish_many(self._variants(outlet, built))
 
     def _variants(self, outlet: Outlet, built: Any) -> list[Variants]:
-        """The built message(s), stamped with the row's header sequence, serialised lazily
-        per release, and tapped."""
+        """The built message(s), stamped with the row's header sequence and the tick's
+        stamp, serialised lazily per release, and tapped."""
         variants: list[Variants] = []
         for message in built if isinstance(built, list | tuple) else (built,):
             header = getattr(message, "header", None)
-            if header is not None:
+            if header is not None and not outlet.leads_with_header:
                 header.seq = outlet.seq
                 outlet.seq += 1
             data = outlet.message_type.serialize(message)
+            if header is not None and outlet.leads_with_header:
+                data = self._stamped(outlet, header, data)
             variants.append(_serialized(outlet, message, data))
             self._tap(outlet.row.name, outlet.message_type, data)
         return variants
+
+    def _stamped(self, outlet: Outlet, header: Any, data: bytes) -> bytes:
+        """`data` with the row's next seq and the tick's stamp written into its header,
+        and the message's header set to match (for other releases). Serialising first
+        and stamping the bytes keeps the build and the serialisation out of the time
+        between a tick's stamp (the first one read, in real time) and its first send."""
+        stamp_ns = self.context.stamp_ns()
+        sec, nanosec = divmod(stamp_ns, 1_000_000_000)
+        stamped = bytearray(data)
+        _HEADER_START.pack_into(stamped, 0, outlet.seq, sec, nanosec)
+        header.seq = outlet.seq
+        header.stamp = time_msg(self.context.profile, stamp_ns)
+        outlet.seq += 1
+        return bytes(stamped)
 
     def _tap(self, topic: str, message_type: MessageType, data: bytes) -> None:
         for tap in self.taps:

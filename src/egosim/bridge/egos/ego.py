@@ -24,14 +24,11 @@ WHEEL_SUFFIXES = (
 )
 
 
-def ego_vehicle_status(
-    profile: Profile,
-    header: Any,
-    unique_id: int,
-    status: VehicleStatus,
-    lane: EgoLaneState | None,
-) -> Any:
-    """morai_msgs/EgoVehicleStatus of one ego; lane fields are 0 off the road network."""
+def ego_vehicle_status_fields(
+    profile: Profile, unique_id: int, status: VehicleStatus, lane: EgoLaneState | None
+) -> dict[str, Any]:
+    """Every morai_msgs/EgoVehicleStatus field of one ego but its header; lane fields are 0
+    off the road network."""
     wheels: dict[str, float] = {}
     for suffix, attribute in WHEEL_SUFFIXES:
         wheel = getattr(status.wheels, attribute)
@@ -39,25 +36,23 @@ def ego_vehicle_status(
         wheels[f"side_slip_angle_{suffix}"] = deg(wheel.slip_angle)
         wheels[f"tire_cornering_stiffness_{suffix}"] = wheel.cornering_stiffness
     lateral = lane.lateral_offset if lane is not None else 0.0
-    return profile.message("morai_msgs/EgoVehicleStatus").new(
-        **ego_motion_fields(profile, header, unique_id, status),
-        front_steer_angle=deg(status.front_steer),
-        rear_steer_angle=deg(status.rear_steer),
-        lateral_offset=lateral,
-        distance_left_lane_boundary=lane.distance_left if lane is not None else 0.0,
-        distance_right_lane_boundary=lane.distance_right if lane is not None else 0.0,
-        cross_track_error=lane.cross_track_error if lane is not None else 0.0,
+    return {
+        **ego_motion_fields(profile, unique_id, status),
+        "front_steer_angle": deg(status.front_steer),
+        "rear_steer_angle": deg(status.rear_steer),
+        "lateral_offset": lateral,
+        "distance_left_lane_boundary": lane.distance_left if lane is not None else 0.0,
+        "distance_right_lane_boundary": lane.distance_right if lane is not None else 0.0,
+        "cross_track_error": lane.cross_track_error if lane is not None else 0.0,
         **wheels,
-    )
+    }
 
 
-def ego_motion_fields(
-    profile: Profile, header: Any, unique_id: int, status: VehicleStatus
-) -> dict[str, Any]:
-    """The fields EgoVehicleStatus and EgoVehicleStatusExtended share, in protocol units."""
+def ego_motion_fields(profile: Profile, unique_id: int, status: VehicleStatus) -> dict[str, Any]:
+    """The fields EgoVehicleStatus and EgoVehicleStatusExtended share but the header, in
+    protocol units."""
     pose = status.pose
     return {
-        "header": header,
         "unique_id": unique_id,
         "acceleration": vector3(profile, status.acceleration),
         "position": vector3(profile, (pose.x, pose.y, pose.z)),
@@ -86,19 +81,21 @@ def publish_ego_status(context: BridgeContext, row: Row) -> Any:
     world = context.world
     camera_index = context.session.camera_index
     index = camera_index if camera_index < len(world.egos) else 0
-    return ego_status_of(context, index)
+    return ego_status_of(context, index, stamped=False)
 
 
-def ego_status_of(context: BridgeContext, index: int) -> Any:
-    """EgoVehicleStatus of the ego at `index` of the world's egos."""
+def ego_status_of(context: BridgeContext, index: int, *, stamped: bool = True) -> Any:
+    """EgoVehicleStatus of the ego at `index` of the world's egos; unstamped for the row's
+    outlet to stamp (BridgeContext.header)."""
     world = context.world
-    return ego_vehicle_status(
+    fields = ego_vehicle_status_fields(
         context.profile,
-        context.header(),
         world.egos[index].unique_id,
         world.ego_status(index),
         world.ego_lane_state(index),
     )
+    message_type = context.profile.message("morai_msgs/EgoVehicleStatus")
+    return message_type.new(header=context.header(stamped=stamped), **fields)
 
 
 def on_ctrl_cmd(context: BridgeContext, row: Row, ctrl_cmd: Any) -> None:

@@ -61,7 +61,8 @@ def publish_ego_status_extended(context: BridgeContext, row: Row) -> Any:
     )
     profile = context.profile
     return profile.message("morai_msgs/EgoVehicleStatusExtended").new(
-        **ego_motion_fields(profile, context.header(), ego.unique_id, status),
+        header=context.header(),
+        **ego_motion_fields(profile, ego.unique_id, status),
         wheel_angle=deg(status.front_steer),
         wheel_angle_speed=deg(steer_rate),
         FL_wheel_speed=fl,
