@@ -53,7 +53,7 @@ T = TypeVar("T")
 Builder = Callable[[BridgeContext, Row], Any | Sequence[Any] | None]
 MessageHandler = Callable[[BridgeContext, Row, Any], None]  # (context, row, message)
 # (topic, message type, serialized bytes, stamp ns): sees every message sent or received
-Tap = Callable[[str, MessageType, bytes, int], None]
+Tap = Callable[[str, MessageType[object], bytes, int], None]
 RequestHandler = Callable[[BridgeContext, Row, Any], Any]  # (context, row, request) -> response
 # (context, row, request as the client sent it): applies a request field only one
 # release has, before the row's handler answers
@@ -112,7 +112,7 @@ class Outlet:
 
     row: Row
     publisher: Publisher
-    message_type: MessageType  # the canonical release's, which builders fill
+    message_type: MessageType[object]  # the canonical release's, which builders fill
     releases: tuple[Release, ...]  # every release a subscriber may ask for, default first
     build: Builder
     schedule: RateSchedule
@@ -266,7 +266,7 @@ class Bridge:
             self._tap(outlet.row.name, outlet.message_type, data)
         return variants
 
-    def _tap(self, topic: str, message_type: MessageType, data: bytes) -> None:
+    def _tap(self, topic: str, message_type: MessageType[object], data: bytes) -> None:
         for tap in self.taps:
             tap(topic, message_type, data, self.context.stamp_ns())
 
@@ -387,10 +387,10 @@ def _serialized(outlet: Outlet, message: Any, data: bytes) -> Callable[[str], by
 
 def negotiator(
     topic: str, releases: tuple[Release, ...]
-) -> Callable[[Mapping[str, str]], MessageType]:
+) -> Callable[[Mapping[str, str]], MessageType[object]]:
     """Picks the release a subscriber's md5sum asks for (`*`: the default one)."""
 
-    def negotiate(header: Mapping[str, str]) -> MessageType:
+    def negotiate(header: Mapping[str, str]) -> MessageType[object]:
         wanted = header.get("md5sum", "*")
         if wanted == "*":
             return releases[0].message_type

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any, Generic, Literal, TypeVar, cast, overload
 
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from rosbags.typesys.msg import denormalize_msgtype, normalize_msgtype
@@ -19,6 +19,14 @@ from .definitions import (
     load_package_definitions,
 )
 from .errors import DefinitionError, SerializationError, UnknownTypeError
+
+if TYPE_CHECKING:
+    from .typed import morai_24_r2, morai_26_r1, morai_2021_08
+
+M = TypeVar("M")
+"""A message's type: a Protocol of egosim.msgs.typed, or Any for a type named at run time."""
+Request = TypeVar("Request")
+Response = TypeVar("Response")
 
 # rosbags' stand-ins for ROS 1's time and duration built-ins: not types a user names.
 ROSBAGS_INTERNAL = "builtin_interfaces/"
@@ -49,8 +57,11 @@ STANDARD_TYPES: tuple[str, ...] = (
 
 
 @dataclass(eq=False)
-class MessageType:
-    """One ROS 1 message type: its identity on the wire and its (de)serialisation."""
+class MessageType(Generic[M]):
+    """One ROS 1 message type: its identity on the wire and its (de)serialisation.
+
+    `M` only tells the type checker what the messages hold (egosim.msgs.typed): at run
+    time they are rosbags' classes."""
 
     name: str
     md5sum: str
@@ -70,19 +81,21 @@ class MessageType:
         """(name, rosbags field description) pairs, in wire order."""
         return list(self.store.fielddefs[self.store_name][1])
 
-    def new(self, **values: Any) -> Any:
+    def new(self, **values: Any) -> M:
         """A message with `values` set and every other field at its ROS default."""
-        return self.defaults.new(values)
+        message: M = self.defaults.new(values)
+        return message
 
-    def serialize(self, message: Any) -> bytes:
+    def serialize(self, message: M) -> bytes:
         try:
             return bytes(self.store.serialize_ros1(message, self.store_name))
         except Exception as exc:
             raise SerializationError(f"cannot serialize {self.name}: {exc}") from exc
 
-    def deserialize(self, data: bytes | memoryview) -> Any:
+    def deserialize(self, data: bytes | memoryview) -> M:
         try:
-            return self.store.deserialize_ros1(data, self.store_name)
+            # rosbags builds the class registered for store_name, the one `M` describes
+            return cast(M, self.store.deserialize_ros1(data, self.store_name))
         except Exception as exc:
             raise SerializationError(
                 f"cannot deserialize {len(data)} bytes as {self.name}: {exc}"
@@ -90,13 +103,13 @@ class MessageType:
 
 
 @dataclass(frozen=True, eq=False)
-class ServiceType:
+class ServiceType(Generic[Request, Response]):
     """One ROS 1 service type: its md5 and its request and response messages."""
 
     name: str
     md5sum: str
-    request: MessageType
-    response: MessageType
+    request: MessageType[Request]
+    response: MessageType[Response]
     definition: str  # the .srv text, as `rossrv show` prints it
 
 
@@ -121,7 +134,7 @@ class Profile:
                 types.update(self._parse(srv.response, f"{ros_name}Response"))
                 self._services[ros_name] = srv
         self.store.register(types)
-        self._messages: dict[str, MessageType] = {}
+        self._messages: dict[str, MessageType[Any]] = {}
 
     def _parse(self, text: str, ros_name: str) -> dict[str, Any]:
         store_name = normalize_msgtype(ros_name)
@@ -138,7 +151,7 @@ class Profile:
             return self._own_texts[store_name]
         return self.store.gendefhash(store_name, {})[0]
 
-    def message(self, name: str) -> MessageType:
+    def message(self, name: str) -> MessageType[Any]:
         """The message type `pkg/Name` (also accepts rosbags' `pkg/msg/Name`)."""
         if found := self._messages.get(name):  # the hot path: builders ask per message
             return found
@@ -156,7 +169,7 @@ class Profile:
         self._messages[name] = self._messages[ros_name]
         return self._messages[name]
 
-    def service(self, name: str) -> ServiceType:
+    def service(self, name: str) -> ServiceType[Any, Any]:
         """The service type `pkg/Name`."""
         if name not in self._services:
             raise UnknownTypeError(f"no service type {name!r} in profile {self.name}")
@@ -207,7 +220,22 @@ def resolve_short_name(name: str, full_names: list[str], profile: str) -> str:
     raise UnknownTypeError(f"no message or service type {name!r} in {profile}{hint}")
 
 
-@functools.cache
+@overload
+def get_profile() -> morai_26_r1.ReleaseProfile: ...
+@overload
+def get_profile(name: Literal["26.r1"]) -> morai_26_r1.ReleaseProfile: ...  # type: ignore[overload-overlap]
+@overload
+def get_profile(name: Literal["24.r2"]) -> morai_24_r2.ReleaseProfile: ...  # type: ignore[overload-overlap]
+@overload
+def get_profile(name: Literal["2021.08"]) -> morai_2021_08.ReleaseProfile: ...  # type: ignore[overload-overlap]
+@overload
+def get_profile(name: str) -> Profile: ...
 def get_profile(name: str = DEFAULT_PROFILE) -> Profile:
-    """The profile `name`, built once per process."""
+    """The profile `name`, built once per process; a release named literally is typed
+    (its `message` and `service` know each type's fields)."""
+    return built_profile(name)
+
+
+@functools.cache
+def built_profile(name: str) -> Profile:
     return Profile(name)
