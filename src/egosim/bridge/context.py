@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
 
 from ..logthrottle import LogThrottle
-from ..msgs import Profile
+from ..msgs.typed import standard
 from ..replay import ReplaySession
 from ..world import World
 from .clock import HeaderClock
@@ -25,6 +25,7 @@ from .egos.angle_rates import AngleRates
 from .pipeline import Tick, TickPipeline
 from .protocol.messages import header
 from .protocol.network import NetworkSettings
+from .protocol.releases import CanonicalProfile
 from .protocol.table import Row
 from .sensors.sensor_rig import SensorRig
 from .sync.sync_session import SyncSession
@@ -70,7 +71,7 @@ class SessionState:
 
 @dataclass
 class BridgeContext:
-    profile: Profile
+    profile: CanonicalProfile
     """The release handlers build and read (the newest; releases.py converts)."""
     world: World
     clock: HeaderClock
@@ -112,7 +113,7 @@ class BridgeContext:
         """The header stamp of this tick, ns."""
         return self.clock.now_ns()
 
-    def header(self, frame_id: str = MAP_FRAME) -> Any:
+    def header(self, frame_id: str = MAP_FRAME) -> standard.Header:
         return header(self.profile, self.stamp_ns(), frame_id)
 
     def warn_throttled(self, key: str, text: str) -> None:

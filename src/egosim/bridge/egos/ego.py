@@ -7,11 +7,12 @@ from __future__ import annotations
 
 from typing import Any
 
-from ...msgs import Profile
+from ...msgs.typed import standard
 from ...world import EgoLaneState
 from ...world.vehicle import ControlCommand, Vehicle, VehicleStatus
 from ..context import BridgeContext
 from ..protocol.messages import vector3
+from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
 from ..protocol.units import deg, heading_deg, mps
 from .ground_vehicle import commanded_vehicle
@@ -25,8 +26,8 @@ WHEEL_SUFFIXES = (
 
 
 def ego_vehicle_status(
-    profile: Profile,
-    header: Any,
+    profile: CanonicalProfile,
+    header: standard.Header,
     unique_id: int,
     status: VehicleStatus,
     lane: EgoLaneState | None,
@@ -52,7 +53,7 @@ def ego_vehicle_status(
 
 
 def ego_motion_fields(
-    profile: Profile, header: Any, unique_id: int, status: VehicleStatus
+    profile: CanonicalProfile, header: standard.Header, unique_id: int, status: VehicleStatus
 ) -> dict[str, Any]:
     """The fields EgoVehicleStatus and EgoVehicleStatusExtended share, in protocol units."""
     pose = status.pose

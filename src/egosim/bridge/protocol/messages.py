@@ -3,30 +3,32 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
 
-from ...msgs import Profile
+from ...msgs.typed import standard
+from .releases import CanonicalProfile
 
 
-def vector3(profile: Profile, xyz: Sequence[float]) -> Any:
+def vector3(profile: CanonicalProfile, xyz: Sequence[float]) -> standard.Vector3:
     x, y, z = xyz
     return profile.message("geometry_msgs/Vector3").new(x=float(x), y=float(y), z=float(z))
 
 
-def quaternion(profile: Profile, xyzw: Sequence[float]) -> Any:
+def quaternion(profile: CanonicalProfile, xyzw: Sequence[float]) -> standard.Quaternion:
     x, y, z, w = xyzw
     return profile.message("geometry_msgs/Quaternion").new(
         x=float(x), y=float(y), z=float(z), w=float(w)
     )
 
 
-def time_msg(profile: Profile, total_ns: int) -> Any:
+def time_msg(profile: CanonicalProfile, total_ns: int) -> standard.Time:
     """A ROS time from nanoseconds (non-negative), split into sec and nanosec."""
     sec, nanosec = divmod(total_ns, 1_000_000_000)
-    return profile.message("builtin_interfaces/msg/Time").new(sec=sec, nanosec=nanosec)
+    return profile.message("builtin_interfaces/Time").new(sec=sec, nanosec=nanosec)
 
 
-def header(profile: Profile, stamp_ns: int, frame_id: str, seq: int = 0) -> Any:
+def header(
+    profile: CanonicalProfile, stamp_ns: int, frame_id: str, seq: int = 0
+) -> standard.Header:
     return profile.message("std_msgs/Header").new(
         seq=seq, stamp=time_msg(profile, stamp_ns), frame_id=frame_id
     )

@@ -21,8 +21,11 @@ from rosbags.typesys.store import Typestore
 from ...msgs import PROFILES, MessageType, ServiceType, UnknownTypeError, get_profile
 from ...msgs.defaults import default_message
 from ...msgs.fulltext import BUILTIN_TIME_TYPES, element_desc
+from ...msgs.typed import morai_26_r1
 
 CANONICAL_PROFILE = "26.r1"
+CanonicalProfile = morai_26_r1.ReleaseProfile
+"""The profile handlers build and read, typed: each type's fields are known."""
 
 Source = TypeVar("Source")
 Target = TypeVar("Target")

@@ -11,13 +11,13 @@ Namespaces (`ns`) let RViz show or hide each layer.
 from __future__ import annotations
 
 from collections import defaultdict
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from ...msgs import Profile
+from ...msgs.typed import standard
 from ...sensors.rotation import quaternion_from_euler
 from ...world.map import LaneMap
 from ...world.map.sections import lane_cross_section
@@ -25,6 +25,7 @@ from ...world.signals.aspects import shown_colour
 from ...world.traffic import ObjectType
 from ..context import BridgeContext
 from ..protocol.messages import quaternion, vector3
+from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
 
 LIFETIME_PERIODS = 5
@@ -76,14 +77,15 @@ class _Builder:
     """Makes Marker messages of one profile (geometry and colour types looked up once)."""
 
     def __init__(self, context: BridgeContext) -> None:
-        self.profile: Profile = context.profile
+        self.profile: CanonicalProfile = context.profile
         self.header = context.header()
         self.marker = self.profile.message("visualization_msgs/Marker")
         point = self.profile.message("geometry_msgs/Point")
         colour = self.profile.message("std_msgs/ColorRGBA")
         self.point_type = point.store.types[point.store_name]
         self.colour_type = colour.store.types[colour.store_name]
-        self.duration_type = type(self.marker.new().lifetime)
+        # rosbags' class of a marker's lifetime, made directly: it is the hot path
+        self.duration_type: Callable[..., standard.Duration] = type(self.marker.new().lifetime)
 
     def colour(self, rgba: RGBA) -> Any:
         return self.colour_type(r=rgba[0], g=rgba[1], b=rgba[2], a=rgba[3])
@@ -123,7 +125,7 @@ class _Builder:
             **fields,
         )
 
-    def _duration(self, seconds: float) -> Any:
+    def _duration(self, seconds: float) -> standard.Duration:
         sec, nanosec = divmod(round(seconds * 1e9), 1_000_000_000)
         return self.duration_type(sec=sec, nanosec=nanosec)
 

@@ -12,11 +12,11 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from ...msgs import Profile
 from ...world.collision import VehicleCollision
 from ...world.traffic import ObjectState
 from ..context import BridgeContext
 from ..protocol.messages import vector3
+from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
 from ..protocol.units import heading_deg, kmh, swap_length_width
 
@@ -28,7 +28,7 @@ def to_object_frame(vector: Sequence[float], heading: float) -> tuple[float, flo
     return (c * x + s * y, -s * x + c * y, z)
 
 
-def object_status_fields(profile: Profile, state: ObjectState) -> dict[str, Any]:
+def object_status_fields(profile: CanonicalProfile, state: ObjectState) -> dict[str, Any]:
     """The fields ObjectStatus and ObjectStatusExtended share, in protocol units."""
     velocity = to_object_frame(state.velocity, state.heading)
     return {
@@ -43,7 +43,7 @@ def object_status_fields(profile: Profile, state: ObjectState) -> dict[str, Any]
     }
 
 
-def object_status(profile: Profile, state: ObjectState) -> Any:
+def object_status(profile: CanonicalProfile, state: ObjectState) -> Any:
     return profile.message("morai_msgs/ObjectStatus").new(**object_status_fields(profile, state))
 
 

@@ -7,13 +7,13 @@ from typing import Any
 
 import numpy as np
 
-from ...msgs import Profile
 from ...world import World
 from ...world.map.georef import GeoReference
 from ...world.traffic import ObjectType
 from ...world.vehicle import VEHICLE_CATALOGUE, GroundVehicleModel, VehicleModel
 from ..context import BridgeContext
 from ..protocol.messages import vector3
+from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
 from ..protocol.units import deg
 
@@ -24,7 +24,7 @@ UTM_PLANE_COORDINATE_SYSTEM = 0
 TM_PLANE_COORDINATE_SYSTEM = 1
 
 
-def map_spec(profile: Profile, georef: GeoReference) -> Any:
+def map_spec(profile: CanonicalProfile, georef: GeoReference) -> Any:
     """morai_msgs/MapSpec: the projection and local origin of the loaded map; a map drawn
     in a grid other than UTM (such as Korea's EPSG:5186) is a TM one."""
     return profile.message("morai_msgs/MapSpec").new(
@@ -42,7 +42,7 @@ def map_spec(profile: Profile, georef: GeoReference) -> Any:
     )
 
 
-def vehicle_spec(profile: Profile, model: VehicleModel | GroundVehicleModel | None) -> Any:
+def vehicle_spec(profile: CanonicalProfile, model: VehicleModel | GroundVehicleModel | None) -> Any:
     """morai_msgs/VehicleSpec of a model; all zeros for none (an unknown unique_id)."""
     spec = profile.message("morai_msgs/VehicleSpec")
     if model is None:

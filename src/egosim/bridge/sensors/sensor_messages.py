@@ -7,18 +7,19 @@ from typing import Any
 
 import numpy as np
 
-from ...msgs import Profile
+from ...msgs.typed import standard
 from ...sensors import GpsFix, ImuReading, Transform
 from ...sensors.radar import RadarDetections
 from ..protocol.messages import header as make_header
 from ..protocol.messages import quaternion, vector3
+from ..protocol.releases import CanonicalProfile
 from ..protocol.units import deg
 
 POINT_FIELDS = ("x", "y", "z", "intensity")
 FLOAT32 = 7  # sensor_msgs/PointField datatype code
 
 
-def gps_message(profile: Profile, header: Any, fix: GpsFix) -> Any:
+def gps_message(profile: CanonicalProfile, header: standard.Header, fix: GpsFix) -> Any:
     return profile.message("morai_msgs/GPSMessage").new(
         header=header,
         latitude=fix.latitude,
@@ -30,7 +31,7 @@ def gps_message(profile: Profile, header: Any, fix: GpsFix) -> Any:
     )
 
 
-def imu_message(profile: Profile, header: Any, reading: ImuReading) -> Any:
+def imu_message(profile: CanonicalProfile, header: standard.Header, reading: ImuReading) -> Any:
     return profile.message("sensor_msgs/Imu").new(
         header=header,
         orientation=quaternion(profile, reading.orientation),
@@ -44,7 +45,7 @@ def imu_message(profile: Profile, header: Any, reading: ImuReading) -> Any:
     )
 
 
-def point_cloud(profile: Profile, header: Any, points: np.ndarray) -> Any:
+def point_cloud(profile: CanonicalProfile, header: standard.Header, points: np.ndarray) -> Any:
     """sensor_msgs/PointCloud2 of (M, 4) float32 points x, y, z, intensity (unorganised)."""
     cloud = np.ascontiguousarray(points, dtype="<f4")
     field_type = profile.message("sensor_msgs/PointField")
@@ -65,7 +66,7 @@ def point_cloud(profile: Profile, header: Any, points: np.ndarray) -> Any:
     )
 
 
-def tf_message(profile: Profile, stamp_ns: int, transforms: Iterable[Transform]) -> Any:
+def tf_message(profile: CanonicalProfile, stamp_ns: int, transforms: Iterable[Transform]) -> Any:
     stamped = profile.message("geometry_msgs/TransformStamped")
     transform_type = profile.message("geometry_msgs/Transform")
     return profile.message("tf2_msgs/TFMessage").new(
@@ -83,7 +84,9 @@ def tf_message(profile: Profile, stamp_ns: int, transforms: Iterable[Transform])
     )
 
 
-def radar_message(profile: Profile, header: Any, detections: RadarDetections) -> Any:
+def radar_message(
+    profile: CanonicalProfile, header: standard.Header, detections: RadarDetections
+) -> Any:
     """morai_msgs/RadarDetections: azimuth in degrees, detection_id the object's id (16 bit)."""
     detection = profile.message("morai_msgs/RadarDetection")
     point = profile.message("geometry_msgs/Point")
