@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ...msgs.typed import standard
+from ...msgs.typed import morai_26_r1, standard
 from ...world import EgoLaneState
 from ...world.vehicle import ControlCommand, Vehicle, VehicleStatus
 from ..context import BridgeContext
@@ -31,7 +31,7 @@ def ego_vehicle_status(
     unique_id: int,
     status: VehicleStatus,
     lane: EgoLaneState | None,
-) -> Any:
+) -> morai_26_r1.EgoVehicleStatus:
     """morai_msgs/EgoVehicleStatus of one ego; lane fields are 0 off the road network."""
     wheels: dict[str, float] = {}
     for suffix, attribute in WHEEL_SUFFIXES:
@@ -69,7 +69,7 @@ def ego_motion_fields(
     }
 
 
-def control_command(ctrl_cmd: Any) -> ControlCommand:
+def control_command(ctrl_cmd: morai_26_r1.CtrlCmd) -> ControlCommand:
     """A morai_msgs/CtrlCmd in SI: velocity km/h -> m/s; angles are already rad."""
     return ControlCommand(
         mode=int(ctrl_cmd.longlCmdType),
@@ -90,7 +90,7 @@ def publish_ego_status(context: BridgeContext, row: Row) -> Any:
     return ego_status_of(context, index)
 
 
-def ego_status_of(context: BridgeContext, index: int) -> Any:
+def ego_status_of(context: BridgeContext, index: int) -> morai_26_r1.EgoVehicleStatus:
     """EgoVehicleStatus of the ego at `index` of the world's egos."""
     world = context.world
     return ego_vehicle_status(
@@ -102,13 +102,15 @@ def ego_status_of(context: BridgeContext, index: int) -> Any:
     )
 
 
-def on_ctrl_cmd(context: BridgeContext, row: Row, ctrl_cmd: Any) -> None:
+def on_ctrl_cmd(context: BridgeContext, row: Row, ctrl_cmd: morai_26_r1.CtrlCmd) -> None:
     """/ctrl_cmd drives the main ego while its control mode is external (EventInfo 3)
     and it is a road vehicle."""
     drive_with_ctrl_cmd(context, row, 0, ctrl_cmd)
 
 
-def drive_with_ctrl_cmd(context: BridgeContext, row: Row, index: int, ctrl_cmd: Any) -> None:
+def drive_with_ctrl_cmd(
+    context: BridgeContext, row: Row, index: int, ctrl_cmd: morai_26_r1.CtrlCmd
+) -> None:
     """Hand a CtrlCmd received on `row` to the ego at `index` if its control mode and kind
     take it."""
     vehicle = commanded_vehicle(context, row, index, Vehicle)

@@ -12,6 +12,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from ...msgs.typed import morai_26_r1
 from ...world.collision import VehicleCollision
 from ...world.traffic import ObjectState
 from ..context import BridgeContext
@@ -43,7 +44,7 @@ def object_status_fields(profile: CanonicalProfile, state: ObjectState) -> dict[
     }
 
 
-def object_status(profile: CanonicalProfile, state: ObjectState) -> Any:
+def object_status(profile: CanonicalProfile, state: ObjectState) -> morai_26_r1.ObjectStatus:
     return profile.message("morai_msgs/ObjectStatus").new(**object_status_fields(profile, state))
 
 

@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
-from typing import Any
 
 import numpy as np
 
-from ...msgs.typed import standard
+from ...msgs.typed import morai_26_r1, standard
 from ...sensors import GpsFix, ImuReading, Transform
 from ...sensors.radar import RadarDetections
 from ..protocol.messages import header as make_header
@@ -19,7 +18,9 @@ POINT_FIELDS = ("x", "y", "z", "intensity")
 FLOAT32 = 7  # sensor_msgs/PointField datatype code
 
 
-def gps_message(profile: CanonicalProfile, header: standard.Header, fix: GpsFix) -> Any:
+def gps_message(
+    profile: CanonicalProfile, header: standard.Header, fix: GpsFix
+) -> morai_26_r1.GPSMessage:
     return profile.message("morai_msgs/GPSMessage").new(
         header=header,
         latitude=fix.latitude,
@@ -31,7 +32,9 @@ def gps_message(profile: CanonicalProfile, header: standard.Header, fix: GpsFix)
     )
 
 
-def imu_message(profile: CanonicalProfile, header: standard.Header, reading: ImuReading) -> Any:
+def imu_message(
+    profile: CanonicalProfile, header: standard.Header, reading: ImuReading
+) -> standard.Imu:
     return profile.message("sensor_msgs/Imu").new(
         header=header,
         orientation=quaternion(profile, reading.orientation),
@@ -45,7 +48,9 @@ def imu_message(profile: CanonicalProfile, header: standard.Header, reading: Imu
     )
 
 
-def point_cloud(profile: CanonicalProfile, header: standard.Header, points: np.ndarray) -> Any:
+def point_cloud(
+    profile: CanonicalProfile, header: standard.Header, points: np.ndarray
+) -> standard.PointCloud2:
     """sensor_msgs/PointCloud2 of (M, 4) float32 points x, y, z, intensity (unorganised)."""
     cloud = np.ascontiguousarray(points, dtype="<f4")
     field_type = profile.message("sensor_msgs/PointField")
@@ -66,7 +71,9 @@ def point_cloud(profile: CanonicalProfile, header: standard.Header, points: np.n
     )
 
 
-def tf_message(profile: CanonicalProfile, stamp_ns: int, transforms: Iterable[Transform]) -> Any:
+def tf_message(
+    profile: CanonicalProfile, stamp_ns: int, transforms: Iterable[Transform]
+) -> standard.TFMessage:
     stamped = profile.message("geometry_msgs/TransformStamped")
     transform_type = profile.message("geometry_msgs/Transform")
     return profile.message("tf2_msgs/TFMessage").new(
@@ -86,7 +93,7 @@ def tf_message(profile: CanonicalProfile, stamp_ns: int, transforms: Iterable[Tr
 
 def radar_message(
     profile: CanonicalProfile, header: standard.Header, detections: RadarDetections
-) -> Any:
+) -> morai_26_r1.RadarDetections:
     """morai_msgs/RadarDetections: azimuth in degrees, detection_id the object's id (16 bit)."""
     detection = profile.message("morai_msgs/RadarDetection")
     point = profile.message("geometry_msgs/Point")
