@@ -12,9 +12,9 @@ inbox.
 from __future__ import annotations
 
 import logging
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any, Protocol, TypeVar
+from typing import Any, Protocol, TypeVar, cast
 
 from ..logthrottle import LogThrottle
 from ..msgs import MessageType, MsgsError, get_profile
@@ -49,18 +49,24 @@ throttle = LogThrottle(log)
 
 T = TypeVar("T")
 
-# (context, row) -> a message, several, or None when there is nothing to say
-Builder = Callable[[BridgeContext, Row], Any | Sequence[Any] | None]
-MessageHandler = Callable[[BridgeContext, Row, Any], None]  # (context, row, message)
+# (context, row) -> a message, several (a list or tuple), or None when there is nothing to
+# say; each builder declares its row's message type (egosim.msgs.typed)
+Builder = Callable[[BridgeContext, Row], object]
+# A message or request decoded by the type its row names in the table, which is data: the
+# handler declares that type (egosim.msgs.typed), and nothing here can check it statically.
+Received = Any
+MessageHandler = Callable[[BridgeContext, Row, Received], None]  # (context, row, message)
 # (topic, message type, serialized bytes, stamp ns): sees every message sent or received
 Tap = Callable[[str, MessageType[object], bytes, int], None]
-RequestHandler = Callable[[BridgeContext, Row, Any], Any]  # (context, row, request) -> response
+RequestHandler = Callable[
+    [BridgeContext, Row, Received], object
+]  # (context, row, request) -> response
 # (context, row, request as the client sent it): applies a request field only one
 # release has, before the row's handler answers
-ReleaseAdapter = Callable[[BridgeContext, Row, Any], None]
+ReleaseAdapter = Callable[[BridgeContext, Row, Received], None]
 # (context, row, message or request) -> what the row's handler gets instead: work done on
 # the transport's thread, such as reading a user's file, so the loop never waits on it
-Preparer = Callable[[BridgeContext, Row, Any], Any]
+Preparer = Callable[[BridgeContext, Row, Received], object]
 # (context, row): what a publishing row due with no subscriber and no tap does instead of
 # being built
 Unheard = Callable[[BridgeContext, Row], None]
@@ -119,7 +125,7 @@ class Outlet:
     seq: int = 0
     static: Builder | None = None  # Handlers.latched's builder, until it has run
 
-    def variant(self, message: Any, md5sum: str) -> bytes:
+    def variant(self, message: object, md5sum: str) -> bytes:
         """`message` serialized in the release a subscriber negotiated by `md5sum`."""
         release = release_for_md5(self.releases, md5sum)
         assert release is not None  # the negotiator accepted only these md5sums
@@ -207,7 +213,7 @@ class Bridge:
         outlet.publisher.close()
 
     def open_row(
-        self, key: str, namespace: str, handler: Callable[..., Any]
+        self, key: str, namespace: str, handler: Builder | MessageHandler
     ) -> Callable[[], None] | None:
         """Advertise or subscribe the topic row `key` under `namespace` at run time (loop
         thread) with `handler`, e.g. the topics of an ego that appears; returns what
@@ -217,10 +223,11 @@ class Bridge:
             return None
         row = replace(row, name=f"{namespace.rstrip('/')}/{row.name.lstrip('/~')}")
         if row.direction is Direction.SUBSCRIBE:
-            return self._subscribe(row, handler).close
+            # the row's direction says which of the two the handler is
+            return self._subscribe(row, cast(MessageHandler, handler)).close
         if row.direction is not Direction.PUBLISH:
             raise ValueError(f"{row.name}: only topics are opened at run time")
-        return self.advertise(row, handler)
+        return self.advertise(row, cast(Builder, handler))
 
     def advertise(self, row: Row, build: Builder) -> Callable[[], None]:
         """Advertise a publishing row (of the table, namespaced, or an opener's); returns
@@ -252,7 +259,7 @@ class Bridge:
         # A row's messages of one step (e.g. every intersection's status) go out together.
         outlet.publisher.publish_many(self._variants(outlet, built))
 
-    def _variants(self, outlet: Outlet, built: Any) -> list[Variants]:
+    def _variants(self, outlet: Outlet, built: object) -> list[Variants]:
         """The built message(s), stamped with the row's header sequence, serialised lazily
         per release, and tapped."""
         variants: list[Variants] = []
@@ -357,7 +364,7 @@ class Bridge:
             prepare = self.handlers.preparers.get(row.key)
             prepared = request if prepare is None else prepare(self.context, row, request)
 
-            def answer() -> Any:
+            def answer() -> object:
                 if adapt is not None:
                     adapt(self.context, row, sent)
                 return handle(self.context, row, prepared)
@@ -375,7 +382,7 @@ class Bridge:
         )
 
 
-def _serialized(outlet: Outlet, message: Any, data: bytes) -> Callable[[str], bytes]:
+def _serialized(outlet: Outlet, message: object, data: bytes) -> Callable[[str], bytes]:
     """`message` in the release a subscriber's md5sum names: `data` for the canonical one,
     converted and serialised on demand for another."""
 

@@ -82,7 +82,7 @@ def control_command(ctrl_cmd: morai_26_r1.CtrlCmd) -> ControlCommand:
     )
 
 
-def publish_ego_status(context: BridgeContext, row: Row) -> Any:
+def publish_ego_status(context: BridgeContext, row: Row) -> morai_26_r1.EgoVehicleStatus:
     """/Ego_topic: the ego MultiEgoSetting's camera_index selects (the main ego by default)."""
     world = context.world
     camera_index = context.session.camera_index

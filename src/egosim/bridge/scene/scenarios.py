@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from ...datapaths import PathOutsideRootsError, resolve_in_roots
+from ...msgs.typed import morai_26_r1
 from ...scenario_files import SCENARIO_SUFFIXES, read_scenario_file
 from ...world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, ScenarioLoadReport
 from ...yamltext import YamlFileError
@@ -149,7 +150,9 @@ def on_scenario_load(context: BridgeContext, row: Row, prepared: ScenarioRequest
         log.error("%s: %s", row.name, error)
 
 
-def serve_scenario_load(context: BridgeContext, row: Row, prepared: ScenarioRequest) -> Any:
+def serve_scenario_load(
+    context: BridgeContext, row: Row, prepared: ScenarioRequest
+) -> morai_26_r1.MoraiScenarioLoadSrvResponse:
     """/Service_MoraiSL: MoraiSrvResponse.result true when the scenario was loaded."""
     try:
         load_requested_scenario(context, prepared)
