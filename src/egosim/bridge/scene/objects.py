@@ -48,7 +48,7 @@ def object_status(profile: CanonicalProfile, state: ObjectState) -> morai_26_r1.
     return profile.message("morai_msgs/ObjectStatus").new(**object_status_fields(profile, state))
 
 
-def publish_object_list(context: BridgeContext, row: Row) -> Any:
+def publish_object_list(context: BridgeContext, row: Row) -> morai_26_r1.ObjectStatusList:
     """/Object_topic: counts of everything spawned; the N closest objects, closest first
     (from the position /Ego_topic reports to each reported position)."""
     listing = context.world.object_list(context.session.camera_index)
@@ -68,7 +68,7 @@ EGO_COLLISIONS = "ego_collisions"
 VEHICLE_COLLISIONS = "vehicle_collisions"
 
 
-def publish_collision(context: BridgeContext, row: Row) -> Any:
+def publish_collision(context: BridgeContext, row: Row) -> morai_26_r1.CollisionData | None:
     """/CollisionData: the main ego's collisions that began since the row's previous
     message, then the objects it still touches (a contact is reported as long as it lasts).
 
@@ -98,7 +98,9 @@ def publish_collision(context: BridgeContext, row: Row) -> Any:
     )
 
 
-def publish_vehicle_collisions(context: BridgeContext, row: Row) -> Any:
+def publish_vehicle_collisions(
+    context: BridgeContext, row: Row
+) -> morai_26_r1.VehicleCollisionData | None:
     """/VehicleCollisionData: NPC-NPC collisions that began since the last message, then
     the NPC-NPC contacts that last."""
     profile = context.profile
