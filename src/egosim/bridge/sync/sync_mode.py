@@ -226,7 +226,11 @@ def serve_set_gear(
     return service_response(context, "MoraiSyncModeSetGearSrv", result_message(context, ok))
 
 
-def serve_scenario_load(context: BridgeContext, row: Row, prepared: ScenarioRequest) -> object:
+def serve_scenario_load(
+    context: BridgeContext,
+    row: Row,
+    prepared: ScenarioRequest[morai_26_r1.SyncModeScenarioLoad],
+) -> object:
     """/SyncModeScenarioLoad: ScenarioLoad (same fields and file roots) at a frame."""
 
     def apply(context: BridgeContext) -> bool:
