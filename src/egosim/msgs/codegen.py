@@ -27,6 +27,9 @@ from .profile import STANDARD_TYPES, get_profile
 TYPED_PACKAGE = Path(__file__).parent / "typed"
 STANDARD_MODULE = "standard"
 MORAI_PACKAGE = "morai_msgs/"
+# Standard types the bridge publishes beyond those `egosim msgs` lists (depth and raw
+# camera images, their camera info).
+BRIDGE_TYPES = ("sensor_msgs/Image", "sensor_msgs/CameraInfo")
 PYTHON_BASES = {"bool": "bool", "string": "str"} | {
     name: "float" for name in ("float32", "float64")
 }
@@ -154,7 +157,7 @@ def standard_module() -> str:
         for name in closure(profile.store, own_types(profile.name))
         if is_standard(name)
     ]
-    names = closure(store, sorted({*roots, *map(_store_name, STANDARD_TYPES)}))
+    names = closure(store, sorted({*roots, *map(_store_name, STANDARD_TYPES + BRIDGE_TYPES)}))
     for profile in profiles[1:]:
         for name in names:
             assert profile.store.fielddefs[name] == store.fielddefs[name], name
@@ -173,7 +176,7 @@ def release_module(release: str) -> str:
     profile = get_profile(release)
     store = profile.store
     names = own_types(release)
-    standard = closure(store, [*names, *map(_store_name, STANDARD_TYPES)])
+    standard = closure(store, [*names, *map(_store_name, STANDARD_TYPES + BRIDGE_TYPES)])
     standard = [name for name in standard if is_standard(name)]
     types = "\n\n".join(protocol(store, name, f" ({release})", qualify=True) for name in names)
     services = sorted(name.removesuffix("Request") for name in names if name.endswith("Request"))

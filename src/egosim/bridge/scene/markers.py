@@ -12,7 +12,6 @@ from __future__ import annotations
 
 from collections import defaultdict
 from collections.abc import Callable, Iterable, Sequence
-from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -82,15 +81,18 @@ class _Builder:
         self.marker = self.profile.message("visualization_msgs/Marker")
         point = self.profile.message("geometry_msgs/Point")
         colour = self.profile.message("std_msgs/ColorRGBA")
-        self.point_type = point.store.types[point.store_name]
-        self.colour_type = colour.store.types[colour.store_name]
-        # rosbags' class of a marker's lifetime, made directly: it is the hot path
+        # rosbags' classes of points and colours, made directly: markers hold thousands
+        self.point_type: Callable[..., standard.Point] = type(point.new())
+        self.colour_type: Callable[..., standard.ColorRGBA] = type(colour.new())
+        # (and a marker's lifetime likewise)
         self.duration_type: Callable[..., standard.Duration] = type(self.marker.new().lifetime)
 
-    def colour(self, rgba: RGBA) -> Any:
+    def colour(self, rgba: RGBA) -> standard.ColorRGBA:
         return self.colour_type(r=rgba[0], g=rgba[1], b=rgba[2], a=rgba[3])
 
-    def points(self, xyz: Iterable[Sequence[float]] | npt.NDArray[np.float64]) -> list[Any]:
+    def points(
+        self, xyz: Iterable[Sequence[float]] | npt.NDArray[np.float64]
+    ) -> list[standard.Point]:
         rows = xyz.tolist() if isinstance(xyz, np.ndarray) else xyz
         return [self.point_type(x=float(x), y=float(y), z=float(z)) for x, y, z in rows]
 
@@ -105,8 +107,8 @@ class _Builder:
         position: Sequence[float] = (0.0, 0.0, 0.0),
         yaw: float = 0.0,
         lifetime_s: float = 0.0,
-        **fields: Any,
-    ) -> Any:
+        **fields: object,
+    ) -> standard.Marker:
         return self.marker.new(
             header=self.header,
             ns=ns,
@@ -130,7 +132,7 @@ class _Builder:
         return self.duration_type(sec=sec, nanosec=nanosec)
 
 
-def build_map_markers(context: BridgeContext, row: Row) -> Any:
+def build_map_markers(context: BridgeContext, row: Row) -> standard.MarkerArray:
     """The static scene, once: roads, centre lines, stop lines, crosswalks, sidewalks, ids."""
     lane_map = context.world.map
     make = _Builder(context)
@@ -197,7 +199,7 @@ def build_map_markers(context: BridgeContext, row: Row) -> Any:
     return context.profile.message("visualization_msgs/MarkerArray").new(markers=markers)
 
 
-def build_scene_markers(context: BridgeContext, row: Row) -> Any:
+def build_scene_markers(context: BridgeContext, row: Row) -> standard.MarkerArray:
     """What moves, at the row's rate: a box per object, a sphere per light."""
     make = _Builder(context)
     lifetime = LIFETIME_PERIODS / row.rate_hz if row.rate_hz else UNTIMED_LIFETIME_S
@@ -235,9 +237,11 @@ def build_scene_markers(context: BridgeContext, row: Row) -> Any:
     return context.profile.message("visualization_msgs/MarkerArray").new(markers=markers)
 
 
-def _roads(make: _Builder, lane_map: LaneMap, segments: dict[str, list[Any]]) -> list[Any]:
+def _roads(
+    make: _Builder, lane_map: LaneMap, segments: dict[str, list[standard.Point]]
+) -> list[standard.Marker]:
     """Every lane's centre line drawn as wide as the lane (one marker per width)."""
-    by_width: dict[float, list[Any]] = defaultdict(list)
+    by_width: dict[float, list[standard.Point]] = defaultdict(list)
     for lane in lane_map.lanes.values():
         by_width[round(float(np.mean(lane.widths)), 2)] += segments[lane.id]
     return [
@@ -249,7 +253,7 @@ def _roads(make: _Builder, lane_map: LaneMap, segments: dict[str, list[Any]]) ->
     ]  # fmt: skip
 
 
-def _segments(polylines: Iterable[Any]) -> npt.NDArray[np.float64]:
+def _segments(polylines: Iterable[npt.NDArray[np.float64]]) -> npt.NDArray[np.float64]:
     """(N, 3) polylines as LINE_LIST point pairs, each segment's two ends: (M, 3)."""
     pieces = []
     for line in polylines:

@@ -1792,8 +1792,16 @@ class ReleaseProfile(Protocol):
 
     @overload
     def message(
+        self, name: Literal["sensor_msgs/CameraInfo"]
+    ) -> MessageType[standard.CameraInfo]: ...
+
+    @overload
+    def message(
         self, name: Literal["sensor_msgs/CompressedImage"]
     ) -> MessageType[standard.CompressedImage]: ...
+
+    @overload
+    def message(self, name: Literal["sensor_msgs/Image"]) -> MessageType[standard.Image]: ...
 
     @overload
     def message(self, name: Literal["sensor_msgs/Imu"]) -> MessageType[standard.Imu]: ...
@@ -1817,6 +1825,11 @@ class ReleaseProfile(Protocol):
     def message(
         self, name: Literal["sensor_msgs/PointField"]
     ) -> MessageType[standard.PointField]: ...
+
+    @overload
+    def message(
+        self, name: Literal["sensor_msgs/RegionOfInterest"]
+    ) -> MessageType[standard.RegionOfInterest]: ...
 
     @overload
     def message(self, name: Literal["std_msgs/ColorRGBA"]) -> MessageType[standard.ColorRGBA]: ...

@@ -140,11 +140,39 @@ class Log(Protocol):
     topics: list[str]
 
 
+class CameraInfo(Protocol):
+    """sensor_msgs/CameraInfo."""
+
+    header: Header
+    height: int
+    width: int
+    distortion_model: str
+    D: NDArray[np.float64]
+    K: NDArray[np.float64]
+    R: NDArray[np.float64]
+    P: NDArray[np.float64]
+    binning_x: int
+    binning_y: int
+    roi: RegionOfInterest
+
+
 class CompressedImage(Protocol):
     """sensor_msgs/CompressedImage."""
 
     header: Header
     format: str
+    data: NDArray[np.uint8]
+
+
+class Image(Protocol):
+    """sensor_msgs/Image."""
+
+    header: Header
+    height: int
+    width: int
+    encoding: str
+    is_bigendian: int
+    step: int
     data: NDArray[np.uint8]
 
 
@@ -220,6 +248,16 @@ class PointField(Protocol):
     offset: int
     datatype: int
     count: int
+
+
+class RegionOfInterest(Protocol):
+    """sensor_msgs/RegionOfInterest."""
+
+    x_offset: int
+    y_offset: int
+    height: int
+    width: int
+    do_rectify: bool
 
 
 class ColorRGBA(Protocol):
