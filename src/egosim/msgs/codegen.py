@@ -216,7 +216,7 @@ def _release_imports(body: str) -> str:
         f"from . import {STANDARD_MODULE}",
         "",
         "if TYPE_CHECKING:",
-        "    from ..profile import MessageType, ServiceType",
+        "    from ..message_type import MessageType, ServiceType",
     ]
     return "\n".join(lines) + "\n"
 

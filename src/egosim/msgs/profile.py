@@ -3,30 +3,24 @@
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Generic, Literal, TypeVar, cast, overload
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from rosbags.typesys.msg import denormalize_msgtype, normalize_msgtype
-from rosbags.typesys.store import Typestore
 
 from . import fulltext
-from .defaults import DefaultsPlan, defaults_plan
 from .definitions import (
     DEFAULT_PROFILE,
     SERVICE_SEPARATOR,
     ServiceText,
     load_package_definitions,
 )
-from .errors import DefinitionError, SerializationError, UnknownTypeError
+from .errors import DefinitionError, UnknownTypeError
+from .message_type import MessageType, ServiceType
 
 if TYPE_CHECKING:
     from .typed import morai_24_r2, morai_26_r1, morai_2021_08
 
-M = TypeVar("M")
-"""A message's type: a Protocol of egosim.msgs.typed, or Any for a type named at run time."""
-Request = TypeVar("Request")
-Response = TypeVar("Response")
 
 # rosbags' stand-ins for ROS 1's time and duration built-ins: not types a user names.
 ROSBAGS_INTERNAL = "builtin_interfaces/"
@@ -54,63 +48,6 @@ STANDARD_TYPES: tuple[str, ...] = (
     "tf2_msgs/TFMessage",
     "visualization_msgs/MarkerArray",
 )
-
-
-@dataclass(eq=False)
-class MessageType(Generic[M]):
-    """One ROS 1 message type: its identity on the wire and its (de)serialisation.
-
-    `M` only tells the type checker what the messages hold (egosim.msgs.typed): at run
-    time they are rosbags' classes."""
-
-    name: str
-    md5sum: str
-    definition: str
-    store: Typestore = field(repr=False)
-    store_name: str = field(init=False, repr=False)
-    """The name in rosbags' store (`pkg/msg/Name`), worked out once: builders need it for
-    every message they make."""
-    defaults: DefaultsPlan = field(init=False, repr=False)
-
-    def __post_init__(self) -> None:
-        self.store_name = normalize_msgtype(self.name)
-        self.defaults = defaults_plan(self.store, self.store_name)
-
-    @property
-    def fields(self) -> list[tuple[str, Any]]:
-        """(name, rosbags field description) pairs, in wire order."""
-        return list(self.store.fielddefs[self.store_name][1])
-
-    def new(self, **values: Any) -> M:
-        """A message with `values` set and every other field at its ROS default."""
-        message: M = self.defaults.new(values)
-        return message
-
-    def serialize(self, message: M) -> bytes:
-        try:
-            return bytes(self.store.serialize_ros1(message, self.store_name))
-        except Exception as exc:
-            raise SerializationError(f"cannot serialize {self.name}: {exc}") from exc
-
-    def deserialize(self, data: bytes | memoryview) -> M:
-        try:
-            # rosbags builds the class registered for store_name, the one `M` describes
-            return cast(M, self.store.deserialize_ros1(data, self.store_name))
-        except Exception as exc:
-            raise SerializationError(
-                f"cannot deserialize {len(data)} bytes as {self.name}: {exc}"
-            ) from exc
-
-
-@dataclass(frozen=True, eq=False)
-class ServiceType(Generic[Request, Response]):
-    """One ROS 1 service type: its md5 and its request and response messages."""
-
-    name: str
-    md5sum: str
-    request: MessageType[Request]
-    response: MessageType[Response]
-    definition: str  # the .srv text, as `rossrv show` prints it
 
 
 class Profile:

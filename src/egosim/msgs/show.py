@@ -11,7 +11,7 @@ from rosbags.typesys.store import Typestore
 
 from .definitions import SERVICE_SEPARATOR
 from .fulltext import BUILTIN_TIME_TYPES, element_desc
-from .profile import MessageType, ServiceType
+from .message_type import MessageType, ServiceType
 
 INDENT = "  "
 

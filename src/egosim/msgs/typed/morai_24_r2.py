@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 from . import standard
 
 if TYPE_CHECKING:
-    from ..profile import MessageType, ServiceType
+    from ..message_type import MessageType, ServiceType
 
 
 class CMDConveyor(Protocol):
