@@ -13,7 +13,7 @@ from collections.abc import Callable
 from contextlib import AbstractContextManager, nullcontext
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 from ..logthrottle import LogThrottle
 from ..msgs.typed import standard
@@ -38,6 +38,9 @@ log = logging.getLogger(__name__)
 throttle = LogThrottle(log)
 
 MAP_FRAME = "map"
+
+Entry = TypeVar("Entry")
+"""An entry of a world log (a collision, an event)."""
 
 # (context, row, ...) handlers opened at run time, e.g. the topics of an added ego.
 RowHandler = Callable[..., Any]
@@ -125,7 +128,7 @@ class BridgeContext:
         """The session of `ego`, the one owner of its run-time state."""
         return self.session.egos.of(ego)
 
-    def unreported(self, log_name: str, entries: list[Any]) -> list[Any]:
+    def unreported(self, log_name: str, entries: list[Entry]) -> list[Entry]:
         """Entries of a growing world log not yet published (all of them after a reset)."""
         reported = self.session.reported
         done = reported.get(log_name, 0)

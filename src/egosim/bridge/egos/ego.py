@@ -5,8 +5,6 @@ Frames and units of every EgoVehicleStatus field are listed in docs/protocol.md.
 
 from __future__ import annotations
 
-from typing import Any
-
 from ...msgs.typed import morai_26_r1, standard
 from ...world import EgoLaneState
 from ...world.vehicle import ControlCommand, Vehicle, VehicleStatus
@@ -54,7 +52,7 @@ def ego_vehicle_status(
 
 def ego_motion_fields(
     profile: CanonicalProfile, header: standard.Header, unique_id: int, status: VehicleStatus
-) -> dict[str, Any]:
+) -> dict[str, object]:
     """The fields EgoVehicleStatus and EgoVehicleStatusExtended share, in protocol units."""
     pose = status.pose
     return {

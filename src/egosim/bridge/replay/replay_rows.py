@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
 
 from ...msgs.typed import morai_26_r1
 from ...replay import BagTimeline, CommandResult, Mode, ObjectState, ReplayTopics
@@ -89,7 +88,7 @@ def publish_replay_info(context: BridgeContext, row: Row) -> morai_26_r1.ReplayI
     frame = timeline.sample(session.playback_time)
     profile = context.profile
     ego = frame.ego
-    fields: dict[str, Any] = {}
+    fields: dict[str, object] = {}
     if ego is not None:
         fields = {
             "ego_acc": ego.accel_pedal,

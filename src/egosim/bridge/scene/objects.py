@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
 
 from ...msgs.typed import morai_26_r1
 from ...world.collision import VehicleCollision
@@ -29,7 +28,7 @@ def to_object_frame(vector: Sequence[float], heading: float) -> tuple[float, flo
     return (c * x + s * y, -s * x + c * y, z)
 
 
-def object_status_fields(profile: CanonicalProfile, state: ObjectState) -> dict[str, Any]:
+def object_status_fields(profile: CanonicalProfile, state: ObjectState) -> dict[str, object]:
     """The fields ObjectStatus and ObjectStatusExtended share, in protocol units."""
     velocity = to_object_frame(state.velocity, state.heading)
     return {
