@@ -13,10 +13,10 @@ from collections.abc import Callable
 from contextlib import AbstractContextManager, nullcontext
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 from ..logthrottle import LogThrottle
-from ..msgs import Profile
+from ..msgs.typed import standard
 from ..replay import ReplaySession
 from ..world import World
 from .clock import HeaderClock
@@ -25,6 +25,7 @@ from .egos.angle_rates import AngleRates
 from .pipeline import Tick, TickPipeline
 from .protocol.messages import header
 from .protocol.network import NetworkSettings
+from .protocol.releases import CanonicalProfile
 from .protocol.table import Row
 from .sensors.sensor_rig import SensorRig
 from .sync.sync_session import SyncSession
@@ -37,6 +38,9 @@ log = logging.getLogger(__name__)
 throttle = LogThrottle(log)
 
 MAP_FRAME = "map"
+
+Entry = TypeVar("Entry")
+"""An entry of a world log (a collision, an event)."""
 
 # (context, row, ...) handlers opened at run time, e.g. the topics of an added ego.
 RowHandler = Callable[..., Any]
@@ -70,7 +74,7 @@ class SessionState:
 
 @dataclass
 class BridgeContext:
-    profile: Profile
+    profile: CanonicalProfile
     """The release handlers build and read (the newest; releases.py converts)."""
     world: World
     clock: HeaderClock
@@ -112,7 +116,7 @@ class BridgeContext:
         """The header stamp of this tick, ns."""
         return self.clock.now_ns()
 
-    def header(self, frame_id: str = MAP_FRAME, *, stamped: bool = True) -> Any:
+    def header(self, frame_id: str = MAP_FRAME, *, stamped: bool = True) -> standard.Header:
         """A std_msgs/Header of this tick. A row's own header (its message's first field)
         may be left unstamped (`stamped=False`): its outlet writes the seq and the stamp
         as the message goes out, so building it does not read the tick's stamp early (the
@@ -128,7 +132,7 @@ class BridgeContext:
         """The session of `ego`, the one owner of its run-time state."""
         return self.session.egos.of(ego)
 
-    def unreported(self, log_name: str, entries: list[Any]) -> list[Any]:
+    def unreported(self, log_name: str, entries: list[Entry]) -> list[Entry]:
         """Entries of a growing world log not yet published (all of them after a reset)."""
         reported = self.session.reported
         done = reported.get(log_name, 0)

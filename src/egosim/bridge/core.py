@@ -14,9 +14,9 @@ from __future__ import annotations
 import dataclasses
 import logging
 import struct
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any, Protocol, TypeVar
+from typing import Any, Protocol, TypeVar, cast
 
 from ..logthrottle import LogThrottle
 from ..msgs import MessageType, MsgsError, get_profile
@@ -52,18 +52,24 @@ throttle = LogThrottle(log)
 
 T = TypeVar("T")
 
-# (context, row) -> a message, several, or None when there is nothing to say
-Builder = Callable[[BridgeContext, Row], Any | Sequence[Any] | None]
-MessageHandler = Callable[[BridgeContext, Row, Any], None]  # (context, row, message)
+# (context, row) -> a message, several (a list or tuple), or None when there is nothing to
+# say; each builder declares its row's message type (egosim.msgs.typed)
+Builder = Callable[[BridgeContext, Row], object]
+# A message or request decoded by the type its row names in the table, which is data: the
+# handler declares that type (egosim.msgs.typed), and nothing here can check it statically.
+Received = Any
+MessageHandler = Callable[[BridgeContext, Row, Received], None]  # (context, row, message)
 # (topic, message type, serialized bytes, stamp ns): sees every message sent or received
-Tap = Callable[[str, MessageType, bytes, int], None]
-RequestHandler = Callable[[BridgeContext, Row, Any], Any]  # (context, row, request) -> response
+Tap = Callable[[str, MessageType[object], bytes, int], None]
+RequestHandler = Callable[
+    [BridgeContext, Row, Received], object
+]  # (context, row, request) -> response
 # (context, row, request as the client sent it): applies a request field only one
 # release has, before the row's handler answers
-ReleaseAdapter = Callable[[BridgeContext, Row, Any], None]
+ReleaseAdapter = Callable[[BridgeContext, Row, Received], None]
 # (context, row, message or request) -> what the row's handler gets instead: work done on
 # the transport's thread, such as reading a user's file, so the loop never waits on it
-Preparer = Callable[[BridgeContext, Row, Any], Any]
+Preparer = Callable[[BridgeContext, Row, Received], object]
 # (context, row): what a publishing row due with no subscriber and no tap does instead of
 # being built
 Unheard = Callable[[BridgeContext, Row], None]
@@ -120,7 +126,7 @@ class Outlet:
 
     row: Row
     publisher: Publisher
-    message_type: MessageType  # the canonical release's, which builders fill
+    message_type: MessageType[object]  # the canonical release's, which builders fill
     releases: tuple[Release, ...]  # every release a subscriber may ask for, default first
     build: Builder
     schedule: RateSchedule
@@ -130,10 +136,10 @@ class Outlet:
     """Its messages start with their header (every MORAI message with one does)."""
 
     def __post_init__(self) -> None:
-        first = dataclasses.fields(self.message_type.new())[0]
+        first = dataclasses.fields(self.message_type.defaults.message_class)[0]
         self.leads_with_header = first.name == "header"
 
-    def variant(self, message: Any, md5sum: str) -> bytes:
+    def variant(self, message: object, md5sum: str) -> bytes:
         """`message` serialized in the release a subscriber negotiated by `md5sum`."""
         release = release_for_md5(self.releases, md5sum)
         assert release is not None  # the negotiator accepted only these md5sums
@@ -221,7 +227,7 @@ class Bridge:
         outlet.publisher.close()
 
     def open_row(
-        self, key: str, namespace: str, handler: Callable[..., Any]
+        self, key: str, namespace: str, handler: Builder | MessageHandler
     ) -> Callable[[], None] | None:
         """Advertise or subscribe the topic row `key` under `namespace` at run time (loop
         thread) with `handler`, e.g. the topics of an ego that appears; returns what
@@ -231,10 +237,11 @@ class Bridge:
             return None
         row = replace(row, name=f"{namespace.rstrip('/')}/{row.name.lstrip('/~')}")
         if row.direction is Direction.SUBSCRIBE:
-            return self._subscribe(row, handler).close
+            # the row's direction says which of the two the handler is
+            return self._subscribe(row, cast(MessageHandler, handler)).close
         if row.direction is not Direction.PUBLISH:
             raise ValueError(f"{row.name}: only topics are opened at run time")
-        return self.advertise(row, handler)
+        return self.advertise(row, cast(Builder, handler))
 
     def advertise(self, row: Row, build: Builder) -> Callable[[], None]:
         """Advertise a publishing row (of the table, namespaced, or an opener's); returns
@@ -266,7 +273,7 @@ class Bridge:
         # A row's messages of one step (e.g. every intersection's status) go out together.
         outlet.publisher.publish_many(self._variants(outlet, built))
 
-    def _variants(self, outlet: Outlet, built: Any) -> list[Variants]:
+    def _variants(self, outlet: Outlet, built: object) -> list[Variants]:
         """The built message(s), stamped with the row's header sequence and the tick's
         stamp, serialised lazily per release, and tapped."""
         variants: list[Variants] = []
@@ -296,7 +303,7 @@ class Bridge:
         outlet.seq += 1
         return bytes(stamped)
 
-    def _tap(self, topic: str, message_type: MessageType, data: bytes) -> None:
+    def _tap(self, topic: str, message_type: MessageType[object], data: bytes) -> None:
         for tap in self.taps:
             tap(topic, message_type, data, self.context.stamp_ns())
 
@@ -387,7 +394,7 @@ class Bridge:
             prepare = self.handlers.preparers.get(row.key)
             prepared = request if prepare is None else prepare(self.context, row, request)
 
-            def answer() -> Any:
+            def answer() -> object:
                 if adapt is not None:
                     adapt(self.context, row, sent)
                 return handle(self.context, row, prepared)
@@ -405,7 +412,7 @@ class Bridge:
         )
 
 
-def _serialized(outlet: Outlet, message: Any, data: bytes) -> Callable[[str], bytes]:
+def _serialized(outlet: Outlet, message: object, data: bytes) -> Callable[[str], bytes]:
     """`message` in the release a subscriber's md5sum names: `data` for the canonical one,
     converted and serialised on demand for another."""
 
@@ -417,10 +424,10 @@ def _serialized(outlet: Outlet, message: Any, data: bytes) -> Callable[[str], by
 
 def negotiator(
     topic: str, releases: tuple[Release, ...]
-) -> Callable[[Mapping[str, str]], MessageType]:
+) -> Callable[[Mapping[str, str]], MessageType[object]]:
     """Picks the release a subscriber's md5sum asks for (`*`: the default one)."""
 
-    def negotiate(header: Mapping[str, str]) -> MessageType:
+    def negotiate(header: Mapping[str, str]) -> MessageType[object]:
         wanted = header.get("md5sum", "*")
         if wanted == "*":
             return releases[0].message_type

@@ -7,14 +7,13 @@ in real time, where nodes use their wall clocks.
 
 from __future__ import annotations
 
-from typing import Any
-
+from ..msgs.typed import standard
 from .context import BridgeContext
 from .protocol.messages import time_msg
 from .protocol.table import Row
 
 
-def publish_clock(context: BridgeContext, row: Row) -> Any:
+def publish_clock(context: BridgeContext, row: Row) -> standard.Clock | None:
     if not context.clock.publishes_clock:
         return None
     profile = context.profile

@@ -16,7 +16,8 @@ from .errors import (
     UnknownProfileError,
     UnknownTypeError,
 )
-from .profile import MessageType, Profile, ServiceType, get_profile
+from .message_type import MessageType, ServiceType
+from .profile import Profile, get_profile
 
 __all__ = [
     "DEFAULT_PROFILE",

@@ -3,23 +3,24 @@
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from rosbags.typesys.msg import denormalize_msgtype, normalize_msgtype
-from rosbags.typesys.store import Typestore
 
 from . import fulltext
-from .defaults import DefaultsPlan, defaults_plan
 from .definitions import (
     DEFAULT_PROFILE,
     SERVICE_SEPARATOR,
     ServiceText,
     load_package_definitions,
 )
-from .errors import DefinitionError, SerializationError, UnknownTypeError
-from .packing import Packer, packer
+from .errors import DefinitionError, UnknownTypeError
+from .message_type import MessageType, ServiceType
+
+if TYPE_CHECKING:
+    from .typed import morai_24_r2, morai_26_r1, morai_2021_08
+
 
 # rosbags' stand-ins for ROS 1's time and duration built-ins: not types a user names.
 ROSBAGS_INTERNAL = "builtin_interfaces/"
@@ -49,64 +50,6 @@ STANDARD_TYPES: tuple[str, ...] = (
 )
 
 
-@dataclass(eq=False)
-class MessageType:
-    """One ROS 1 message type: its identity on the wire and its (de)serialisation."""
-
-    name: str
-    md5sum: str
-    definition: str
-    store: Typestore = field(repr=False)
-    store_name: str = field(init=False, repr=False)
-    """The name in rosbags' store (`pkg/msg/Name`), worked out once: builders need it for
-    every message they make."""
-    defaults: DefaultsPlan = field(init=False, repr=False)
-    pack: Packer = field(init=False, repr=False)
-    """The type's precompiled serialiser, tried first (packing.py)."""
-
-    def __post_init__(self) -> None:
-        self.store_name = normalize_msgtype(self.name)
-        self.defaults = defaults_plan(self.store, self.store_name)
-        self.pack = packer(self.store, self.store_name)
-
-    @property
-    def fields(self) -> list[tuple[str, Any]]:
-        """(name, rosbags field description) pairs, in wire order."""
-        return list(self.store.fielddefs[self.store_name][1])
-
-    def new(self, **values: Any) -> Any:
-        """A message with `values` set and every other field at its ROS default."""
-        return self.defaults.new(values)
-
-    def serialize(self, message: Any) -> bytes:
-        data = self.pack(message)
-        if data is not None:
-            return data
-        try:
-            return bytes(self.store.serialize_ros1(message, self.store_name))
-        except Exception as exc:
-            raise SerializationError(f"cannot serialize {self.name}: {exc}") from exc
-
-    def deserialize(self, data: bytes | memoryview) -> Any:
-        try:
-            return self.store.deserialize_ros1(data, self.store_name)
-        except Exception as exc:
-            raise SerializationError(
-                f"cannot deserialize {len(data)} bytes as {self.name}: {exc}"
-            ) from exc
-
-
-@dataclass(frozen=True, eq=False)
-class ServiceType:
-    """One ROS 1 service type: its md5 and its request and response messages."""
-
-    name: str
-    md5sum: str
-    request: MessageType
-    response: MessageType
-    definition: str  # the .srv text, as `rossrv show` prints it
-
-
 class Profile:
     """Every type of one protocol release, ready to serialise."""
 
@@ -128,7 +71,7 @@ class Profile:
                 types.update(self._parse(srv.response, f"{ros_name}Response"))
                 self._services[ros_name] = srv
         self.store.register(types)
-        self._messages: dict[str, MessageType] = {}
+        self._messages: dict[str, MessageType[Any]] = {}
 
     def _parse(self, text: str, ros_name: str) -> dict[str, Any]:
         store_name = normalize_msgtype(ros_name)
@@ -145,7 +88,7 @@ class Profile:
             return self._own_texts[store_name]
         return self.store.gendefhash(store_name, {})[0]
 
-    def message(self, name: str) -> MessageType:
+    def message(self, name: str) -> MessageType[Any]:
         """The message type `pkg/Name` (also accepts rosbags' `pkg/msg/Name`)."""
         if found := self._messages.get(name):  # the hot path: builders ask per message
             return found
@@ -163,7 +106,7 @@ class Profile:
         self._messages[name] = self._messages[ros_name]
         return self._messages[name]
 
-    def service(self, name: str) -> ServiceType:
+    def service(self, name: str) -> ServiceType[Any, Any]:
         """The service type `pkg/Name`."""
         if name not in self._services:
             raise UnknownTypeError(f"no service type {name!r} in profile {self.name}")
@@ -214,7 +157,22 @@ def resolve_short_name(name: str, full_names: list[str], profile: str) -> str:
     raise UnknownTypeError(f"no message or service type {name!r} in {profile}{hint}")
 
 
-@functools.cache
+@overload
+def get_profile() -> morai_26_r1.ReleaseProfile: ...
+@overload
+def get_profile(name: Literal["26.r1"]) -> morai_26_r1.ReleaseProfile: ...  # type: ignore[overload-overlap]
+@overload
+def get_profile(name: Literal["24.r2"]) -> morai_24_r2.ReleaseProfile: ...  # type: ignore[overload-overlap]
+@overload
+def get_profile(name: Literal["2021.08"]) -> morai_2021_08.ReleaseProfile: ...  # type: ignore[overload-overlap]
+@overload
+def get_profile(name: str) -> Profile: ...
 def get_profile(name: str = DEFAULT_PROFILE) -> Profile:
-    """The profile `name`, built once per process."""
+    """The profile `name`, built once per process; a release named literally is typed
+    (its `message` and `service` know each type's fields)."""
+    return built_profile(name)
+
+
+@functools.cache
+def built_profile(name: str) -> Profile:
     return Profile(name)

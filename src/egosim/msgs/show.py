@@ -11,7 +11,7 @@ from rosbags.typesys.store import Typestore
 
 from .definitions import SERVICE_SEPARATOR
 from .fulltext import BUILTIN_TIME_TYPES, element_desc
-from .profile import MessageType, ServiceType
+from .message_type import MessageType, ServiceType
 
 INDENT = "  "
 
@@ -40,12 +40,12 @@ def field_lines(store: Typestore, store_name: str, indent: str = "") -> list[str
     return lines
 
 
-def show_message(message: MessageType) -> str:
+def show_message(message: MessageType[Any]) -> str:
     """What `rosmsg show` prints for `message`."""
     return "".join(f"{line}\n" for line in field_lines(message.store, message.store_name))
 
 
-def show_service(service: ServiceType) -> str:
+def show_service(service: ServiceType[Any, Any]) -> str:
     """What `rossrv show` prints for `service`: the request, `---`, the response."""
     request = show_message(service.request)
     response = show_message(service.response)

@@ -217,7 +217,7 @@ def _matching_release(connections: dict[str, list[Connection]], profile: str | N
 def _decode(
     reader: Reader, connections: dict[str, list[Connection]], release: Profile
 ) -> dict[str, _Decoded]:
-    types: dict[str, MessageType] = {
+    types: dict[str, MessageType[object]] = {
         topic: release.message(denormalize_msgtype(cs[0].msgtype))
         for topic, cs in connections.items()
     }

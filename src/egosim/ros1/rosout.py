@@ -6,6 +6,7 @@ import dataclasses
 import logging
 import threading
 from functools import cache
+from typing import Any
 
 from egosim.msgs import DEFAULT_PROFILE, MessageType, get_profile
 
@@ -18,12 +19,12 @@ _DEBUG = 1
 
 
 @cache
-def log_type() -> MessageType:
+def log_type() -> MessageType[Any]:
     return get_profile(DEFAULT_PROFILE).message("rosgraph_msgs/Log")
 
 
 @cache
-def _header_type() -> MessageType:
+def _header_type() -> MessageType[Any]:
     return get_profile(DEFAULT_PROFILE).message("std_msgs/Header")
 
 

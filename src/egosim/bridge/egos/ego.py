@@ -5,13 +5,12 @@ Frames and units of every EgoVehicleStatus field are listed in docs/protocol.md.
 
 from __future__ import annotations
 
-from typing import Any
-
-from ...msgs import Profile
+from ...msgs.typed import morai_26_r1
 from ...world import EgoLaneState
 from ...world.vehicle import ControlCommand, Vehicle, VehicleStatus
 from ..context import BridgeContext
 from ..protocol.messages import vector3
+from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
 from ..protocol.units import deg, heading_deg, mps
 from .ground_vehicle import commanded_vehicle
@@ -25,8 +24,8 @@ WHEEL_SUFFIXES = (
 
 
 def ego_vehicle_status_fields(
-    profile: Profile, unique_id: int, status: VehicleStatus, lane: EgoLaneState | None
-) -> dict[str, Any]:
+    profile: CanonicalProfile, unique_id: int, status: VehicleStatus, lane: EgoLaneState | None
+) -> dict[str, object]:
     """Every morai_msgs/EgoVehicleStatus field of one ego but its header; lane fields are 0
     off the road network."""
     wheels: dict[str, float] = {}
@@ -48,7 +47,9 @@ def ego_vehicle_status_fields(
     }
 
 
-def ego_motion_fields(profile: Profile, unique_id: int, status: VehicleStatus) -> dict[str, Any]:
+def ego_motion_fields(
+    profile: CanonicalProfile, unique_id: int, status: VehicleStatus
+) -> dict[str, object]:
     """The fields EgoVehicleStatus and EgoVehicleStatusExtended share but the header, in
     protocol units."""
     pose = status.pose
@@ -63,7 +64,7 @@ def ego_motion_fields(profile: Profile, unique_id: int, status: VehicleStatus) -
     }
 
 
-def control_command(ctrl_cmd: Any) -> ControlCommand:
+def control_command(ctrl_cmd: morai_26_r1.CtrlCmd) -> ControlCommand:
     """A morai_msgs/CtrlCmd in SI: velocity km/h -> m/s; angles are already rad."""
     return ControlCommand(
         mode=int(ctrl_cmd.longlCmdType),
@@ -76,7 +77,7 @@ def control_command(ctrl_cmd: Any) -> ControlCommand:
     )
 
 
-def publish_ego_status(context: BridgeContext, row: Row) -> Any:
+def publish_ego_status(context: BridgeContext, row: Row) -> morai_26_r1.EgoVehicleStatus:
     """/Ego_topic: the ego MultiEgoSetting's camera_index selects (the main ego by default)."""
     world = context.world
     camera_index = context.session.camera_index
@@ -84,7 +85,9 @@ def publish_ego_status(context: BridgeContext, row: Row) -> Any:
     return ego_status_of(context, index, stamped=False)
 
 
-def ego_status_of(context: BridgeContext, index: int, *, stamped: bool = True) -> Any:
+def ego_status_of(
+    context: BridgeContext, index: int, *, stamped: bool = True
+) -> morai_26_r1.EgoVehicleStatus:
     """EgoVehicleStatus of the ego at `index` of the world's egos; unstamped for the row's
     outlet to stamp (BridgeContext.header)."""
     world = context.world
@@ -98,13 +101,15 @@ def ego_status_of(context: BridgeContext, index: int, *, stamped: bool = True) -
     return message_type.new(header=context.header(stamped=stamped), **fields)
 
 
-def on_ctrl_cmd(context: BridgeContext, row: Row, ctrl_cmd: Any) -> None:
+def on_ctrl_cmd(context: BridgeContext, row: Row, ctrl_cmd: morai_26_r1.CtrlCmd) -> None:
     """/ctrl_cmd drives the main ego while its control mode is external (EventInfo 3)
     and it is a road vehicle."""
     drive_with_ctrl_cmd(context, row, 0, ctrl_cmd)
 
 
-def drive_with_ctrl_cmd(context: BridgeContext, row: Row, index: int, ctrl_cmd: Any) -> None:
+def drive_with_ctrl_cmd(
+    context: BridgeContext, row: Row, index: int, ctrl_cmd: morai_26_r1.CtrlCmd
+) -> None:
     """Hand a CtrlCmd received on `row` to the ego at `index` if its control mode and kind
     take it."""
     vehicle = commanded_vehicle(context, row, index, Vehicle)

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import logging
 from dataclasses import replace
-from typing import Any
 
+from ...msgs.typed import morai_26_r1
 from ...world.vehicle import Gear
 from ..context import BridgeContext
 from ..ego_session import Lamps
@@ -28,7 +28,7 @@ OPTION_SET_PAUSE = 0x08
 GEAR_NO_CHANGE = -1
 
 
-def lamps_from(lamps: Lamps, message: Any, source: str) -> Lamps:
+def lamps_from(lamps: Lamps, message: morai_26_r1.Lamps, source: str) -> Lamps:
     """`lamps` as a morai_msgs/Lamps received on `source` (a row's name) sets them; a
     value out of range leaves its lamp as it was."""
     if message.turnSignal in (0, 1, 2):
@@ -44,13 +44,15 @@ def lamps_from(lamps: Lamps, message: Any, source: str) -> Lamps:
     return lamps
 
 
-def on_lamps(context: BridgeContext, row: Row, message: Any) -> None:
+def on_lamps(context: BridgeContext, row: Row, message: morai_26_r1.Lamps) -> None:
     """/lamps: the main ego's turn and emergency lamps."""
     session = context.ego_session(context.world.egos[0])
     session.set_lamps(lamps_from(session.lamps, message, row.name))
 
 
-def serve_event_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
+def serve_event_cmd(
+    context: BridgeContext, row: Row, request: morai_26_r1.MoraiEventCmdSrvRequest
+) -> morai_26_r1.MoraiEventCmdSrvResponse:
     """/Service_MoraiEventCmd: apply the selected parts; answer with the resulting state."""
     event = request.request
     ego = context.world.egos[0]

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ...msgs.typed import morai_26_r1
 from ...sensors.rotation import quaternion_from_euler
 from ...world.traffic import ObjectState
 from ...world.vehicle import Vehicle, VehicleStatus
@@ -46,7 +47,9 @@ def wheel_speeds(vehicle: Vehicle, status: VehicleStatus) -> tuple[float, float,
     return speeds[0], speeds[1], speeds[2], speeds[3]
 
 
-def publish_ego_status_extended(context: BridgeContext, row: Row) -> Any:
+def publish_ego_status_extended(
+    context: BridgeContext, row: Row
+) -> morai_26_r1.EgoVehicleStatusExtended:
     """/Ego_topic_extended: the ego /Ego_topic reports, with wheel speeds and rates."""
     world = context.world
     index = context.session.camera_index if context.session.camera_index < len(world.egos) else 0
@@ -73,7 +76,9 @@ def publish_ego_status_extended(context: BridgeContext, row: Row) -> Any:
     )
 
 
-def publish_object_list_extended(context: BridgeContext, row: Row) -> Any:
+def publish_object_list_extended(
+    context: BridgeContext, row: Row
+) -> morai_26_r1.ObjectStatusListExtended:
     """/Object_topic_extended: /Object_topic's objects with orientation, turn signal, their
     lane (global_path_info: the lane id they are on), lane departure and distances to the
     lane's boundaries, and yaw rate."""
@@ -98,7 +103,9 @@ def publish_object_list_extended(context: BridgeContext, row: Row) -> Any:
     )
 
 
-def _extended(context: BridgeContext, state: ObjectState, lanes: Any, k: int) -> Any:
+def _extended(
+    context: BridgeContext, state: ObjectState, lanes: Any, k: int
+) -> morai_26_r1.ObjectStatusExtended:
     profile = context.profile
     world = context.world
     lane_id = lanes.lane_ids[int(lanes.lane_index[k])]

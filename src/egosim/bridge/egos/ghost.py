@@ -16,8 +16,8 @@ from __future__ import annotations
 
 import logging
 import math
-from typing import Any
 
+from ...msgs.typed import morai_26_r1
 from ...world.traffic.ghosts import GhostPlacement, NpcGhosts, TurnSignal
 from ...world.vehicle import (
     ControlCommand,
@@ -39,7 +39,7 @@ def _finite(*values: float) -> bool:
     return all(math.isfinite(v) for v in values)
 
 
-def on_ghost_ctrl_cmd(context: BridgeContext, row: Row, message: Any) -> None:
+def on_ghost_ctrl_cmd(context: BridgeContext, row: Row, message: morai_26_r1.GhostMessage) -> None:
     """/ghost_ctrl_cmd: teleport the main ego while its control mode is external."""
     vehicle = commanded_main_vehicle(context, row, Vehicle)
     if vehicle is None:
@@ -60,7 +60,7 @@ def on_ghost_ctrl_cmd(context: BridgeContext, row: Row, message: Any) -> None:
     )
 
 
-def on_npc_ghost(context: BridgeContext, row: Row, message: Any) -> None:
+def on_npc_ghost(context: BridgeContext, row: Row, message: morai_26_r1.NpcGhostCmd) -> None:
     """/NpcGhost_Topic: place the listed NPCs; bad entries are logged and skipped."""
     world = context.world
     simulated = dict(zip((int(i) for i in world.npcs.unique_ids), world.npcs.names, strict=True))
@@ -74,7 +74,7 @@ def on_npc_ghost(context: BridgeContext, row: Row, message: Any) -> None:
 
 
 def _placement(
-    row: Row, info: Any, simulated: dict[int, str], ghosts: NpcGhosts
+    row: Row, info: morai_26_r1.NpcGhostInfo, simulated: dict[int, str], ghosts: NpcGhosts
 ) -> GhostPlacement | None:
     unique_id = int(info.unique_id)
     position, rpy = info.position, info.rpy

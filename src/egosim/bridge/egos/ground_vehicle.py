@@ -8,8 +8,9 @@ Semantics and codes are listed in docs/protocol.md.
 
 from __future__ import annotations
 
-from typing import Any, TypeVar
+from typing import TypeVar
 
+from ...msgs.typed import morai_26_r1, standard
 from ...world.vehicle import (
     BodyVelocityCommand,
     SideEffortCommand,
@@ -71,7 +72,7 @@ def _drive(
         )
 
 
-def on_gv_direct_cmd(context: BridgeContext, row: Row, message: Any) -> None:
+def on_gv_direct_cmd(context: BridgeContext, row: Row, message: morai_26_r1.GVDirectCmd) -> None:
     """/gv_direct_cmd: throttle, skid steering and brake of the two sides (steerType 0)."""
     if message.steerType != STEER_TYPE_SKID:
         context.warn_throttled(
@@ -91,7 +92,7 @@ def on_gv_direct_cmd(context: BridgeContext, row: Row, message: Any) -> None:
     )
 
 
-def on_gv_state_cmd(context: BridgeContext, row: Row, message: Any) -> None:
+def on_gv_state_cmd(context: BridgeContext, row: Row, message: morai_26_r1.GVStateCmd) -> None:
     """/gv_state_cmd: target forward speed (m/s) and yaw rate (rad/s) (latCtrlType 0)."""
     if message.latCtrlType != LAT_CTRL_ANGULAR_VELOCITY:
         context.warn_throttled(
@@ -110,7 +111,7 @@ def on_gv_state_cmd(context: BridgeContext, row: Row, message: Any) -> None:
     )
 
 
-def on_webot_cmd(context: BridgeContext, row: Row, twist: Any) -> None:
+def on_webot_cmd(context: BridgeContext, row: Row, twist: standard.Twist) -> None:
     """/commands/vel: linear.x (m/s) and angular.z (rad/s); a ground vehicle has no other
     degrees of freedom, so the other components are not read."""
     _drive(

@@ -21,6 +21,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
+from ...msgs.typed import morai_26_r1
 from ...world.vehicle import Gear, Pose
 from ..context import BridgeContext, RowBinder
 from ..ego_session import Lamps
@@ -60,7 +61,9 @@ def ego_namespace(k: int) -> str:
     return f"/ego_{k}"
 
 
-def on_multi_ego_setting(context: BridgeContext, row: Row, message: Any) -> None:
+def on_multi_ego_setting(
+    context: BridgeContext, row: Row, message: morai_26_r1.MultiEgoSetting
+) -> None:
     """/ego_setting: check the whole message, then apply it."""
     try:
         entries = _entries(message, len(context.world.egos))
@@ -78,7 +81,7 @@ def on_multi_ego_setting(context: BridgeContext, row: Row, message: Any) -> None
     _sync_ego_rows(context)
 
 
-def _entries(message: Any, existing: int) -> dict[int, dict[str, Any]]:
+def _entries(message: morai_26_r1.MultiEgoSetting, existing: int) -> dict[int, dict[str, Any]]:
     """Each configured ego's attributes by position, checked."""
     count = int(message.number_of_ego_vehicle)
     if count < 1:
@@ -114,7 +117,7 @@ def _entries(message: Any, existing: int) -> dict[int, dict[str, Any]]:
     return entries
 
 
-def _values(message: Any, name: str) -> list[Any]:
+def _values(message: morai_26_r1.MultiEgoSetting, name: str) -> list[Any]:
     """A message array as plain Python numbers (the decoder may give a numpy array)."""
     values = getattr(message, name)
     return values.tolist() if hasattr(values, "tolist") else list(values)

@@ -13,7 +13,7 @@ is dropped on the way out and, on the way in, takes the value IMPLIED_FIELDS giv
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeVar, cast
 
 from rosbags.interfaces import Nodetype
 from rosbags.typesys.store import Typestore
@@ -21,8 +21,14 @@ from rosbags.typesys.store import Typestore
 from ...msgs import PROFILES, MessageType, ServiceType, UnknownTypeError, get_profile
 from ...msgs.defaults import default_message
 from ...msgs.fulltext import BUILTIN_TIME_TYPES, element_desc
+from ...msgs.typed import morai_26_r1
 
 CANONICAL_PROFILE = "26.r1"
+CanonicalProfile = morai_26_r1.ReleaseProfile
+"""The profile handlers build and read, typed: each type's fields are known."""
+
+Source = TypeVar("Source")
+Target = TypeVar("Target")
 
 # type -> {field in 26.r1: the same field's name in older releases}
 RENAMED_FIELDS: dict[str, dict[str, str]] = {
@@ -53,7 +59,7 @@ class ServiceRelease:
     """One release's view of one service type."""
 
     profile_name: str
-    service_type: ServiceType
+    service_type: ServiceType[object, object]
 
 
 def service_releases_of(type_name: str, default: str) -> tuple[ServiceRelease, ...]:
@@ -82,7 +88,7 @@ class Release:
     """One release's view of one type."""
 
     profile_name: str
-    message_type: MessageType
+    message_type: MessageType[object]
 
 
 def releases_of(type_name: str, default: str) -> tuple[Release, ...]:
@@ -101,11 +107,12 @@ def release_for_md5(releases: tuple[Release, ...], md5sum: str) -> Release | Non
     return next((r for r in releases if r.message_type.md5sum == md5sum), None)
 
 
-def convert(message: Any, source: MessageType, target: MessageType) -> Any:
+def convert(message: Source, source: MessageType[Source], target: MessageType[Target]) -> Target:
     """`message`, of type `source`, as a message of `target` (same type, other release)."""
     if source.md5sum == target.md5sum and source.name == target.name:
-        return message
-    return _convert(message, target.store, target.store_name)
+        return cast(Target, message)  # the same type: a release's twin of source's class
+    converted: Target = _convert(message, target.store, target.store_name)
+    return converted
 
 
 def _convert(message: Any, store: Typestore, store_name: str) -> Any:
@@ -150,5 +157,6 @@ def _set_path(message: Any, path: str, value: Any) -> None:
     setattr(message, last, value)
 
 
-def canonical(type_name: str) -> MessageType:
+def canonical(type_name: str) -> MessageType[Any]:
+    """The canonical release's `type_name`, named at run time (a row's type)."""
     return get_profile(CANONICAL_PROFILE).message(type_name)

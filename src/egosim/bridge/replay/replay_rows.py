@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
 
+from ...msgs.typed import morai_26_r1
 from ...replay import BagTimeline, CommandResult, Mode, ObjectState, ReplayTopics
 from ...sensors.rotation import quaternion_from_euler
 from ...world.traffic import ObjectType
@@ -51,7 +51,9 @@ def advance_replay(context: BridgeContext, dt: float) -> None:
     show_replay(context)
 
 
-def serve_sim_proc(context: BridgeContext, row: Row, request: Any) -> Any:
+def serve_sim_proc(
+    context: BridgeContext, row: Row, request: morai_26_r1.MoraiSimProcSrvRequest
+) -> morai_26_r1.MoraiSimProcSrvResponse:
     """/Morai_SimProc: apply the MoraiSimProcHandle; result true only on 0x01 success."""
     received_ns = context.stamp_ns()
     result = context.replay.handle(request.request, received_ns=received_ns)
@@ -64,7 +66,7 @@ def serve_sim_proc(context: BridgeContext, row: Row, request: Any) -> Any:
     )
 
 
-def publish_sim_proc_status(context: BridgeContext, row: Row) -> Any:
+def publish_sim_proc_status(context: BridgeContext, row: Row) -> morai_26_r1.MoraiSimProcStatus:
     """/sim/process/state/msg/MoraiSimProcStatus: always, in simulation mode too."""
     status = context.replay.status()
     return context.profile.message("morai_msgs/MoraiSimProcStatus").new(
@@ -76,7 +78,7 @@ def publish_sim_proc_status(context: BridgeContext, row: Row) -> Any:
     )
 
 
-def publish_replay_info(context: BridgeContext, row: Row) -> Any | None:
+def publish_replay_info(context: BridgeContext, row: Row) -> morai_26_r1.ReplayInfo | None:
     """/ReplayInfo_topic, during replay only: the bag's ego inputs and objects at the
     playback clock, whichever targets are replayed (ReplayInfo describes the bag)."""
     session = context.replay
@@ -86,7 +88,7 @@ def publish_replay_info(context: BridgeContext, row: Row) -> Any | None:
     frame = timeline.sample(session.playback_time)
     profile = context.profile
     ego = frame.ego
-    fields: dict[str, Any] = {}
+    fields: dict[str, object] = {}
     if ego is not None:
         fields = {
             "ego_acc": ego.accel_pedal,
@@ -99,7 +101,7 @@ def publish_replay_info(context: BridgeContext, row: Row) -> Any | None:
             ),
         }
 
-    def listed(recorded: Sequence[ObjectState], kind: ObjectType) -> list[Any]:
+    def listed(recorded: Sequence[ObjectState], kind: ObjectType) -> list[morai_26_r1.ObjectStatus]:
         return [object_status(profile, o) for o in world_objects(recorded, kind)]
 
     return profile.message("morai_msgs/ReplayInfo").new(

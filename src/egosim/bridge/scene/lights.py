@@ -10,11 +10,10 @@ is where a differing release would differ.
 from __future__ import annotations
 
 import logging
-from typing import Any
 
+from ...msgs.typed import morai_26_r1
 from ...world.signals import OFF, SignalError
 from ..context import BridgeContext
-from ..protocol.messages import message_class
 from ..protocol.table import Row
 
 log = logging.getLogger(__name__)
@@ -25,7 +24,9 @@ def tl_info_status(aspect: int) -> int:
     return aspect
 
 
-def publish_traffic_light_status(context: BridgeContext, row: Row) -> Any:
+def publish_traffic_light_status(
+    context: BridgeContext, row: Row
+) -> morai_26_r1.GetTrafficLightStatus | None:
     """/GetTrafficLightStatus: the light governing the lane ahead of the ego, else the nearest."""
     light = context.world.ego_traffic_light(context.session.camera_index)
     if light is None:
@@ -38,9 +39,11 @@ def publish_traffic_light_status(context: BridgeContext, row: Row) -> Any:
     )
 
 
-def publish_intersection_status(context: BridgeContext, row: Row) -> list[Any]:
+def publish_intersection_status(
+    context: BridgeContext, row: Row
+) -> list[morai_26_r1.IntersectionStatus]:
     """/InsnStatus: one message per signalised intersection, in index order, each period."""
-    message = message_class(context.profile, "morai_msgs/IntersectionStatus")
+    message = context.profile.message("morai_msgs/IntersectionStatus").make
     return [
         message(
             header=context.header(),
@@ -54,7 +57,9 @@ def publish_intersection_status(context: BridgeContext, row: Row) -> list[Any]:
     ]
 
 
-def on_set_traffic_light(context: BridgeContext, row: Row, request: Any) -> None:
+def on_set_traffic_light(
+    context: BridgeContext, row: Row, request: morai_26_r1.SetTrafficLight
+) -> None:
     """/SetTrafficLight: hold a light's aspect until its intersection is controlled."""
     try:
         context.world.signals.set_light(request.trafficLightIndex, int(request.trafficLightStatus))
@@ -62,7 +67,9 @@ def on_set_traffic_light(context: BridgeContext, row: Row, request: Any) -> None
         log.warning("%s ignored: %s", row.name, error)
 
 
-def on_intersection_control(context: BridgeContext, row: Row, request: Any) -> None:
+def on_intersection_control(
+    context: BridgeContext, row: Row, request: morai_26_r1.IntersectionControl
+) -> None:
     """/InsnControl: jump an intersection to a phase (intersection_status) and a time in it."""
     try:
         context.world.signals.control_intersection(
@@ -74,7 +81,9 @@ def on_intersection_control(context: BridgeContext, row: Row, request: Any) -> N
         log.warning("%s ignored: %s", row.name, error)
 
 
-def serve_tl_info(context: BridgeContext, row: Row, request: Any) -> Any:
+def serve_tl_info(
+    context: BridgeContext, row: Row, request: morai_26_r1.MoraiTLInfoSrvRequest
+) -> morai_26_r1.MoraiTLInfoSrvResponse:
     """/Morai_TLSrv: the state of any light of the map; an unknown index reads off (-1)."""
     light_id = request.request.idx
     try:

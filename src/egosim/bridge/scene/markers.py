@@ -19,14 +19,14 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from ...msgs import Profile
 from ...sensors.rotation import Quaternion, quaternion_from_euler
 from ...world.map import LaneMap
 from ...world.map.sections import lane_cross_section
 from ...world.signals.aspects import shown_colour
 from ...world.traffic import ObjectType
 from ..context import BridgeContext
-from ..protocol.messages import message_class, point, quaternion, vector3
+from ..protocol.messages import point, quaternion, vector3
+from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
 
 LIFETIME_PERIODS = 5
@@ -79,13 +79,13 @@ class _Builder:
     colour and one lifetime message per value, shared by the markers that have it)."""
 
     def __init__(self, context: BridgeContext) -> None:
-        self.profile: Profile = context.profile
+        self.profile: CanonicalProfile = context.profile
         self.header = context.header()
-        self.marker_type = message_class(self.profile, "visualization_msgs/Marker")
-        self.pose_type = message_class(self.profile, "geometry_msgs/Pose")
-        self.point_type = message_class(self.profile, "geometry_msgs/Point")
-        self.colour_type = message_class(self.profile, "std_msgs/ColorRGBA")
-        self.duration_type = message_class(self.profile, "builtin_interfaces/msg/Duration")
+        self.marker_type = self.profile.message("visualization_msgs/Marker").make
+        self.pose_type = self.profile.message("geometry_msgs/Pose").make
+        self.point_type = self.profile.message("geometry_msgs/Point").make
+        self.colour_type = self.profile.message("std_msgs/ColorRGBA").make
+        self.duration_type = self.profile.message("builtin_interfaces/Duration").make
         self._colours: dict[RGBA, Any] = {}
         self._durations: dict[float, Any] = {}
 
@@ -250,24 +250,27 @@ def build_scene_markers(context: BridgeContext, row: Row) -> Any:
             make.new(
                 "lights", 0, SPHERE_LIST, LIGHT_COLOURS[None], (LIGHT_SIZE_M,) * 3,
                 lifetime_s=lifetime,
-                points=list(light_sites(make.profile, world.map, signals.light_ids)),
-                colors=list(light_colours(make.profile, tuple(signals.aspects().tolist()))),
+                # A profile hashes by identity; its typed view (a Protocol) does not say so.
+                points=list(light_sites(make.profile, world.map, signals.light_ids)),  # type: ignore[arg-type]
+                colors=list(light_colours(make.profile, tuple(signals.aspects().tolist()))),  # type: ignore[arg-type]
             )
         )  # fmt: skip
     return context.profile.message("visualization_msgs/MarkerArray").new(markers=markers)
 
 
 @functools.lru_cache(maxsize=2)  # a map held here at most until the next run's
-def light_sites(profile: Profile, lane_map: LaneMap, light_ids: tuple[str, ...]) -> tuple[Any, ...]:
+def light_sites(
+    profile: CanonicalProfile, lane_map: LaneMap, light_ids: tuple[str, ...]
+) -> tuple[Any, ...]:
     """The lights' points of the lights marker: the map's, so made once."""
     sites = lane_map.traffic_lights
     return tuple(point(profile, sites[i].position) for i in light_ids)
 
 
 @functools.lru_cache(maxsize=64)
-def light_colours(profile: Profile, aspects: tuple[int, ...]) -> tuple[Any, ...]:
+def light_colours(profile: CanonicalProfile, aspects: tuple[int, ...]) -> tuple[Any, ...]:
     """The lights' colours of the lights marker, made again only when an aspect changes."""
-    colour = message_class(profile, "std_msgs/ColorRGBA")
+    colour = profile.message("std_msgs/ColorRGBA").make
     made = {
         rgba: colour(r=rgba[0], g=rgba[1], b=rgba[2], a=rgba[3]) for rgba in LIGHT_COLOURS.values()
     }

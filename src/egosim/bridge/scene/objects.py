@@ -10,13 +10,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
 
-from ...msgs import Profile
+from ...msgs.typed import morai_26_r1
 from ...world.collision import VehicleCollision
 from ...world.traffic import ObjectState
 from ..context import BridgeContext
-from ..protocol.messages import message_class, vector3
+from ..protocol.messages import vector3
+from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
 from ..protocol.units import heading_deg, kmh, swap_length_width
 
@@ -32,7 +32,7 @@ def _turned(vector: Sequence[float], c: float, s: float) -> tuple[float, float, 
     return (c * x + s * y, -s * x + c * y, z)
 
 
-def object_status_fields(profile: Profile, state: ObjectState) -> dict[str, Any]:
+def object_status_fields(profile: CanonicalProfile, state: ObjectState) -> dict[str, object]:
     """The fields ObjectStatus and ObjectStatusExtended share, in protocol units."""
     c, s = math.cos(state.heading), math.sin(state.heading)
     vx, vy, vz = _turned(state.velocity, c, s)
@@ -48,12 +48,12 @@ def object_status_fields(profile: Profile, state: ObjectState) -> dict[str, Any]
     }
 
 
-def object_status(profile: Profile, state: ObjectState) -> Any:
+def object_status(profile: CanonicalProfile, state: ObjectState) -> morai_26_r1.ObjectStatus:
     # Every field is given: the class itself, not MessageType.new (a list has dozens).
-    return message_class(profile, "morai_msgs/ObjectStatus")(**object_status_fields(profile, state))
+    return profile.message("morai_msgs/ObjectStatus").make(**object_status_fields(profile, state))
 
 
-def publish_object_list(context: BridgeContext, row: Row) -> Any:
+def publish_object_list(context: BridgeContext, row: Row) -> morai_26_r1.ObjectStatusList:
     """/Object_topic: counts of everything spawned; the N closest objects, closest first
     (from the position /Ego_topic reports to each reported position)."""
     listing = context.world.object_list(context.session.camera_index)
@@ -73,7 +73,7 @@ EGO_COLLISIONS = "ego_collisions"
 VEHICLE_COLLISIONS = "vehicle_collisions"
 
 
-def publish_collision(context: BridgeContext, row: Row) -> Any:
+def publish_collision(context: BridgeContext, row: Row) -> morai_26_r1.CollisionData | None:
     """/CollisionData: the main ego's collisions that began since the row's previous
     message, then the objects it still touches (a contact is reported as long as it lasts).
 
@@ -103,7 +103,9 @@ def publish_collision(context: BridgeContext, row: Row) -> Any:
     )
 
 
-def publish_vehicle_collisions(context: BridgeContext, row: Row) -> Any:
+def publish_vehicle_collisions(
+    context: BridgeContext, row: Row
+) -> morai_26_r1.VehicleCollisionData | None:
     """/VehicleCollisionData: NPC-NPC collisions that began since the last message, then
     the NPC-NPC contacts that last."""
     profile = context.profile

@@ -14,9 +14,10 @@ from __future__ import annotations
 import logging
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any
+from typing import Generic, TypeVar
 
 from ...datapaths import PathOutsideRootsError, resolve_in_roots
+from ...msgs.typed import morai_26_r1
 from ...scenario_files import SCENARIO_SUFFIXES, read_scenario_file
 from ...world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, ScenarioLoadReport
 from ...yamltext import YamlFileError
@@ -33,11 +34,19 @@ class ScenarioRequestError(Exception):
     """A ScenarioLoad request that cannot be honoured; the message says why."""
 
 
+ScenarioLoadFields = morai_26_r1.ScenarioLoad | morai_26_r1.SyncModeScenarioLoad
+"""A scenario-loading request: the topic's message or the sync-mode service's, which share
+the fields read here."""
+
+
+Load = TypeVar("Load", bound=ScenarioLoadFields)
+
+
 @dataclass(frozen=True)
-class ScenarioRequest:
+class ScenarioRequest(Generic[Load]):
     """A ScenarioLoad request with its file read and parsed, or why that failed."""
 
-    request: Any
+    request: Load
     """The ScenarioLoad (or SyncModeScenarioLoad) message."""
     scenario: Scenario | None
     error: str = ""
@@ -52,7 +61,7 @@ def scenario_path(name: str, roots: tuple[Path, ...]) -> Path:
     raise FileNotFoundError(f"no scenario {name!r} in {[str(root) for root in roots]}")
 
 
-def load_options(request: Any) -> ScenarioLoadOptions:
+def load_options(request: ScenarioLoadFields) -> ScenarioLoadOptions:
     return ScenarioLoadOptions(
         delete_all=bool(request.delete_all),
         load_network_connection_data=bool(request.load_network_connection_data),
@@ -64,7 +73,7 @@ def load_options(request: Any) -> ScenarioLoadOptions:
     )
 
 
-def read_scenario(request: Any, roots: tuple[Path, ...]) -> ScenarioRequest:
+def read_scenario(request: Load, roots: tuple[Path, ...]) -> ScenarioRequest[Load]:
     """Resolve, read and parse the file a ScenarioLoad names (any thread)."""
     try:
         path = scenario_path(request.file_name, roots)
@@ -73,17 +82,23 @@ def read_scenario(request: Any, roots: tuple[Path, ...]) -> ScenarioRequest:
         return ScenarioRequest(request, None, f"scenario {request.file_name!r} not loaded: {error}")
 
 
-def prepare_scenario(context: BridgeContext, row: Row, message: Any) -> ScenarioRequest:
+def prepare_scenario(
+    context: BridgeContext, row: Row, message: morai_26_r1.ScenarioLoad
+) -> ScenarioRequest[morai_26_r1.ScenarioLoad]:
     """The /ScenarioLoad topic's message, read (transport thread)."""
     return read_scenario(message, context.data_roots)
 
 
-def prepare_scenario_service(context: BridgeContext, row: Row, request: Any) -> ScenarioRequest:
+def prepare_scenario_service(
+    context: BridgeContext,
+    row: Row,
+    request: morai_26_r1.MoraiScenarioLoadSrvRequest | morai_26_r1.MoraiSyncModeSLSrvRequest,
+) -> ScenarioRequest[ScenarioLoadFields]:
     """A scenario-loading service's request (its `request` field), read (transport thread)."""
     return read_scenario(request.request, context.data_roots)
 
 
-def load_requested_scenario(context: BridgeContext, prepared: ScenarioRequest) -> None:
+def load_requested_scenario(context: BridgeContext, prepared: ScenarioRequest[Load]) -> None:
     """Apply a read ScenarioLoad request to the world, or raise ScenarioRequestError."""
     if prepared.scenario is None:
         raise ScenarioRequestError(prepared.error)
@@ -142,14 +157,18 @@ def apply_network_settings(context: BridgeContext, scenario: Scenario) -> None:
     )
 
 
-def on_scenario_load(context: BridgeContext, row: Row, prepared: ScenarioRequest) -> None:
+def on_scenario_load(
+    context: BridgeContext, row: Row, prepared: ScenarioRequest[ScenarioLoadFields]
+) -> None:
     try:
         load_requested_scenario(context, prepared)
     except ScenarioRequestError as error:
         log.error("%s: %s", row.name, error)
 
 
-def serve_scenario_load(context: BridgeContext, row: Row, prepared: ScenarioRequest) -> Any:
+def serve_scenario_load(
+    context: BridgeContext, row: Row, prepared: ScenarioRequest[ScenarioLoadFields]
+) -> morai_26_r1.MoraiScenarioLoadSrvResponse:
     """/Service_MoraiSL: MoraiSrvResponse.result true when the scenario was loaded."""
     try:
         load_requested_scenario(context, prepared)

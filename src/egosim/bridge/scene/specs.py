@@ -3,17 +3,17 @@
 from __future__ import annotations
 
 import logging
-from typing import Any
 
 import numpy as np
 
-from ...msgs import Profile
+from ...msgs.typed import morai_26_r1
 from ...world import World
 from ...world.map.georef import GeoReference
 from ...world.traffic import ObjectType
 from ...world.vehicle import VEHICLE_CATALOGUE, GroundVehicleModel, VehicleModel
 from ..context import BridgeContext
 from ..protocol.messages import vector3
+from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
 from ..protocol.units import deg
 
@@ -24,7 +24,7 @@ UTM_PLANE_COORDINATE_SYSTEM = 0
 TM_PLANE_COORDINATE_SYSTEM = 1
 
 
-def map_spec(profile: Profile, georef: GeoReference) -> Any:
+def map_spec(profile: CanonicalProfile, georef: GeoReference) -> morai_26_r1.MapSpec:
     """morai_msgs/MapSpec: the projection and local origin of the loaded map; a map drawn
     in a grid other than UTM (such as Korea's EPSG:5186) is a TM one."""
     return profile.message("morai_msgs/MapSpec").new(
@@ -42,7 +42,9 @@ def map_spec(profile: Profile, georef: GeoReference) -> Any:
     )
 
 
-def vehicle_spec(profile: Profile, model: VehicleModel | GroundVehicleModel | None) -> Any:
+def vehicle_spec(
+    profile: CanonicalProfile, model: VehicleModel | GroundVehicleModel | None
+) -> morai_26_r1.VehicleSpec:
     """morai_msgs/VehicleSpec of a model; all zeros for none (an unknown unique_id)."""
     spec = profile.message("morai_msgs/VehicleSpec")
     if model is None:
@@ -56,14 +58,18 @@ def vehicle_spec(profile: Profile, model: VehicleModel | GroundVehicleModel | No
     )
 
 
-def serve_map_spec(context: BridgeContext, row: Row, request: Any) -> Any:
+def serve_map_spec(
+    context: BridgeContext, row: Row, request: morai_26_r1.MoraiMapSpecSrvRequest
+) -> morai_26_r1.MoraiMapSpecSrvResponse:
     """/Service_MoraiMapSpec: the loaded map's georeference."""
     return context.profile.message("morai_msgs/MoraiMapSpecSrvResponse").new(
         response=map_spec(context.profile, context.world.map.georef)
     )
 
 
-def serve_vehicle_spec(context: BridgeContext, row: Row, request: Any) -> Any:
+def serve_vehicle_spec(
+    context: BridgeContext, row: Row, request: morai_26_r1.MoraiVehicleSpecSrvRequest
+) -> morai_26_r1.MoraiVehicleSpecSrvResponse:
     """/Service_MoraiVehicleSpec: any vehicle by unique_id; all zeros for an unknown id."""
     unique_id = int(request.request.unique_id)
     model = vehicle_model_of(context.world, unique_id)

@@ -19,10 +19,11 @@ import logging
 import posixpath
 from collections.abc import Callable
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Final
 
 import numpy as np
 
+from ...msgs.typed import standard
 from ...sensors.camera import CameraMode
 from ...sensors.image_encoding import depth_bytes
 from ..context import BridgeContext
@@ -32,11 +33,14 @@ from ..protocol.table import Row
 from ..rate_schedule import RateSchedule
 from .sensor_rig import optical_frame
 
+if TYPE_CHECKING:
+    from ..core import Bridge, Builder
+
 log = logging.getLogger(__name__)
 
-COMPRESSED_IMAGE = "sensor_msgs/CompressedImage"
-RAW_IMAGE = "sensor_msgs/Image"
-CAMERA_INFO = "sensor_msgs/CameraInfo"
+COMPRESSED_IMAGE: Final = "sensor_msgs/CompressedImage"
+RAW_IMAGE: Final = "sensor_msgs/Image"
+CAMERA_INFO: Final = "sensor_msgs/CameraInfo"
 
 
 def camera_info_topic(image_topic: str) -> str:
@@ -56,7 +60,7 @@ def camera_topic_names(settings: NetworkSettings) -> list[str]:
     return names
 
 
-def open_camera_rows(bridge: Any, row: Row) -> Callable[[], None]:
+def open_camera_rows(bridge: Bridge, row: Row) -> Callable[[], None]:
     """Advertise every camera's image topic and its CameraInfo (the `camera` row's opener);
     returns what withdraws them all."""
     context: BridgeContext = bridge.context
@@ -123,8 +127,10 @@ class CameraSchedule:
         return due
 
 
-def _image_builder(cameras: tuple[int, ...], schedule: CameraSchedule) -> Any:
-    def build(context: BridgeContext, row: Row) -> list[Any] | None:
+def _image_builder(cameras: tuple[int, ...], schedule: CameraSchedule) -> Builder:
+    def build(
+        context: BridgeContext, row: Row
+    ) -> list[standard.CompressedImage | standard.Image] | None:
         if not schedule.due(context):
             return None
         return [camera_image_message(context, k) for k in cameras]
@@ -132,8 +138,8 @@ def _image_builder(cameras: tuple[int, ...], schedule: CameraSchedule) -> Any:
     return build
 
 
-def _info_builder(cameras: tuple[int, ...], schedule: CameraSchedule) -> Any:
-    def build(context: BridgeContext, row: Row) -> list[Any] | None:
+def _info_builder(cameras: tuple[int, ...], schedule: CameraSchedule) -> Builder:
+    def build(context: BridgeContext, row: Row) -> list[standard.CameraInfo] | None:
         if not schedule.due(context):
             return None
         return [camera_info_message(context, k) for k in cameras]
@@ -141,7 +147,9 @@ def _info_builder(cameras: tuple[int, ...], schedule: CameraSchedule) -> Any:
     return build
 
 
-def camera_image_message(context: BridgeContext, k: int) -> Any:
+def camera_image_message(
+    context: BridgeContext, k: int
+) -> standard.CompressedImage | standard.Image:
     """Camera k's current image as the message its topic carries."""
     assert context.cameras is not None and context.sensors is not None
     rig = context.sensors
@@ -166,7 +174,7 @@ def camera_image_message(context: BridgeContext, k: int) -> Any:
     )
 
 
-def camera_info_message(context: BridgeContext, k: int) -> Any:
+def camera_info_message(context: BridgeContext, k: int) -> standard.CameraInfo:
     """sensor_msgs/CameraInfo of camera k: no distortion, K and P from its intrinsics.
 
     Its frame is the camera's REP 103 optical frame (`<frame_id>_optical` on /tf), the

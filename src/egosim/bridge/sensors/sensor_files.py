@@ -15,9 +15,9 @@ from __future__ import annotations
 import json
 import logging
 from pathlib import Path
-from typing import Any
 
 from ...datapaths import PathOutsideRootsError, resolve_in_roots
+from ...msgs.typed import morai_26_r1
 from ...sensors import encode_pcd, gps_imu_snapshot
 from ...sensors.camera import CameraMode
 from ...sensors.image_encoding import ImageFormat, encode_depth_tiff, encode_image
@@ -50,7 +50,7 @@ def target_path(path: Path, roots: tuple[Path, ...]) -> Path:
         raise SaveRequestError(str(error)) from error
 
 
-def file_stem(context: BridgeContext, request: Any) -> str:
+def file_stem(context: BridgeContext, request: morai_26_r1.SaveSensorData) -> str:
     if not request.is_custom_file_name:
         return f"sensor_data_{round(context.world.sim_time * 1e6)}"
     name: str = request.custom_file_name
@@ -76,7 +76,9 @@ def camera_files(context: BridgeContext, directory: Path, stem: str) -> dict[Pat
     return files
 
 
-def save_sensor_data(context: BridgeContext, request: Any) -> tuple[Path, ...]:
+def save_sensor_data(
+    context: BridgeContext, request: morai_26_r1.SaveSensorData
+) -> tuple[Path, ...]:
     """Write the PCD, JSON and camera files; their paths."""
     directory = save_directory(request.file_dir, context.data_roots)
     stem = file_stem(context, request)
@@ -98,7 +100,9 @@ def save_sensor_data(context: BridgeContext, request: Any) -> tuple[Path, ...]:
     return (cloud_path, readings_path, *images)
 
 
-def on_save_sensor_data(context: BridgeContext, row: Row, request: Any) -> None:
+def on_save_sensor_data(
+    context: BridgeContext, row: Row, request: morai_26_r1.SaveSensorData
+) -> None:
     try:
         paths = save_sensor_data(context, request)
     except SaveRequestError as error:

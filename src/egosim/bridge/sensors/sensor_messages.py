@@ -3,22 +3,24 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
-from typing import Any
 
 import numpy as np
 
-from ...msgs import Profile
+from ...msgs.typed import morai_26_r1, standard
 from ...sensors import GpsFix, ImuReading, Transform
 from ...sensors.radar import RadarDetections
 from ..protocol.messages import header as make_header
-from ..protocol.messages import message_class, point, quaternion, vector3
+from ..protocol.messages import point, quaternion, vector3
+from ..protocol.releases import CanonicalProfile
 from ..protocol.units import deg
 
 POINT_FIELDS = ("x", "y", "z", "intensity")
 FLOAT32 = 7  # sensor_msgs/PointField datatype code
 
 
-def gps_message(profile: Profile, header: Any, fix: GpsFix) -> Any:
+def gps_message(
+    profile: CanonicalProfile, header: standard.Header, fix: GpsFix
+) -> morai_26_r1.GPSMessage:
     return profile.message("morai_msgs/GPSMessage").new(
         header=header,
         latitude=fix.latitude,
@@ -30,8 +32,10 @@ def gps_message(profile: Profile, header: Any, fix: GpsFix) -> Any:
     )
 
 
-def imu_message(profile: Profile, header: Any, reading: ImuReading) -> Any:
-    return message_class(profile, "sensor_msgs/Imu")(
+def imu_message(
+    profile: CanonicalProfile, header: standard.Header, reading: ImuReading
+) -> standard.Imu:
+    return profile.message("sensor_msgs/Imu").make(
         header=header,
         orientation=quaternion(profile, reading.orientation),
         orientation_covariance=np.array(reading.orientation_covariance, dtype=np.float64),
@@ -44,7 +48,9 @@ def imu_message(profile: Profile, header: Any, reading: ImuReading) -> Any:
     )
 
 
-def point_cloud(profile: Profile, header: Any, points: np.ndarray) -> Any:
+def point_cloud(
+    profile: CanonicalProfile, header: standard.Header, points: np.ndarray
+) -> standard.PointCloud2:
     """sensor_msgs/PointCloud2 of (M, 4) float32 points x, y, z, intensity (unorganised)."""
     cloud = np.ascontiguousarray(points, dtype="<f4")
     field_type = profile.message("sensor_msgs/PointField")
@@ -65,9 +71,11 @@ def point_cloud(profile: Profile, header: Any, points: np.ndarray) -> Any:
     )
 
 
-def tf_message(profile: Profile, stamp_ns: int, transforms: Iterable[Transform]) -> Any:
-    stamped = message_class(profile, "geometry_msgs/TransformStamped")
-    transform_type = message_class(profile, "geometry_msgs/Transform")
+def tf_message(
+    profile: CanonicalProfile, stamp_ns: int, transforms: Iterable[Transform]
+) -> standard.TFMessage:
+    stamped = profile.message("geometry_msgs/TransformStamped").make
+    transform_type = profile.message("geometry_msgs/Transform").make
     return profile.message("tf2_msgs/TFMessage").new(
         transforms=[
             stamped(
@@ -83,9 +91,11 @@ def tf_message(profile: Profile, stamp_ns: int, transforms: Iterable[Transform])
     )
 
 
-def radar_message(profile: Profile, header: Any, detections: RadarDetections) -> Any:
+def radar_message(
+    profile: CanonicalProfile, header: standard.Header, detections: RadarDetections
+) -> morai_26_r1.RadarDetections:
     """morai_msgs/RadarDetections: azimuth in degrees, detection_id the object's id (16 bit)."""
-    detection = message_class(profile, "morai_msgs/RadarDetection")
+    detection = profile.message("morai_msgs/RadarDetection").make
     return profile.message("morai_msgs/RadarDetections").new(
         header=header,
         detections=[

@@ -10,8 +10,8 @@ sensor's frame_id.
 from __future__ import annotations
 
 import logging
-from typing import Any
 
+from ...msgs.typed import morai_26_r1, standard
 from ..context import BridgeContext
 from ..protocol.table import Row
 from .sensor_messages import gps_message, imu_message, point_cloud, radar_message, tf_message
@@ -22,36 +22,38 @@ log = logging.getLogger(__name__)
 MOUNT_ARRAYS = ("pose_x", "pose_y", "pose_z", "roll", "pitch", "yaw")
 
 
-def publish_gps(context: BridgeContext, row: Row) -> Any:
+def publish_gps(context: BridgeContext, row: Row) -> morai_26_r1.GPSMessage:
     rig = context.sensors
     header = context.header(rig.frame_ids[GPS_INDEX])
     return gps_message(context.profile, header, rig.gps_fix(context.world))
 
 
-def publish_imu(context: BridgeContext, row: Row) -> Any:
+def publish_imu(context: BridgeContext, row: Row) -> standard.Imu:
     rig = context.sensors
     header = context.header(rig.frame_ids[IMU_INDEX])
     return imu_message(context.profile, header, rig.imu_reading(context.world))
 
 
-def publish_lidar(context: BridgeContext, row: Row) -> Any:
+def publish_lidar(context: BridgeContext, row: Row) -> standard.PointCloud2:
     rig = context.sensors
     header = context.header(rig.frame_ids[LIDAR_INDEX])
     return point_cloud(context.profile, header, rig.scan(context.world))
 
 
-def publish_radar(context: BridgeContext, row: Row) -> Any:
+def publish_radar(context: BridgeContext, row: Row) -> morai_26_r1.RadarDetections:
     rig = context.sensors
     header = context.header(rig.frame_ids[rig.radar_index])
     return radar_message(context.profile, header, rig.radar_detections(context.world))
 
 
-def publish_tf(context: BridgeContext, row: Row) -> Any:
+def publish_tf(context: BridgeContext, row: Row) -> standard.TFMessage:
     rig = context.sensors
     return tf_message(context.profile, context.stamp_ns(), rig.transforms(context.world))
 
 
-def on_sensor_pos_control(context: BridgeContext, row: Row, message: Any) -> None:
+def on_sensor_pos_control(
+    context: BridgeContext, row: Row, message: morai_26_r1.SensorPosControl
+) -> None:
     """/SensorPosControl: parallel arrays; entry k moves sensor `sensor_index[k]` (m, rad)."""
     arrays = [message.sensor_index, *(getattr(message, name) for name in MOUNT_ARRAYS)]
     lengths = {len(array) for array in arrays}

@@ -34,13 +34,13 @@ from __future__ import annotations
 
 import logging
 from contextlib import nullcontext
-from typing import Any
 
 from ...msgs import get_profile
+from ...msgs.typed import morai_26_r1, morai_2021_08
 from ...world.vehicle import Gear
 from ..context import BridgeContext
 from ..egos.ego import ego_status_of, on_ctrl_cmd
-from ..protocol.releases import canonical, convert
+from ..protocol.releases import CANONICAL_PROFILE, convert
 from ..protocol.table import Row
 from ..scene.scenarios import ScenarioRequest, ScenarioRequestError, load_requested_scenario
 from .sync_session import MAX_PENDING_ACTIONS, Action, SyncSession
@@ -60,15 +60,17 @@ def _session(context: BridgeContext, row: Row) -> SyncSession | None:
     return session
 
 
-def result_message(context: BridgeContext, ok: bool) -> Any:
+def result_message(context: BridgeContext, ok: bool) -> morai_26_r1.SyncModeResultResponse:
     return context.profile.message("morai_msgs/SyncModeResultResponse").new(result=ok)
 
 
-def service_response(context: BridgeContext, service_type: str, response: Any) -> Any:
+def service_response(context: BridgeContext, service_type: str, response: object) -> object:
     return context.profile.message(f"morai_msgs/{service_type}Response").new(response=response)
 
 
-def serve_sync_mode_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
+def serve_sync_mode_cmd(
+    context: BridgeContext, row: Row, request: morai_26_r1.MoraiSyncModeCmdSrvRequest
+) -> object:
     """/SyncModeCmd: start (with a tick length) or stop synchronous mode."""
     command = request.request
     session = context.sync
@@ -107,7 +109,9 @@ def serve_sync_mode_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
     )
 
 
-def serve_wait_for_tick(context: BridgeContext, row: Row, request: Any) -> Any:
+def serve_wait_for_tick(
+    context: BridgeContext, row: Row, request: morai_26_r1.MoraiWaitForTickSrvRequest
+) -> object:
     """/SyncModeWaitForTick: tick to the requested frame (once for the current or an
     earlier one); the ego's status there."""
     tick = request.request
@@ -166,7 +170,7 @@ def at_frame(context: BridgeContext, row: Row, frame: int, action: Action) -> bo
     return True
 
 
-def driving(row: Row, command: Any, sensor_capture: bool = False) -> Action:
+def driving(row: Row, command: morai_26_r1.CtrlCmd, sensor_capture: bool = False) -> Action:
     """The action that hands the main ego a (26.r1) CtrlCmd requested on `row` (and, with
     `sensor_capture`, has the tick publish the camera frames)."""
 
@@ -178,7 +182,9 @@ def driving(row: Row, command: Any, sensor_capture: bool = False) -> Action:
     return drive
 
 
-def serve_ctrl_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
+def serve_ctrl_cmd(
+    context: BridgeContext, row: Row, request: morai_26_r1.MoraiSyncModeCtrlCmdSrvRequest
+) -> object:
     """/SyncModeCtrlCmd: the main ego's CtrlCmd from the tick producing `frame` on; with
     sensor_capture, that tick renders and publishes the cameras' frames (before the
     WaitForTick reply, like every output of the tick)."""
@@ -187,18 +193,24 @@ def serve_ctrl_cmd(context: BridgeContext, row: Row, request: Any) -> Any:
     return service_response(context, "MoraiSyncModeCtrlCmdSrv", result_message(context, ok))
 
 
-def apply_tick_command(context: BridgeContext, row: Row, request: Any) -> None:
+def apply_tick_command(
+    context: BridgeContext, row: Row, request: morai_2021_08.MoraiWaitForTickSrvRequest
+) -> None:
     """Release 2021.08 sends the ego's CtrlCmd inside WaitForTick (later releases use
     SyncModeCtrlCmd): it drives from the tick producing the requested frame on (the
     tick this call makes, for the current or an earlier frame)."""
     sent = request.request.command
     command = convert(
-        sent, get_profile("2021.08").message("morai_msgs/CtrlCmd"), canonical("morai_msgs/CtrlCmd")
+        sent,
+        get_profile("2021.08").message("morai_msgs/CtrlCmd"),
+        get_profile(CANONICAL_PROFILE).message("morai_msgs/CtrlCmd"),
     )
     at_frame(context, row, int(request.request.frame), driving(row, command))
 
 
-def serve_set_gear(context: BridgeContext, row: Row, request: Any) -> Any:
+def serve_set_gear(
+    context: BridgeContext, row: Row, request: morai_26_r1.MoraiSyncModeSetGearSrvRequest
+) -> object:
     """/SyncModeSetGear: the main ego's gear (EventInfo codes 1 P, 2 R, 3 N, 4 D)."""
     try:
         gear = Gear(int(request.request.gear))
@@ -214,7 +226,11 @@ def serve_set_gear(context: BridgeContext, row: Row, request: Any) -> Any:
     return service_response(context, "MoraiSyncModeSetGearSrv", result_message(context, ok))
 
 
-def serve_scenario_load(context: BridgeContext, row: Row, prepared: ScenarioRequest) -> Any:
+def serve_scenario_load(
+    context: BridgeContext,
+    row: Row,
+    prepared: ScenarioRequest[morai_26_r1.SyncModeScenarioLoad],
+) -> object:
     """/SyncModeScenarioLoad: ScenarioLoad (same fields and file roots) at a frame."""
 
     def apply(context: BridgeContext) -> bool:
@@ -229,7 +245,7 @@ def serve_scenario_load(context: BridgeContext, row: Row, prepared: ScenarioRequ
     return service_response(context, "MoraiSyncModeSLSrv", result_message(context, ok))
 
 
-def publish_sync_mode_info(context: BridgeContext, row: Row) -> Any:
+def publish_sync_mode_info(context: BridgeContext, row: Row) -> morai_26_r1.SyncModeInfo:
     """/SyncModeInfo: who runs sync mode, whether it is on, and the current frame."""
     session = context.sync
     return context.profile.message("morai_msgs/SyncModeInfo").new(

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import logging
 import math
-from typing import Any
 
+from ...msgs.typed import morai_26_r1
 from ...world import UnknownObjectModelError
 from ..context import BridgeContext
 from ..protocol.table import Row
@@ -22,7 +22,9 @@ from .sync_mode import at_frame, result_message, service_response
 log = logging.getLogger(__name__)
 
 
-def add_requested_object(context: BridgeContext, row: Row, request: Any) -> bool:
+def add_requested_object(
+    context: BridgeContext, row: Row, request: morai_26_r1.SyncModeAddObject
+) -> bool:
     position = (float(request.position.x), float(request.position.y), float(request.position.z))
     heading = float(request.heading)
     if not all(math.isfinite(v) for v in (*position, heading)):
@@ -37,20 +39,26 @@ def add_requested_object(context: BridgeContext, row: Row, request: Any) -> bool
     return True
 
 
-def remove_requested_object(context: BridgeContext, row: Row, request: Any) -> bool:
+def remove_requested_object(
+    context: BridgeContext, row: Row, request: morai_26_r1.SyncModeRemoveObject
+) -> bool:
     if not context.world.remove_object(int(request.unique_id)):
         log.error("%s: no NPC or obstacle %d", row.name, request.unique_id)
         return False
     return True
 
 
-def serve_add_object(context: BridgeContext, row: Row, request: Any) -> Any:
+def serve_add_object(
+    context: BridgeContext, row: Row, request: morai_26_r1.MoraiSyncModeAddObjectSrvRequest
+) -> object:
     add = request.request
     ok = at_frame(context, row, int(add.frame), lambda c: add_requested_object(c, row, add))
     return service_response(context, "MoraiSyncModeAddObjectSrv", result_message(context, ok))
 
 
-def serve_remove_object(context: BridgeContext, row: Row, request: Any) -> Any:
+def serve_remove_object(
+    context: BridgeContext, row: Row, request: morai_26_r1.MoraiSyncModeRemoveObjectSrvRequest
+) -> object:
     remove = request.request
     ok = at_frame(
         context, row, int(remove.frame), lambda c: remove_requested_object(c, row, remove)
