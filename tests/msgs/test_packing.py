@@ -20,7 +20,9 @@ def every_type_of_every_release() -> list[tuple[str, str]]:
     """Every type each release's store holds: morai_msgs, its services' halves, and the
     ROS standard types, those egosim publishes and the rest."""
     return [
-        (release, name) for release in PROFILES for name in get_profile(release).store.fielddefs
+        (release, name)
+        for release in PROFILES
+        for name in sorted(get_profile(release).store.fielddefs)
     ]
 
 
