@@ -14,11 +14,11 @@ import functools
 import math
 from collections import defaultdict
 from collections.abc import Iterable, Sequence
-from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
+from ...msgs.typed import standard
 from ...sensors.rotation import Quaternion, quaternion_from_euler
 from ...world.map import LaneMap
 from ...world.map.sections import lane_cross_section
@@ -86,17 +86,19 @@ class _Builder:
         self.point_type = self.profile.message("geometry_msgs/Point").make
         self.colour_type = self.profile.message("std_msgs/ColorRGBA").make
         self.duration_type = self.profile.message("builtin_interfaces/Duration").make
-        self._colours: dict[RGBA, Any] = {}
-        self._durations: dict[float, Any] = {}
+        self._colours: dict[RGBA, standard.ColorRGBA] = {}
+        self._durations: dict[float, standard.Duration] = {}
 
-    def colour(self, rgba: RGBA) -> Any:
+    def colour(self, rgba: RGBA) -> standard.ColorRGBA:
         if (shared := self._colours.get(rgba)) is None:
             shared = self._colours[rgba] = self.colour_type(
                 r=rgba[0], g=rgba[1], b=rgba[2], a=rgba[3]
             )
         return shared
 
-    def points(self, xyz: Iterable[Sequence[float]] | npt.NDArray[np.float64]) -> list[Any]:
+    def points(
+        self, xyz: Iterable[Sequence[float]] | npt.NDArray[np.float64]
+    ) -> list[standard.Point]:
         rows = xyz.tolist() if isinstance(xyz, np.ndarray) else xyz
         return [self.point_type(x=float(x), y=float(y), z=float(z)) for x, y, z in rows]
 
@@ -111,10 +113,10 @@ class _Builder:
         position: Sequence[float] = (0.0, 0.0, 0.0),
         yaw: float = 0.0,
         lifetime_s: float = 0.0,
-        points: list[Any] | None = None,
-        colors: list[Any] | None = None,
+        points: list[standard.Point] | None = None,
+        colors: list[standard.ColorRGBA] | None = None,
         text: str = "",
-    ) -> Any:
+    ) -> standard.Marker:
         return self.marker_type(
             header=self.header,
             ns=ns,
@@ -136,7 +138,7 @@ class _Builder:
             mesh_use_embedded_materials=False,
         )
 
-    def _duration(self, seconds: float) -> Any:
+    def _duration(self, seconds: float) -> standard.Duration:
         if (shared := self._durations.get(seconds)) is None:
             sec, nanosec = divmod(round(seconds * 1e9), 1_000_000_000)
             shared = self._durations[seconds] = self.duration_type(sec=sec, nanosec=nanosec)
@@ -156,7 +158,7 @@ def _yaw_quaternion(yaw: float, sign: float) -> Quaternion:
     return quaternion_from_euler(0.0, 0.0, yaw)
 
 
-def build_map_markers(context: BridgeContext, row: Row) -> Any:
+def build_map_markers(context: BridgeContext, row: Row) -> standard.MarkerArray:
     """The static scene, once: roads, centre lines, stop lines, crosswalks, sidewalks, ids."""
     lane_map = context.world.map
     make = _Builder(context)
@@ -223,7 +225,7 @@ def build_map_markers(context: BridgeContext, row: Row) -> Any:
     return context.profile.message("visualization_msgs/MarkerArray").new(markers=markers)
 
 
-def build_scene_markers(context: BridgeContext, row: Row) -> Any:
+def build_scene_markers(context: BridgeContext, row: Row) -> standard.MarkerArray:
     """What moves, at the row's rate: a box per object, a sphere per light."""
     make = _Builder(context)
     lifetime = LIFETIME_PERIODS / row.rate_hz if row.rate_hz else UNTIMED_LIFETIME_S
@@ -261,14 +263,16 @@ def build_scene_markers(context: BridgeContext, row: Row) -> Any:
 @functools.lru_cache(maxsize=2)  # a map held here at most until the next run's
 def light_sites(
     profile: CanonicalProfile, lane_map: LaneMap, light_ids: tuple[str, ...]
-) -> tuple[Any, ...]:
+) -> tuple[standard.Point, ...]:
     """The lights' points of the lights marker: the map's, so made once."""
     sites = lane_map.traffic_lights
     return tuple(point(profile, sites[i].position) for i in light_ids)
 
 
 @functools.lru_cache(maxsize=64)
-def light_colours(profile: CanonicalProfile, aspects: tuple[int, ...]) -> tuple[Any, ...]:
+def light_colours(
+    profile: CanonicalProfile, aspects: tuple[int, ...]
+) -> tuple[standard.ColorRGBA, ...]:
     """The lights' colours of the lights marker, made again only when an aspect changes."""
     colour = profile.message("std_msgs/ColorRGBA").make
     made = {
@@ -277,9 +281,11 @@ def light_colours(profile: CanonicalProfile, aspects: tuple[int, ...]) -> tuple[
     return tuple(made[LIGHT_COLOURS[shown_colour(aspect)]] for aspect in aspects)
 
 
-def _roads(make: _Builder, lane_map: LaneMap, segments: dict[str, list[Any]]) -> list[Any]:
+def _roads(
+    make: _Builder, lane_map: LaneMap, segments: dict[str, list[standard.Point]]
+) -> list[standard.Marker]:
     """Every lane's centre line drawn as wide as the lane (one marker per width)."""
-    by_width: dict[float, list[Any]] = defaultdict(list)
+    by_width: dict[float, list[standard.Point]] = defaultdict(list)
     for lane in lane_map.lanes.values():
         by_width[round(float(np.mean(lane.widths)), 2)] += segments[lane.id]
     return [
@@ -291,7 +297,7 @@ def _roads(make: _Builder, lane_map: LaneMap, segments: dict[str, list[Any]]) ->
     ]  # fmt: skip
 
 
-def _segments(polylines: Iterable[Any]) -> npt.NDArray[np.float64]:
+def _segments(polylines: Iterable[npt.ArrayLike]) -> npt.NDArray[np.float64]:
     """(N, 3) polylines as LINE_LIST point pairs, each segment's two ends: (M, 3)."""
     pieces = []
     for line in polylines:
