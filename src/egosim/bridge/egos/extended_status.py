@@ -11,12 +11,12 @@ Wheel speeds are the speed of each wheel's contact point along the wheel's headi
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
 from ...msgs.typed import morai_26_r1
 from ...sensors.rotation import quaternion_from_euler
+from ...world.map.projection import LaneProjections
 from ...world.traffic import ObjectState
 from ...world.vehicle import Vehicle, VehicleStatus
 from ..context import BridgeContext
@@ -85,12 +85,11 @@ def publish_object_list_extended(
     world = context.world
     listing = world.object_list(context.session.camera_index)
     states = [*listing.npcs, *listing.pedestrians, *listing.obstacles]
-    lanes = (
-        world.map.project_many([s.position[:2] for s in states], [s.heading for s in states])
-        if states
-        else None
-    )
-    extended = [_extended(context, s, lanes, k) for k, s in enumerate(states)]
+    extended: list[morai_26_r1.ObjectStatusExtended] = []
+    if states:
+        positions = [s.position[:2] for s in states]
+        lanes = world.map.project_many(positions, [s.heading for s in states])
+        extended = [_extended(context, s, lanes, k) for k, s in enumerate(states)]
     n_npcs, n_walkers = len(listing.npcs), len(listing.pedestrians)
     return context.profile.message("morai_msgs/ObjectStatusListExtended").new(
         header=context.header(),
@@ -104,7 +103,7 @@ def publish_object_list_extended(
 
 
 def _extended(
-    context: BridgeContext, state: ObjectState, lanes: Any, k: int
+    context: BridgeContext, state: ObjectState, lanes: LaneProjections, k: int
 ) -> morai_26_r1.ObjectStatusExtended:
     profile = context.profile
     world = context.world
