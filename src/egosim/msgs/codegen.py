@@ -135,10 +135,11 @@ def uses_arrays(body: str) -> bool:
     return "NDArray[" in body
 
 
-def imports(body: str, extra: list[str]) -> str:
-    typing = sorted(
-        word for word in ("ClassVar", "Literal", "Protocol", "overload") if word in body
-    )
+def imports(body: str, extra: list[str], always: tuple[str, ...] = ()) -> str:
+    """The import block of a generated module: what `body` uses, `always`'s typing names,
+    then the `extra` lines."""
+    words = ("ClassVar", "Literal", "Protocol", "overload")
+    typing = sorted({*always, *(word for word in words if word in body)})
     lines = []
     if uses_arrays(body):
         lines.append("import numpy as np")
@@ -204,21 +205,13 @@ def release_module(release: str) -> str:
 
 
 def _release_imports(body: str) -> str:
-    words = ("ClassVar", "Literal", "Protocol", "overload")
-    typing = sorted({"TYPE_CHECKING", *(word for word in words if word in body)})
-    lines = []
-    if uses_arrays(body):
-        lines.append("import numpy as np")
-    lines += [f"from typing import {', '.join(typing)}", ""]
-    if uses_arrays(body):
-        lines += ["from numpy.typing import NDArray", ""]
-    lines += [
+    extra = [
         f"from . import {STANDARD_MODULE}",
         "",
         "if TYPE_CHECKING:",
         "    from ..message_type import MessageType, ServiceType",
     ]
-    return "\n".join(lines) + "\n"
+    return imports(body, extra, always=("TYPE_CHECKING",))
 
 
 def overload_fallback(method: str, result: str) -> str:
