@@ -51,7 +51,7 @@ MAX_TICKS_PER_REQUEST = 500
 MAX_TIME_STEP_MS = 1000
 
 
-def _session(context: BridgeContext, row: Row) -> SyncSession | None:
+def _session(context: BridgeContext, row: Row) -> SyncSession[BridgeContext] | None:
     """The active session, or None (logged) when sync mode is not started."""
     session = context.sync
     if not session.active:
@@ -144,7 +144,7 @@ def serve_wait_for_tick(
     )
 
 
-def _tick(context: BridgeContext, session: SyncSession) -> None:
+def _tick(context: BridgeContext, session: SyncSession[BridgeContext]) -> None:
     frame = session.frame + 1
     for name, action in session.due(frame):
         if not action(context):
@@ -156,7 +156,7 @@ def _tick(context: BridgeContext, session: SyncSession) -> None:
     session.frame = frame
 
 
-def at_frame(context: BridgeContext, row: Row, frame: int, action: Action) -> bool:
+def at_frame(context: BridgeContext, row: Row, frame: int, action: Action[BridgeContext]) -> bool:
     """Apply `action`, requested on `row`, in the tick producing `frame` (see the
     module's docstring)."""
     session = _session(context, row)
@@ -170,7 +170,9 @@ def at_frame(context: BridgeContext, row: Row, frame: int, action: Action) -> bo
     return True
 
 
-def driving(row: Row, command: morai_26_r1.CtrlCmd, sensor_capture: bool = False) -> Action:
+def driving(
+    row: Row, command: morai_26_r1.CtrlCmd, sensor_capture: bool = False
+) -> Action[BridgeContext]:
     """The action that hands the main ego a (26.r1) CtrlCmd requested on `row` (and, with
     `sensor_capture`, has the tick publish the camera frames)."""
 
