@@ -129,7 +129,7 @@ def _read_events(timeline: BagTimeline) -> _Events:
             wanted = [c for c in reader.connections if c.id in releases]
             for connection, _, raw in reader.messages(connections=wanted):
                 type_name = denormalize_msgtype(connection.msgtype)
-                message = releases[connection.id].message(type_name).deserialize(raw)
+                message: Any = releases[connection.id].message(type_name).deserialize(raw)
                 stamp = message.header.stamp
                 t = (stamp.sec * 10**9 + stamp.nanosec - timeline.start_ns) / 1e9
                 if type_name == LIGHT_STATUS_TYPE:
