@@ -22,17 +22,8 @@ MAY_USE_ANY = {
     "ros1/node.py",
     "ros1/notifier.py",
     "ros1/param_tree.py",
-    "ros1/rosout.py",
     "ros1/rpc.py",
     "ros1/slave_api.py",
-    # Message fields set or read by name, being typed now: this list shrinks with that work.
-    "msgs/defaults.py",
-    "msgs/fulltext.py",
-    "msgs/message_type.py",
-    "msgs/packing.py",
-    "msgs/profile.py",
-    "msgs/show.py",
-    "bridge/protocol/releases.py",
 }
 
 

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Protocol, TypeVar
 
 from ..logthrottle import LogThrottle
-from ..msgs import MessageType
+from ..msgs import TypedMessageType
 from ..msgs.typed import standard
 from ..replay import ReplaySession
 from ..world import World
@@ -59,7 +59,7 @@ class RowBinder(Protocol):
         self,
         key: str,
         namespace: str,
-        takes: Callable[[CanonicalProfile], MessageType[M]],
+        takes: Callable[[CanonicalProfile], TypedMessageType[M]],
         handle: Callable[[BridgeContext, Row, M], None],
     ) -> Callable[[], None] | None: ...
 

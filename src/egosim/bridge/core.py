@@ -19,7 +19,7 @@ from dataclasses import dataclass, field, replace
 from typing import Protocol, TypeVar
 
 from ..logthrottle import LogThrottle
-from ..msgs import MessageType, MsgsError, get_profile
+from ..msgs import MessageType, MsgsError, TypedMessageType, get_profile
 from ..msgs.typed import standard
 from ..ros1 import (
     BadRequestError,
@@ -227,7 +227,7 @@ class Bridge:
         self,
         key: str,
         namespace: str,
-        takes: Callable[[CanonicalProfile], MessageType[M]],
+        takes: Callable[[CanonicalProfile], TypedMessageType[M]],
         handle: Callable[[BridgeContext, Row, M], None],
     ) -> Callable[[], None] | None:
         """Subscribe the row `key` under `namespace` at run time (loop thread), its

@@ -15,7 +15,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Generic, Protocol, TypeVar
 
-from ..msgs import MessageType
+from ..msgs import MessageType, TypedMessageType
 from .context import BridgeContext
 from .protocol.releases import CanonicalProfile, convert
 from .protocol.table import Row
@@ -44,7 +44,7 @@ class Receiver(Protocol[R_co]):
 class Handler(Generic[M, P, R]):
     """A row's handler with the type it takes and what prepares each message for it."""
 
-    takes: Callable[[CanonicalProfile], MessageType[M]]
+    takes: Callable[[CanonicalProfile], TypedMessageType[M]]
     """The type of the messages or requests the handler takes, in the canonical profile
     (looked up when one arrives: the profile is built on first use, not on import)."""
     prepare: Callable[[BridgeContext, Row, M], P]
@@ -58,7 +58,7 @@ class Handler(Generic[M, P, R]):
 
 
 def handler(
-    takes: Callable[[CanonicalProfile], MessageType[M]],
+    takes: Callable[[CanonicalProfile], TypedMessageType[M]],
     handle: Callable[[BridgeContext, Row, M], R],
 ) -> Handler[M, M, R]:
     """`handle` for each message or request of the type `takes` names, as it arrives."""
@@ -66,7 +66,7 @@ def handler(
 
 
 def prepared_handler(
-    takes: Callable[[CanonicalProfile], MessageType[M]],
+    takes: Callable[[CanonicalProfile], TypedMessageType[M]],
     prepare: Callable[[BridgeContext, Row, M], P],
     handle: Callable[[BridgeContext, Row, P], R],
 ) -> Handler[M, P, R]:

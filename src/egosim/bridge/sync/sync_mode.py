@@ -35,7 +35,7 @@ from __future__ import annotations
 import logging
 from contextlib import nullcontext
 
-from ...msgs import get_profile
+from ...msgs import Message, get_profile
 from ...msgs.typed import morai_26_r1, morai_2021_08
 from ...world.vehicle import Gear
 from ..context import BridgeContext
@@ -64,7 +64,7 @@ def result_message(context: BridgeContext, ok: bool) -> morai_26_r1.SyncModeResu
     return context.profile.message("morai_msgs/SyncModeResultResponse").new(result=ok)
 
 
-def service_response(context: BridgeContext, service_type: str, response: object) -> object:
+def service_response(context: BridgeContext, service_type: str, response: Message) -> object:
     return context.profile.message(f"morai_msgs/{service_type}Response").new(response=response)
 
 
