@@ -10,7 +10,7 @@ import numpy as np
 from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.kernels import kernel
 from egosim.world.kernels.numpy_scalars import maximum, minimum, remainder
-from egosim.world.kernels.sorting import lexsort_argsort, search_sorted
+from egosim.world.kernels.sorting import lexsort_argsort, resort, search_sorted
 
 
 @kernel
@@ -84,6 +84,29 @@ def _substeps(travel_in_substeps: float, max_substeps: int) -> int:
 
 
 @kernel
+def _between(
+    k: int,
+    fraction: float,
+    before_centres: FloatArray,
+    before_headings: FloatArray,
+    after_centres: FloatArray,
+    after_headings: FloatArray,
+    after_lengths: FloatArray,
+    after_widths: FloatArray,
+) -> tuple[float, float, float, float, float]:
+    """Box k at `fraction` of its motion (collision._interpolate): x, y, heading, length,
+    width."""
+    turn = remainder(after_headings[k] - before_headings[k] + math.pi, math.tau) - math.pi
+    return (
+        before_centres[k, 0] + fraction * (after_centres[k, 0] - before_centres[k, 0]),
+        before_centres[k, 1] + fraction * (after_centres[k, 1] - before_centres[k, 1]),
+        before_headings[k] + fraction * turn,
+        after_lengths[k],
+        after_widths[k],
+    )
+
+
+@kernel
 def touching_pairs(
     before_centres: FloatArray,
     before_headings: FloatArray,
@@ -95,19 +118,32 @@ def touching_pairs(
     after_widths: FloatArray,
     max_substep_m: float,
     max_substeps: int,
-) -> IntArray:
-    """collision.touching_pairs: (K, 2) pairs i < j, sorted, that touch during the motion."""
+    before_bounds: FloatArray,
+    earlier_order: IntArray,
+) -> tuple[IntArray, FloatArray, IntArray]:
+    """collision.touching_pairs: (K, 2) pairs i < j, sorted, that touch during the motion;
+    then the bounds of the boxes after it (the next sweep's before_bounds) and the boxes'
+    order along x (the next sweep's earlier_order).
+
+    before_bounds: the before boxes' bounds as an earlier sweep returned them, or none
+    (no rows): worked out. earlier_order: a permutation of the boxes close to their order
+    along x now, or none: sorted from scratch. Neither changes the pairs."""
     n = before_headings.shape[0]
-    b0 = _bounds(before_centres, before_headings, before_lengths, before_widths)
+    if before_bounds.shape[0] == n:
+        b0 = before_bounds
+    else:
+        b0 = _bounds(before_centres, before_headings, before_lengths, before_widths)
     b1 = _bounds(after_centres, after_headings, after_lengths, after_widths)
     low = np.empty((n, 2))
     high = np.empty((n, 2))
+    low_x = np.empty(n)
     for k in range(n):
         for d in range(2):
             low[k, d] = minimum(b0[k, d], b1[k, d])
             high[k, d] = maximum(b0[k, 2 + d], b1[k, 2 + d])
-    order = lexsort_argsort(np.zeros(n, dtype=np.int64), low[:, 0].copy())
-    sorted_low = low[order, 0]
+        low_x[k] = low[k, 0]
+    order = resort(low_x, earlier_order)
+    sorted_low = low_x[order]
     keys = np.empty(16, dtype=np.int64)
     found = 0
     for a in range(n):
@@ -127,24 +163,15 @@ def touching_pairs(
             steps = _substeps(math.hypot(travel_x, travel_y) / max_substep_m, max_substeps)
             for step in range(1, steps + 1):
                 fraction = step / steps
-                boxes = []
-                for k in (first, second):
-                    turn = (
-                        remainder(after_headings[k] - before_headings[k] + math.pi, math.tau)
-                        - math.pi
-                    )
-                    boxes.append(
-                        (
-                            before_centres[k, 0]
-                            + fraction * (after_centres[k, 0] - before_centres[k, 0]),
-                            before_centres[k, 1]
-                            + fraction * (after_centres[k, 1] - before_centres[k, 1]),
-                            before_headings[k] + fraction * turn,
-                            after_lengths[k],
-                            after_widths[k],
-                        )
-                    )
-                if overlap(boxes[0], boxes[1]):
+                box_first = _between(
+                    first, fraction, before_centres, before_headings, after_centres,
+                    after_headings, after_lengths, after_widths,
+                )  # fmt: skip
+                box_second = _between(
+                    second, fraction, before_centres, before_headings, after_centres,
+                    after_headings, after_lengths, after_widths,
+                )  # fmt: skip
+                if overlap(box_first, box_second):
                     if found == keys.shape[0]:
                         keys = np.concatenate((keys, np.empty(found, dtype=np.int64)))
                     keys[found] = first * n + second
@@ -154,4 +181,4 @@ def touching_pairs(
     result = np.empty((found, 2), dtype=np.int64)
     for row, k in enumerate(lexsort_argsort(keys, np.zeros(found))):
         result[row, 0], result[row, 1] = keys[k] // n, keys[k] % n
-    return result
+    return result, b1, order

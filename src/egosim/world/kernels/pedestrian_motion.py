@@ -15,7 +15,8 @@ from egosim.world.kernels.sorting import search_sorted
 def walk(
     dt: float,
     s: FloatArray,
-    moving: BoolArray,
+    stopped: BoolArray,
+    dormant: BoolArray,
     walk_speed: FloatArray,
     walk_allowed: BoolArray,
     key_base: FloatArray,
@@ -41,7 +42,7 @@ def walk(
     motion = np.empty((3, n, 2))
     point_key = path[0]
     for i in range(n):
-        new_s = s[i] + (walk_speed[i] * dt if moving[i] else 0.0)
+        new_s = s[i] + (0.0 if stopped[i] or dormant[i] else walk_speed[i] * dt)
         if gates.shape[0]:
             g = search_sorted(gates, key_base[i] + s[i], False)
             safe = g if g < gates.shape[0] else 0

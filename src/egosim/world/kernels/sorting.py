@@ -1,5 +1,7 @@
 """A stable argsort for kernels: numpy's np.lexsort((secondary, primary)) order (by an
-integer key, then a float key with NaN last, then position), by a bottom-up merge sort.
+integer key, then a float key with NaN last, then position), by a bottom-up merge sort;
+and the same order of one float key reached from an earlier order of it (a step's boxes
+barely move, so last step's order is nearly sorted).
 
 numba's own stable argsort gives the same order but takes several times longer to
 compile than every kernel of the step together.
@@ -55,6 +57,48 @@ def lexsort_argsort(primary: IntArray, secondary: FloatArray) -> IntArray:
                     j += 1
         order, spare = spare, order
         width *= 2
+    return order
+
+
+_RESORT_MOVES_PER_ELEMENT = 8
+"""resort's insertion moves allowed per element before it sorts afresh instead (an order
+far from the new one would make the insertion quadratic)."""
+
+
+@kernel
+def _precedes(keys: FloatArray, a: int, b: int) -> bool:
+    """Element a comes before element b in a stable sort of `keys` (NaN last)."""
+    x, y = keys[a], keys[b]
+    if x < y:
+        return True
+    if x > y:
+        return False
+    x_nan, y_nan = x != x, y != y  # noqa: PLR0124
+    if x_nan != y_nan:
+        return bool(y_nan)
+    return a < b
+
+
+@kernel
+def resort(keys: FloatArray, earlier: IntArray) -> IntArray:
+    """np.argsort(keys, kind="stable"), reached by insertion from `earlier` (a
+    permutation of the indices, e.g. the order of the keys a step ago); from scratch
+    when `earlier` does not fit or is far from the order."""
+    n = keys.shape[0]
+    if earlier.shape[0] != n:
+        return lexsort_argsort(np.zeros(n, dtype=np.int64), keys)
+    order = earlier.copy()
+    budget = _RESORT_MOVES_PER_ELEMENT * n
+    for k in range(1, n):
+        moving = order[k]
+        j = k
+        while j > 0 and _precedes(keys, moving, order[j - 1]):
+            order[j] = order[j - 1]
+            j -= 1
+            budget -= 1
+        order[j] = moving
+        if budget < 0:
+            return lexsort_argsort(np.zeros(n, dtype=np.int64), keys)
     return order
 
 

@@ -21,6 +21,7 @@ from typing import Protocol
 import numpy as np
 
 from egosim.world.arrays import FloatArray, IntArray
+from egosim.world.collision import Footprints
 from egosim.world.map import LaneMap, LaneProjections
 from egosim.world.traffic import LaneOccupants, LightsView, ObjectTable
 from egosim.world.vehicle import VehicleStatus
@@ -70,6 +71,12 @@ class Population(Protocol):
 
     def table(self) -> ObjectTable:
         """Its rows of the object table, in a fixed order."""
+        ...
+
+    def footprints(self) -> Footprints:
+        """The footprints of its rows of the object table (their positions, headings,
+        lengths and widths), without the table's other columns: every step's collision
+        test asks for them."""
         ...
 
     def lane_points(self) -> LanePoints:

@@ -9,6 +9,7 @@ from dataclasses import replace
 import numpy as np
 
 from egosim.world.arrays import FloatArray, IntArray
+from egosim.world.collision import Footprints
 from egosim.world.map import LaneMap, LaneProjections
 from egosim.world.populations.base import LanePoints, Shove, Surroundings
 from egosim.world.recorded_scene import RecordedEgo
@@ -66,6 +67,7 @@ class SimulatedEgos:
         self.egos = egos
         self.scripted = scripted
         self._lane_cache: tuple[tuple[Pose, ...], LaneProjections] | None = None
+        self._surface_cache: tuple[tuple[Pose, ...], list[RoadSurface]] | None = None
 
     def status(self, index: int) -> VehicleStatus:
         return self.egos[index].vehicle.status()
@@ -116,6 +118,15 @@ class SimulatedEgos:
             accelerations=values[:, 7:10],
             sizes=values[:, 10:13],
         )
+
+    def footprints(self) -> Footprints:
+        rows = []
+        for ego in self.egos:
+            motion = ego.vehicle.motion()
+            model = ego.vehicle.model
+            rows.append((*ego.box_centre(motion), motion.pose.yaw, model.length, model.width))
+        values = np.array(rows, dtype=np.float64).reshape(len(rows), 5)
+        return Footprints(values[:, 0:2], values[:, 2], values[:, 3], values[:, 4])
 
     def lane_points(self) -> LanePoints:
         """Each ego's reference point, then each one's footprint centre, its yaw as hint:
@@ -169,7 +180,15 @@ class SimulatedEgos:
 
     def road_surfaces(self) -> list[RoadSurface]:
         """The road under each ego: the height of its lane there, and the pitch the
-        lane's grade gives a vehicle facing the ego's way (roll: none)."""
+        lane's grade gives a vehicle facing the ego's way (roll: none). Kept, like the
+        lanes, while no ego moves (an ego at rest asks for the same road every step)."""
+        poses = tuple(ego.vehicle.motion().pose for ego in self.egos)
+        known = self._surface_cache
+        if known is None or known[0] != poses:
+            known = self._surface_cache = (poses, self._road_surfaces())
+        return known[1]
+
+    def _road_surfaces(self) -> list[RoadSurface]:
         projection = self.lanes()
         n = len(projection)
         yaws = np.array([ego.vehicle.motion().pose.yaw for ego in self.egos])
@@ -227,6 +246,9 @@ class ReplayedEgos:
 
     def table(self) -> ObjectTable:
         return self.simulated.table()
+
+    def footprints(self) -> Footprints:
+        return self.simulated.footprints()
 
     def lane_points(self) -> LanePoints:
         return self.simulated.lane_points()

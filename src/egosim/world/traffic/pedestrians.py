@@ -208,7 +208,8 @@ class PedestrianCrowd:
                 pedestrian_motion.walk(
                     dt,
                     self.s,
-                    ~(self.stopped | self.dormant),
+                    self.stopped,
+                    self.dormant,
                     self.walk_speed,
                     walk_allowed,
                     self._key_base,
