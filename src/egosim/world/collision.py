@@ -43,7 +43,12 @@ class Footprints:
     @classmethod
     def of(cls, table: ObjectTable) -> Footprints:
         """The footprints of a table's rows (views of its columns)."""
+        if len(table.headings) == 0:
+            return _NO_FOOTPRINTS
         return cls(table.positions[:, :2], table.headings, table.sizes[:, 0], table.sizes[:, 1])
+
+
+_NO_FOOTPRINTS = Footprints(np.empty((0, 2)), np.empty(0), np.empty(0), np.empty(0))
 
 
 _NO_BOUNDS = np.empty((0, 4))

@@ -21,7 +21,7 @@ from egosim.json_value import JsonObject
 from egosim.world.collision import EgoCollision, VehicleCollision
 from egosim.world.contact import ContactModel
 from egosim.world.contact_handling import ContactHandler, StepContacts
-from egosim.world.map import LaneMap
+from egosim.world.map import LaneMap, ProjectionMemory
 from egosim.world.populations import (
     Ego,
     EgoPopulation,
@@ -189,6 +189,9 @@ class World:
         """The network settings of the last ScenarioLoad that asked for them."""
         self._contacts = ContactHandler(self.objects())
         self._lights: tuple[TrafficSignals, int, LightsView] | None = None
+        self._lane_memory = ProjectionMemory()
+        """The lane projection of the agents' last step: who has not moved since is not
+        placed on a lane again."""
         if scenario is not None:
             self.load_scenario(scenario)
 
@@ -388,7 +391,9 @@ class World:
             return
         self.signals.step(dt)
         populations = self._populations
-        surroundings = Surroundings(self.map, self._lights_view(), populations, self._egos)
+        surroundings = Surroundings(
+            self.map, self._lights_view(), populations, self._egos, self._lane_memory
+        )
         for population in populations:
             population.step(dt, surroundings)
         for waiting in self._waiting:

@@ -87,7 +87,7 @@ def resort(keys: FloatArray, earlier: IntArray) -> IntArray:
     n = keys.shape[0]
     if earlier.shape[0] != n:
         return lexsort_argsort(np.zeros(n, dtype=np.int64), keys)
-    order = earlier.copy()
+    order: IntArray = earlier.copy()
     budget = _RESORT_MOVES_PER_ELEMENT * n
     for k in range(1, n):
         moving = order[k]
@@ -106,6 +106,30 @@ def resort(keys: FloatArray, earlier: IntArray) -> IntArray:
 def _less(a: float, b: float) -> bool:
     """numpy's sort order: a before b, NaN after every number."""
     return a < b or (b != b and a == a)  # noqa: PLR0124
+
+
+_NEAR_STEPS = 4
+"""How far search_sorted_near walks from its guess before it searches the whole array."""
+
+
+@kernel
+def _goes_before(element: float, value: float, right: bool) -> bool:
+    """`element` lies before where searchsorted puts `value` (on its side)."""
+    return not _less(value, element) if right else _less(element, value)
+
+
+@kernel
+def search_sorted_near(values: FloatArray | IntArray, value: float, right: bool, guess: int) -> int:
+    """search_sorted, first trying `guess` and the few places after it (where the answer
+    was a step ago, for a value that moves on a little); the answer is the same."""
+    n = values.shape[0]
+    if 0 <= guess <= n and (guess == 0 or _goes_before(values[guess - 1], value, right)):
+        place = guess
+        for _ in range(_NEAR_STEPS):
+            if place == n or not _goes_before(values[place], value, right):
+                return place
+            place += 1
+    return search_sorted(values, value, right)
 
 
 @kernel

@@ -16,7 +16,12 @@ from egosim.world.map.errors import MapGeometryError, UnknownLaneError
 from egosim.world.map.georef import GeoReference
 from egosim.world.map.light_type import LightType
 from egosim.world.map.polyline import segment_headings, stations
-from egosim.world.map.projection import LaneProjection, LaneProjections, SegmentTable
+from egosim.world.map.projection import (
+    LaneProjection,
+    LaneProjections,
+    ProjectionMemory,
+    SegmentTable,
+)
 from egosim.world.map.road_coordinates import RoadCoordinates
 from egosim.world.map.road_marking import RoadMarking
 
@@ -239,13 +244,17 @@ class LaneMap:
         return self.project_many(np.array([[x, y]], dtype=np.float64), hint)[0]
 
     def project_many(
-        self, xy: npt.ArrayLike, headings: npt.ArrayLike | None = None
+        self,
+        xy: npt.ArrayLike,
+        headings: npt.ArrayLike | None = None,
+        memory: ProjectionMemory | None = None,
     ) -> LaneProjections:
         """`project` for an (N, 2) array of points (and optional (N,) heading hints, NaN
-        where a point has none)."""
+        where a point has none). A caller projecting the same points over and over (an
+        agent at rest stays where it was) may keep a `memory` of its own between calls."""
         points = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
         hint = None if headings is None else np.asarray(headings, dtype=np.float64).reshape(-1)
-        return self._segments.project(points, hint)
+        return self._segments.project(points, hint, memory)
 
     def pose_at(self, lane_id: str, s: float) -> tuple[float, float, float, float]:
         """(x, y, z, heading) on the centreline at station s, clamped to [0, length]."""

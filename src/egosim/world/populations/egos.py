@@ -84,6 +84,10 @@ class SimulatedEgos:
         if known is None or known[0] != poses:
             projection = self.map.project_many([(p.x, p.y) for p in poses], [p.yaw for p in poses])
             known = self._lane_cache = (poses, projection)
+        elif len(known[1]) != len(poses):
+            # lane_occupants keeps the step's whole projection: the egos' part is cut out
+            # only when someone asks.
+            known = self._lane_cache = (poses, known[1].part(0, len(poses)))
         return known[1]
 
     def table(self) -> ObjectTable:
@@ -141,7 +145,7 @@ class SimulatedEgos:
     def lane_occupants(self, placed: LaneProjections) -> LaneOccupants:
         motions = [ego.vehicle.motion() for ego in self.egos]
         n = len(motions)
-        self._lane_cache = (tuple(m.pose for m in motions), placed.part(0, n))
+        self._lane_cache = (tuple(m.pose for m in motions), placed)
         # Ego by ego in floats: a world has a few egos, and a numpy call on so few
         # values costs more than the arithmetic.
         lanes, stations = placed.lane_index[n:].tolist(), placed.s[n:].tolist()

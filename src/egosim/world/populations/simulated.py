@@ -86,6 +86,8 @@ class PlacedGhosts:
 
     def lane_points(self) -> LanePoints:
         table = self.ghosts.table()
+        if len(table) == 0:
+            return LanePoints.none()
         return LanePoints(table.positions[:, :2], table.headings)
 
     def lane_occupants(self, placed: LaneProjections) -> LaneOccupants:
