@@ -10,7 +10,7 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.world import kernels
-from egosim.world.arrays import FloatArray
+from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.kernels.lane_poses import lane_poses
 from egosim.world.map.errors import MapGeometryError, UnknownLaneError
 from egosim.world.map.georef import GeoReference
@@ -38,6 +38,8 @@ def _frozen_array(values: object, what: str) -> FloatArray:
 
 
 _NOT_MOVED = np.empty(0)
+_NO_HINTS = np.empty(0, np.int64)
+"""No search hints: every point's search goes over the whole centreline table."""
 
 
 class _ArrayFieldsEquality:
@@ -262,10 +264,17 @@ class LaneMap:
         return float(x), float(y), float(z), float(heading)
 
     def poses_at(
-        self, lane_indices: npt.ArrayLike, s: npt.ArrayLike, lateral: FloatArray | None = None
+        self,
+        lane_indices: npt.ArrayLike,
+        s: npt.ArrayLike,
+        lateral: FloatArray | None = None,
+        search_hints: IntArray | None = None,
     ) -> FloatArray:
         """(N, 4) array of x, y, z, heading for lane indices and stations (clamped); with
-        `lateral`, each point moved that far (m) to the left of its lane."""
+        `lateral`, each point moved that far (m) to the left of its lane. A caller asking
+        for the same agents step after step may keep (N,) `search_hints` of its own:
+        where the search along the centrelines ended for each point last time (any
+        values will do; updated in place), so that the next search starts there."""
         lanes = np.asarray(lane_indices, dtype=np.int64).reshape(-1)
         stations = np.asarray(s, dtype=np.float64).reshape(-1)
         if kernels.ACTIVE:
@@ -273,6 +282,7 @@ class LaneMap:
                 lanes,
                 stations,
                 _NOT_MOVED if lateral is None else lateral,
+                _NO_HINTS if search_hints is None else search_hints,
                 self.lane_lengths,
                 self._lane_key_base,
                 self._point_key,

@@ -68,6 +68,9 @@ class SimulatedEgos:
         self.scripted = scripted
         self._lane_cache: tuple[tuple[Pose, ...], LaneProjections] | None = None
         self._surface_cache: tuple[tuple[Pose, ...], list[RoadSurface]] | None = None
+        self._placed: (
+            tuple[tuple[tuple[Pose, EgoModel], ...], tuple[LanePoints, Footprints]] | None
+        ) = None
 
     def status(self, index: int) -> VehicleStatus:
         return self.egos[index].vehicle.status()
@@ -124,23 +127,39 @@ class SimulatedEgos:
         )
 
     def footprints(self) -> Footprints:
-        rows = []
-        for ego in self.egos:
-            motion = ego.vehicle.motion()
-            model = ego.vehicle.model
-            rows.append((*ego.box_centre(motion), motion.pose.yaw, model.length, model.width))
-        values = np.array(rows, dtype=np.float64).reshape(len(rows), 5)
-        return Footprints(values[:, 0:2], values[:, 2], values[:, 3], values[:, 4])
+        return self._placement()[1]
 
     def lane_points(self) -> LanePoints:
         """Each ego's reference point, then each one's footprint centre, its yaw as hint:
         the first give the lanes (kept, see lanes), the second the lane occupants."""
+        return self._placement()[0]
+
+    def _placement(self) -> tuple[LanePoints, Footprints]:
+        """The egos' lane points and footprints, worked out together and kept while no
+        ego moves (or changes its model)."""
         motions = [ego.vehicle.motion() for ego in self.egos]
-        references = [(m.pose.x, m.pose.y) for m in motions]
-        centres = [ego.box_centre(m) for ego, m in zip(self.egos, motions, strict=True)]
-        yaws = np.array([m.pose.yaw for m in motions])
-        xy = np.array(references + centres).reshape(-1, 2)
-        return LanePoints(xy, np.concatenate((yaws, yaws)))
+        key = tuple(
+            (motion.pose, ego.vehicle.model) for ego, motion in zip(self.egos, motions, strict=True)
+        )
+        known = self._placed
+        if known is not None and known[0] == key:
+            return known[1]
+        rows = []
+        for ego, motion in zip(self.egos, motions, strict=True):
+            model = ego.vehicle.model
+            pose = motion.pose
+            centre = ego.box_centre(motion)
+            rows.append((pose.x, pose.y, *centre, pose.yaw, model.length, model.width))
+        values = np.array(rows, dtype=np.float64).reshape(len(rows), 7)
+        yaws = values[:, 4]
+        placement = (
+            LanePoints(
+                np.concatenate((values[:, 0:2], values[:, 2:4])), np.concatenate((yaws, yaws))
+            ),
+            Footprints(values[:, 2:4], yaws, values[:, 5], values[:, 6]),
+        )
+        self._placed = (key, placement)
+        return placement
 
     def lane_occupants(self, placed: LaneProjections) -> LaneOccupants:
         motions = [ego.vehicle.motion() for ego in self.egos]
@@ -148,21 +167,19 @@ class SimulatedEgos:
         self._lane_cache = (tuple(m.pose for m in motions), placed)
         # Ego by ego in floats: a world has a few egos, and a numpy call on so few
         # values costs more than the arithmetic.
-        lanes, stations = placed.lane_index[n:].tolist(), placed.s[n:].tolist()
-        laterals, widths = placed.lateral[n:].tolist(), placed.width[n:].tolist()
-        headings = placed.heading[n:].tolist()
-        occupants: list[tuple[int, float, float, float]] = []
+        lanes: list[int] = []
+        rows: list[tuple[float, float, float]] = []
         for k, (ego, motion) in enumerate(zip(self.egos, motions, strict=True)):
             model = ego.vehicle.model
-            if abs(laterals[k]) <= (widths[k] + model.width) / 2.0:
-                along = math.cos(motion.pose.yaw - headings[k]) * motion.velocity[0]
-                occupants.append((lanes[k], stations[k], model.length / 2.0, along))
-        if not occupants:
+            row = n + k
+            if abs(placed.lateral.item(row)) <= (placed.width.item(row) + model.width) / 2.0:
+                along = math.cos(motion.pose.yaw - placed.heading.item(row)) * motion.velocity[0]
+                lanes.append(placed.lane_index.item(row))
+                rows.append((placed.s.item(row), model.length / 2.0, along))
+        if not lanes:
             return LaneOccupants.empty()
-        lane, s, half_length, speed = zip(*occupants, strict=True)
-        return LaneOccupants(
-            np.array(lane, np.int64), np.array(s), np.array(half_length), np.array(speed)
-        )
+        values = np.array(rows, dtype=np.float64)
+        return LaneOccupants(np.array(lanes, np.int64), values[:, 0], values[:, 1], values[:, 2])
 
     def inverse_masses(self) -> FloatArray:
         inverse: FloatArray = 1.0 / np.array([ego.vehicle.model.mass for ego in self.egos])

@@ -149,6 +149,9 @@ class NpcFleet:
         """Per NPC: still waiting for an ego to come within its active distance."""
         self.wake_speed = np.empty(0)
         """m/s a dormant NPC sets off at (its spawn speed)."""
+        self._pose_hints = np.empty(0, np.int64)
+        """Where each NPC's pose search along the centrelines ended (see
+        LaneMap.poses_at): it drives on a little a step, the next search starts there."""
 
     def __len__(self) -> int:
         return len(self.unique_ids)
@@ -503,7 +506,9 @@ class NpcFleet:
             self.next_lanes[i, k] = previous
 
     def _poses(self) -> FloatArray:
-        pose = self.graph.lane_map.poses_at(self.lane, self.s, self.lateral)
+        if len(self._pose_hints) != len(self):
+            self._pose_hints = np.zeros(len(self), np.int64)
+        pose = self.graph.lane_map.poses_at(self.lane, self.s, self.lateral, self._pose_hints)
         sliding = np.isfinite(self.slide_elapsed)
         if np.any(sliding):
             # The heading follows the slide: d(lateral)/dt against the forward speed.
