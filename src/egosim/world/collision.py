@@ -51,18 +51,18 @@ class Footprints:
 _NO_FOOTPRINTS = Footprints(np.empty((0, 2)), np.empty(0), np.empty(0), np.empty(0))
 
 
-_NO_BOUNDS = np.empty((0, 4))
+_NO_EXTENTS = np.empty((0, 2))
 _NO_ORDER = np.empty(0, np.int64)
 
 
 class SweptPairs:
     """touching_pairs step after step, where each sweep's `before` is the last one's
-    `after`: the compiled sweep then starts from the bounds and the order along x it
-    found last time (boxes barely move in a step) instead of working them out again.
-    The pairs are the same either way."""
+    `after`: the compiled sweep then starts from the boxes' extents and their order
+    along x as it found them last time (boxes barely move or turn in a step) instead of
+    working them out again. The pairs are the same either way."""
 
     def __init__(self) -> None:
-        self._last: tuple[Footprints | None, FloatArray, IntArray] = (None, _NO_BOUNDS, _NO_ORDER)
+        self._last: tuple[Footprints | None, FloatArray, IntArray] = (None, _NO_EXTENTS, _NO_ORDER)
 
     def pairs(
         self, before: Footprints, after: Footprints, max_substep_m: float = DEFAULT_MAX_SUBSTEP_M
@@ -70,11 +70,11 @@ class SweptPairs:
         """touching_pairs(before, after, max_substep_m)."""
         if not kernels.ACTIVE:
             return touching_pairs(before, after, max_substep_m)
-        last, bounds, order = self._last
-        pairs, after_bounds, after_order = _compiled_pairs(
-            before, after, max_substep_m, bounds if last is before else _NO_BOUNDS, order
+        last, extents, order = self._last
+        pairs, after_extents, after_order = _compiled_pairs(
+            before, after, max_substep_m, extents if last is before else _NO_EXTENTS, order
         )
-        self._last = (after, after_bounds, after_order)
+        self._last = (after, after_extents, after_order)
         return pairs
 
 
@@ -82,7 +82,7 @@ def _compiled_pairs(
     before: Footprints,
     after: Footprints,
     max_substep_m: float,
-    before_bounds: FloatArray,
+    before_extents: FloatArray,
     earlier_order: IntArray,
 ) -> tuple[IntArray, FloatArray, IntArray]:
     result: tuple[IntArray, FloatArray, IntArray] = compiled.touching_pairs(
@@ -96,7 +96,7 @@ def _compiled_pairs(
         after.widths,
         max_substep_m,
         MAX_SUBSTEPS,
-        before_bounds,
+        before_extents,
         earlier_order,
     )
     return result
@@ -108,7 +108,7 @@ def touching_pairs(
     """(K, 2) index pairs i < j whose rectangles overlap at some point of the motion from
     `before` to `after` (positions in between are interpolated), sorted."""
     if kernels.ACTIVE:
-        return _compiled_pairs(before, after, max_substep_m, _NO_BOUNDS, _NO_ORDER)[0]
+        return _compiled_pairs(before, after, max_substep_m, _NO_EXTENTS, _NO_ORDER)[0]
     extents_before, extents_after = before.half_extents(), after.half_extents()
     low = np.minimum(before.centres - extents_before, after.centres - extents_after)
     high = np.maximum(before.centres + extents_before, after.centres + extents_after)

@@ -113,8 +113,9 @@ _NEAR_STEPS = 4
 
 
 @kernel
-def _goes_before(element: float, value: float, right: bool) -> bool:
-    """`element` lies before where searchsorted puts `value` (on its side)."""
+def goes_before(element: float, value: float, right: bool) -> bool:
+    """`element` lies before where np.searchsorted puts `value` (on its side): in a
+    sorted array, the searchsorted answer is the count of elements that do."""
     return not _less(value, element) if right else _less(element, value)
 
 
@@ -123,10 +124,10 @@ def search_sorted_near(values: FloatArray | IntArray, value: float, right: bool,
     """search_sorted, first trying `guess` and the few places after it (where the answer
     was a step ago, for a value that moves on a little); the answer is the same."""
     n = values.shape[0]
-    if 0 <= guess <= n and (guess == 0 or _goes_before(values[guess - 1], value, right)):
+    if 0 <= guess <= n and (guess == 0 or goes_before(values[guess - 1], value, right)):
         place = guess
         for _ in range(_NEAR_STEPS):
-            if place == n or not _goes_before(values[place], value, right):
+            if place == n or not goes_before(values[place], value, right):
                 return place
             place += 1
     return search_sorted(values, value, right)
