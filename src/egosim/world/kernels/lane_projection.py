@@ -73,23 +73,17 @@ def _best_segment(
     ring = 1
     while ring <= max_ring:
         found_seg, found_t, found_cost = -1, 0.0, math.inf
-        # The point's own cell first: its segments are the likely nearest, and the bound
-        # they set lets _pair_cost skip most of the others early. (The order of the
-        # cells changes no result: ties go to the lower segment index whatever it is.)
-        for own_cell_pass in (True, False):
-            for cx in range(max(ix - ring, 0), min(ix + ring + 1, shape[0])):
-                for cy in range(max(iy - ring, 0), min(iy + ring + 1, shape[1])):
-                    if (cx == ix and cy == iy) != own_cell_pass:
-                        continue
-                    key = cx * shape[1] + cy
-                    for k in range(cell_offsets[key], cell_offsets[key + 1]):
-                        g = cell_segments[k]
-                        cost, t = _pair_cost(
-                            x, y, hint, g, start, delta, length_sq, heading,
-                            heading_weight, wrong_way_penalty, found_cost,
-                        )  # fmt: skip
-                        if cost < found_cost or (cost == found_cost and g < found_seg):
-                            found_seg, found_t, found_cost = g, t, cost
+        for cx in range(max(ix - ring, 0), min(ix + ring + 1, shape[0])):
+            for cy in range(max(iy - ring, 0), min(iy + ring + 1, shape[1])):
+                key = cx * shape[1] + cy
+                for k in range(cell_offsets[key], cell_offsets[key + 1]):
+                    g = cell_segments[k]
+                    cost, t = _pair_cost(
+                        x, y, hint, g, start, delta, length_sq, heading,
+                        heading_weight, wrong_way_penalty, found_cost,
+                    )  # fmt: skip
+                    if cost < found_cost or (cost == found_cost and g < found_seg):
+                        found_seg, found_t, found_cost = g, t, cost
         if found_seg >= 0 and found_cost <= ring * cell_size:
             return found_seg, found_t
         ring *= 2

@@ -103,9 +103,7 @@ class TrafficSignals:
         # Phases last seconds: most steps change no aspect and need no refresh.
         changed = False
         for controller in self.controllers.values():
-            phase = controller.phase_index
-            controller.step(dt)
-            changed |= controller.phase_index != phase
+            changed |= controller.step(dt)
         if changed:
             self._refresh()
 
