@@ -49,8 +49,6 @@ class Footprints:
 
 
 _NO_FOOTPRINTS = Footprints(np.empty((0, 2)), np.empty(0), np.empty(0), np.empty(0))
-
-
 _NO_EXTENTS = np.empty((0, 2))
 _NO_ORDER = np.empty(0, np.int64)
 
@@ -85,6 +83,8 @@ def _compiled_pairs(
     before_extents: FloatArray,
     earlier_order: IntArray,
 ) -> tuple[IntArray, FloatArray, IntArray]:
+    """The compiled sweep: the pairs, then the after boxes' half extents and their order
+    along x (kernels/collision.py's touching_pairs)."""
     result: tuple[IntArray, FloatArray, IntArray] = compiled.touching_pairs(
         before.centres,
         before.headings,
