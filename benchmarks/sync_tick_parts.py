@@ -5,9 +5,11 @@ serialising timed within the publish stage. The bridge is bound to a real node (
 embedded master at a free loopback port) with a recording tap, so every row is built
 and serialised as if it had a subscriber; nothing is sent (benchmarks/sync_mode.py
 measures sending). A second run times the parts of `World.step` (each wrapped in a
-timer, about 0.2 us each of overhead) on a fresh world.
+timer, about 0.2 us each of overhead) on a fresh world: the same, or with --crowded N
+benchmarks/world_step.py's town of N NPCs and 200 pedestrians.
 
 Usage: .venv/bin/python benchmarks/sync_tick_parts.py [--ticks 2000] [--warmup 200]
+       [--crowded NPCS]
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from loopback import free_port
+from world_step import crowded_town
 
 from egosim.app.inbox import Inbox
 from egosim.app.options import RunOptions
@@ -36,7 +39,9 @@ from egosim.bridge import (
 from egosim.msgs import MessageType
 from egosim.ros1 import Node
 from egosim.world import World
+from egosim.world.map import build_builtin_map
 from egosim.world.populations import base as populations_base
+from egosim.world.scenario import parse_scenario
 
 TICK_S = 0.01
 
@@ -54,8 +59,20 @@ def world_parts(world: World) -> dict[str, tuple[object, str]]:
     }
 
 
-def time_world_parts(ticks: int, warmup: int) -> None:
-    world = build_world(RunOptions(clock=ClockMode.SYNC))
+CROWD_PEDESTRIANS = 200
+
+
+def fresh_world(crowded_npcs: int | None) -> World:
+    """The simulator's own world in sync mode, or the crowded town of world_step.py."""
+    if crowded_npcs is None:
+        return build_world(RunOptions(clock=ClockMode.SYNC))
+    town = build_builtin_map("town")
+    scenario = crowded_town(town, crowded_npcs, CROWD_PEDESTRIANS)
+    return World(town, parse_scenario(scenario, "benchmark"))
+
+
+def time_world_parts(ticks: int, warmup: int, crowded_npcs: int | None) -> None:
+    world = fresh_world(crowded_npcs)
     parts = world_parts(world)
     spent = dict.fromkeys(parts, 0.0)
     for label, (owner, name) in parts.items():
@@ -105,6 +122,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--ticks", type=int, default=2000)
     parser.add_argument("--warmup", type=int, default=200)
+    parser.add_argument("--crowded", type=int, metavar="NPCS", default=None)
     args = parser.parse_args()
 
     world = build_world(RunOptions(clock=ClockMode.SYNC))
@@ -153,7 +171,7 @@ def main() -> None:
                 f"  {topic:42s} {seconds / built[topic] * 1e6:8.0f} us per publish "
                 f"{seconds / args.ticks * 1e6:8.1f} us per tick"
             )
-    time_world_parts(args.ticks, args.warmup)
+    time_world_parts(args.ticks, args.warmup, args.crowded)
 
 
 if __name__ == "__main__":

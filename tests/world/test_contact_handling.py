@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from egosim.world.arrays import FloatArray, IntArray
+from egosim.world.collision import Footprints
 from egosim.world.contact import RESTITUTION, ContactModel
 from egosim.world.contact_handling import ContactHandler
 from egosim.world.map import LaneProjections, build_builtin_map
@@ -42,6 +43,9 @@ class Cars:
             accelerations=np.zeros((n, 3)),
             sizes=np.tile((LENGTH_M, WIDTH_M, 1.5), (n, 1)),
         )
+
+    def footprints(self) -> Footprints:
+        return Footprints.of(self.table())
 
     def lane_points(self) -> LanePoints:
         return LanePoints.none()

@@ -12,9 +12,10 @@ import numpy as np
 import pytest
 
 from egosim.world import kernels
-from egosim.world.collision import Footprints, touching_pairs
+from egosim.world.collision import Footprints, SweptPairs, touching_pairs
 from egosim.world.contact import Bodies, respond
-from egosim.world.map import build_builtin_map
+from egosim.world.kernels.sorting import resort, search_sorted_near
+from egosim.world.map import ProjectionMemory, build_builtin_map
 from egosim.world.vehicle import (
     DEFAULT_EGO_MODEL,
     ControlCommand,
@@ -85,6 +86,53 @@ def test_swept_collisions_of_odd_boxes_agree_and_stay_in_range(
     assert np.all(compiled[:, 0] < compiled[:, 1])
 
 
+@pytest.mark.parametrize("seed", range(CASES // 4))
+def test_sweeps_step_after_step_agree_with_sweeps_from_scratch(
+    seed: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The compiled sweep that starts from the last one's extents and order (boxes that
+    move a little, some turning or resized, some odd) finds the pairs of a fresh one."""
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(2, 40))
+    centres = rng.normal(0.0, 8.0, (n, 2))
+    headings = rng.normal(0.0, 3.0, n)
+    sizes = np.abs(rng.normal(3.0, 1.0, (n, 2)))
+    sweep = SweptPairs()
+    monkeypatch.setattr(kernels, "ACTIVE", True)
+    before = Footprints(centres, headings, sizes[:, 0], sizes[:, 1])
+    for _ in range(12):
+        centres = centres + rng.normal(0.0, 0.3, (n, 2))
+        turning = rng.random(n) < 0.3
+        headings = np.where(turning, headings + rng.normal(0.0, 0.2, n), headings)
+        odd = rng.random(n) < 0.05
+        headings[odd] = rng.choice(ODD, int(odd.sum()))
+        after = Footprints(centres.copy(), headings.copy(), sizes[:, 0].copy(), sizes[:, 1].copy())
+        found = sweep.pairs(before, after)
+        fresh = both_paths(lambda b=before, a=after: touching_pairs(b, a), monkeypatch)
+        assert same_bits(found, fresh[0]) and same_bits(found, fresh[1])
+        before = after
+
+
+@pytest.mark.parametrize("seed", range(CASES // 4))
+def test_a_resort_from_any_earlier_order_is_the_stable_sort(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(0, 60))
+    keys = np.round(odd_values(rng, (n,), 3.0))  # rounded: ties, zeros of both signs
+    for earlier in (rng.permutation(n), np.argsort(keys + rng.normal(0.0, 0.1, n)), np.arange(n)):
+        assert same_bits(resort(keys, earlier.astype(np.int64)), np.argsort(keys, kind="stable"))
+
+
+@pytest.mark.parametrize("seed", range(CASES // 4))
+def test_a_search_from_any_guess_is_the_search(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    values = np.sort(np.round(odd_values(rng, (int(rng.integers(0, 30)),), 5.0)))
+    for value in [*np.round(odd_values(rng, (10,), 5.0)), *values[:3]]:
+        for right in (False, True):
+            answer = int(np.searchsorted(values, value, side="right" if right else "left"))
+            for guess in range(-2, len(values) + 3):
+                assert search_sorted_near(values, float(value), right, guess) == answer
+
+
 FINITE_ODD = np.array([1e16, -1e16, 1e-310, -1e-310, -0.0, 0.0])
 """Extreme values whose contact arithmetic stays finite."""
 
@@ -145,12 +193,59 @@ def test_lane_projection_of_odd_points_agrees(seed: int, monkeypatch: pytest.Mon
     n = int(rng.integers(1, 30))
     xy = odd_values(rng, (n, 2), 150.0)
     hints = odd_values(rng, (n,), 3.0)
-    compiled, plain = both_paths(lambda: TOWN.project_many(xy, hints), monkeypatch)
+    compiled, plain = both_paths(lambda p=xy, h=hints: TOWN.project_many(p, h), monkeypatch)
     for field in ("lane_index", "s", "lateral", "heading", "distance_left", "distance_right"):
         a, b = getattr(compiled, field), getattr(plain, field)
         assert same_bits(a, b), f"seed {seed}, {field}: {a} against {b}"
     lanes = compiled.lane_index
     assert np.all((lanes >= 0) & (lanes < len(TOWN.lane_ids)))
+
+
+@pytest.mark.parametrize("seed", range(CASES // 4))
+def test_lane_projection_that_remembers_its_last_points_agrees(
+    seed: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Points projected again and again with a memory (some standing still, some moving,
+    the list growing and shrinking, odd ones among them) land where a fresh projection
+    puts them."""
+    rng = np.random.default_rng(seed)
+    memory = ProjectionMemory()
+    xy = rng.normal(0.0, 150.0, (int(rng.integers(1, 30)), 2))
+    hints = odd_values(rng, (len(xy),), 3.0)
+    for _ in range(10):
+        moving = rng.random(len(xy)) < 0.5
+        xy = xy + np.where(moving[:, None], rng.normal(0.0, 1.0, xy.shape), 0.0)
+        odd = rng.random(xy.shape) < 0.03
+        xy[odd] = rng.choice(ODD, int(odd.sum()))
+        if rng.random() < 0.3:
+            count = int(rng.integers(1, 40))
+            xy = np.resize(xy, (count, 2))
+            hints = np.resize(hints, count)
+        monkeypatch.setattr(kernels, "ACTIVE", True)
+        remembered = TOWN.project_many(xy, hints, memory)
+        compiled, plain = both_paths(lambda p=xy, h=hints: TOWN.project_many(p, h), monkeypatch)
+        for field in ("lane_index", "s", "lateral", "heading", "distance_left", "width"):
+            a, b, c = (getattr(p, field) for p in (remembered, compiled, plain))
+            assert same_bits(a, b) and same_bits(a, c), f"seed {seed}, {field}"
+
+
+@pytest.mark.parametrize("seed", range(CASES // 4))
+def test_lane_poses_searched_from_hints_agree(seed: int, monkeypatch: pytest.MonkeyPatch) -> None:
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(1, 30))
+    lanes = rng.integers(0, len(TOWN.lane_ids), n)
+    stations = rng.uniform(0.0, 50.0, n)
+    hints = np.zeros(n, np.int64)
+    for _ in range(10):
+        stations = stations + rng.uniform(0.0, 3.0, n)
+        odd = rng.random(n) < 0.05
+        stations[odd] = rng.choice(ODD, int(odd.sum()))
+        changing = rng.random(n) < 0.1
+        lanes = np.where(changing, rng.integers(0, len(TOWN.lane_ids), n), lanes)
+        monkeypatch.setattr(kernels, "ACTIVE", True)
+        hinted = TOWN.poses_at(lanes, stations, search_hints=hints)
+        compiled, plain = both_paths(lambda k=lanes, s=stations: TOWN.poses_at(k, s), monkeypatch)
+        assert same_bits(hinted, compiled) and same_bits(hinted, plain), f"seed {seed}"
 
 
 @pytest.mark.parametrize("seed", range(CASES))

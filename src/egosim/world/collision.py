@@ -18,7 +18,7 @@ import numpy.typing as npt
 from egosim.world import kernels
 from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.kernels import collision as compiled
-from egosim.world.traffic.objects import ObjectState
+from egosim.world.traffic.objects import ObjectState, ObjectTable
 
 DEFAULT_MAX_SUBSTEP_M = 0.1
 """Largest relative travel of two boxes between two overlap tests, m."""
@@ -40,6 +40,67 @@ class Footprints:
         half_l, half_w = self.lengths / 2.0, self.widths / 2.0
         return np.column_stack((c * half_l + s * half_w, s * half_l + c * half_w))
 
+    @classmethod
+    def of(cls, table: ObjectTable) -> Footprints:
+        """The footprints of a table's rows (views of its columns)."""
+        if len(table.headings) == 0:
+            return _NO_FOOTPRINTS
+        return cls(table.positions[:, :2], table.headings, table.sizes[:, 0], table.sizes[:, 1])
+
+
+_NO_FOOTPRINTS = Footprints(np.empty((0, 2)), np.empty(0), np.empty(0), np.empty(0))
+_NO_EXTENTS = np.empty((0, 2))
+_NO_ORDER = np.empty(0, np.int64)
+
+
+class SweptPairs:
+    """touching_pairs step after step, where each sweep's `before` is the last one's
+    `after`: the compiled sweep then starts from the boxes' extents and their order
+    along x as it found them last time (boxes barely move or turn in a step) instead of
+    working them out again. The pairs are the same either way."""
+
+    def __init__(self) -> None:
+        self._last: tuple[Footprints | None, FloatArray, IntArray] = (None, _NO_EXTENTS, _NO_ORDER)
+
+    def pairs(
+        self, before: Footprints, after: Footprints, max_substep_m: float = DEFAULT_MAX_SUBSTEP_M
+    ) -> IntArray:
+        """touching_pairs(before, after, max_substep_m)."""
+        if not kernels.ACTIVE:
+            return touching_pairs(before, after, max_substep_m)
+        last, extents, order = self._last
+        pairs, after_extents, after_order = _compiled_pairs(
+            before, after, max_substep_m, extents if last is before else _NO_EXTENTS, order
+        )
+        self._last = (after, after_extents, after_order)
+        return pairs
+
+
+def _compiled_pairs(
+    before: Footprints,
+    after: Footprints,
+    max_substep_m: float,
+    before_extents: FloatArray,
+    earlier_order: IntArray,
+) -> tuple[IntArray, FloatArray, IntArray]:
+    """The compiled sweep: the pairs, then the after boxes' half extents and their order
+    along x (kernels/collision.py's touching_pairs)."""
+    result: tuple[IntArray, FloatArray, IntArray] = compiled.touching_pairs(
+        before.centres,
+        before.headings,
+        before.lengths,
+        before.widths,
+        after.centres,
+        after.headings,
+        after.lengths,
+        after.widths,
+        max_substep_m,
+        MAX_SUBSTEPS,
+        before_extents,
+        earlier_order,
+    )
+    return result
+
 
 def touching_pairs(
     before: Footprints, after: Footprints, max_substep_m: float = DEFAULT_MAX_SUBSTEP_M
@@ -47,19 +108,7 @@ def touching_pairs(
     """(K, 2) index pairs i < j whose rectangles overlap at some point of the motion from
     `before` to `after` (positions in between are interpolated), sorted."""
     if kernels.ACTIVE:
-        pairs: IntArray = compiled.touching_pairs(
-            before.centres,
-            before.headings,
-            before.lengths,
-            before.widths,
-            after.centres,
-            after.headings,
-            after.lengths,
-            after.widths,
-            max_substep_m,
-            MAX_SUBSTEPS,
-        )
-        return pairs
+        return _compiled_pairs(before, after, max_substep_m, _NO_EXTENTS, _NO_ORDER)[0]
     extents_before, extents_after = before.half_extents(), after.half_extents()
     low = np.minimum(before.centres - extents_before, after.centres - extents_after)
     high = np.maximum(before.centres + extents_before, after.centres + extents_after)

@@ -21,8 +21,8 @@ from egosim.world.collision import (
     ContactTracker,
     EgoCollision,
     Footprints,
+    SweptPairs,
     VehicleCollision,
-    touching_pairs,
 )
 from egosim.world.contact import Bodies, ContactModel, Response, respond
 from egosim.world.populations.base import Population, Shove
@@ -43,16 +43,15 @@ class StepContacts:
     """The NPC-NPC collisions that began now."""
 
 
-def footprints_of(tables: Sequence[ObjectTable]) -> Footprints:
-    """The footprints of the rows of `tables` (at least one) one after the other, without
-    joining the tables' other columns; np.concatenate copies, so none shares memory."""
-    filled = [t for t in tables if len(t.headings)] or tables[:1]
-    sizes = np.concatenate([t.sizes for t in filled])
+def joined_footprints(parts: Sequence[Footprints]) -> Footprints:
+    """The footprints of `parts` (at least one) one after the other, in new arrays
+    (np.concatenate copies: none shares memory with a population's own)."""
+    filled = [part for part in parts if len(part.headings)] or parts[:1]
     return Footprints(
-        np.concatenate([t.positions[:, :2] for t in filled]),
-        np.concatenate([t.headings for t in filled]),
-        sizes[:, 0].copy(),
-        sizes[:, 1].copy(),
+        np.concatenate([part.centres for part in filled]),
+        np.concatenate([part.headings for part in filled]),
+        np.concatenate([part.lengths for part in filled]),
+        np.concatenate([part.widths for part in filled]),
     )
 
 
@@ -63,29 +62,30 @@ class ContactHandler:
 
     def __init__(self, table: ObjectTable) -> None:
         self._tracker = ContactTracker()
-        self._footprints = footprints_of([table])
+        self._sweep = SweptPairs()
+        self._footprints = joined_footprints([Footprints.of(table)])
 
     def forget(self, table: ObjectTable) -> None:
         """Start again from the objects of `table`, with no contact remembered."""
         self._tracker.clear()
-        self._footprints = footprints_of([table])
+        self._footprints = joined_footprints([Footprints.of(table)])
 
     def step(
         self, populations: Sequence[Population], model: ContactModel, now: float
     ) -> StepContacts:
         """The contacts among the objects of `populations` (in that order, the order of
         the object table), swept from where they stood after the last step; time `now`."""
-        tables = [population.table() for population in populations]
-        bounds = list(itertools.accumulate(map(len, tables), initial=0))
-        footprints = footprints_of(tables)
+        parts = [population.footprints() for population in populations]
+        bounds = list(itertools.accumulate((len(part.headings) for part in parts), initial=0))
+        footprints = joined_footprints(parts)
         before = self._footprints if len(self._footprints.headings) == bounds[-1] else footprints
         self._footprints = footprints
-        pairs = touching_pairs(before, footprints)
+        pairs = self._sweep.pairs(before, footprints)
         if len(pairs) == 0:
             self._tracker.begin([], now)
             return StepContacts({}, [], [], [])
         # The whole table only where something touches: most steps nothing does.
-        table = ObjectTable.concatenate(tables)
+        table = ObjectTable.concatenate([population.table() for population in populations])
         kinds = table.object_types[pairs]
         vehicles = (kinds == ObjectType.EGO) | (kinds == ObjectType.NPC_VEHICLE)
         contacts, struck = self._record(table, pairs, kinds, now)

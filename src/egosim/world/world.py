@@ -21,7 +21,7 @@ from egosim.json_value import JsonObject
 from egosim.world.collision import EgoCollision, VehicleCollision
 from egosim.world.contact import ContactModel
 from egosim.world.contact_handling import ContactHandler, StepContacts
-from egosim.world.map import LaneMap
+from egosim.world.map import LaneMap, ProjectionMemory
 from egosim.world.populations import (
     Ego,
     EgoPopulation,
@@ -188,6 +188,10 @@ class World:
         self.network_settings_request: JsonObject | None = None
         """The network settings of the last ScenarioLoad that asked for them."""
         self._contacts = ContactHandler(self.objects())
+        self._lights: tuple[TrafficSignals, int, LightsView] | None = None
+        self._lane_memory = ProjectionMemory()
+        """The lane projection of the agents' last step: who has not moved since is not
+        placed on a lane again."""
         if scenario is not None:
             self.load_scenario(scenario)
 
@@ -387,13 +391,24 @@ class World:
             return
         self.signals.step(dt)
         populations = self._populations
-        surroundings = Surroundings(self.map, LightsView.of(self.signals), populations, self._egos)
+        surroundings = Surroundings(
+            self.map, self._lights_view(), populations, self._egos, self._lane_memory
+        )
         for population in populations:
             population.step(dt, surroundings)
         for waiting in self._waiting:
             waiting.wait(surroundings)
         self.sim_time += dt
         self._log(self._contacts.step(populations, self.contact_model, self.sim_time))
+
+    def _lights_view(self) -> LightsView:
+        """The signals as the agents read them, kept while no aspect changes (the same
+        view, step after step: agents may keep what they work out from it)."""
+        signals = self.signals
+        known = self._lights
+        if known is None or known[0] is not signals or known[1] != signals.changes:
+            known = self._lights = (signals, signals.changes, LightsView.of(signals))
+        return known[2]
 
     def _log(self, contacts: StepContacts) -> None:
         self.ego_contacts, self.vehicle_contacts = contacts.ego_contacts, contacts.vehicle_contacts

@@ -10,25 +10,25 @@ import numpy as np
 from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.kernels import kernel
 from egosim.world.kernels.numpy_scalars import maximum, minimum, remainder
-from egosim.world.kernels.sorting import lexsort_argsort, search_sorted
+from egosim.world.kernels.sorting import goes_before, lexsort_argsort, resort
 
 
 @kernel
-def _bounds(
-    centres: FloatArray, headings: FloatArray, lengths: FloatArray, widths: FloatArray
-) -> FloatArray:
-    """(N, 4) x low, y low, x high, y high of each rectangle (Footprints.half_extents)."""
+def _half_extent(heading: float, length: float, width: float) -> tuple[float, float]:
+    """Half the size of a rectangle's axis-aligned bounding box (Footprints.half_extents)."""
+    c, s = abs(math.cos(heading)), abs(math.sin(heading))
+    half_l, half_w = length / 2.0, width / 2.0
+    return c * half_l + s * half_w, s * half_l + c * half_w
+
+
+@kernel
+def _half_extents(headings: FloatArray, lengths: FloatArray, widths: FloatArray) -> FloatArray:
+    """(N, 2) half extents of each rectangle."""
     n = headings.shape[0]
-    bounds = np.empty((n, 4))
+    extents = np.empty((n, 2))
     for k in range(n):
-        c, s = abs(math.cos(headings[k])), abs(math.sin(headings[k]))
-        half_l, half_w = lengths[k] / 2.0, widths[k] / 2.0
-        ex, ey = c * half_l + s * half_w, s * half_l + c * half_w
-        bounds[k, 0] = centres[k, 0] - ex
-        bounds[k, 1] = centres[k, 1] - ey
-        bounds[k, 2] = centres[k, 0] + ex
-        bounds[k, 3] = centres[k, 1] + ey
-    return bounds
+        extents[k, 0], extents[k, 1] = _half_extent(headings[k], lengths[k], widths[k])
+    return extents
 
 
 @kernel
@@ -84,6 +84,29 @@ def _substeps(travel_in_substeps: float, max_substeps: int) -> int:
 
 
 @kernel
+def _between(
+    k: int,
+    fraction: float,
+    before_centres: FloatArray,
+    before_headings: FloatArray,
+    after_centres: FloatArray,
+    after_headings: FloatArray,
+    after_lengths: FloatArray,
+    after_widths: FloatArray,
+) -> tuple[float, float, float, float, float]:
+    """Box k at `fraction` of its motion (collision._interpolate): x, y, heading, length,
+    width."""
+    turn = remainder(after_headings[k] - before_headings[k] + math.pi, math.tau) - math.pi
+    return (
+        before_centres[k, 0] + fraction * (after_centres[k, 0] - before_centres[k, 0]),
+        before_centres[k, 1] + fraction * (after_centres[k, 1] - before_centres[k, 1]),
+        before_headings[k] + fraction * turn,
+        after_lengths[k],
+        after_widths[k],
+    )
+
+
+@kernel
 def touching_pairs(
     before_centres: FloatArray,
     before_headings: FloatArray,
@@ -95,25 +118,50 @@ def touching_pairs(
     after_widths: FloatArray,
     max_substep_m: float,
     max_substeps: int,
-) -> IntArray:
-    """collision.touching_pairs: (K, 2) pairs i < j, sorted, that touch during the motion."""
+    before_extents: FloatArray,
+    earlier_order: IntArray,
+) -> tuple[IntArray, FloatArray, IntArray]:
+    """collision.touching_pairs: (K, 2) pairs i < j, sorted, that touch during the motion;
+    then the half extents of the boxes' bounds after it (the next sweep's before_extents)
+    and the boxes' order along x (the next sweep's earlier_order).
+
+    before_extents: the before boxes' half extents as an earlier sweep returned them, or
+    none (no rows): worked out; a box whose heading and size did not change keeps them.
+    earlier_order: a permutation of the boxes close to their order along x now, or none:
+    sorted from scratch. Neither changes the pairs."""
     n = before_headings.shape[0]
-    b0 = _bounds(before_centres, before_headings, before_lengths, before_widths)
-    b1 = _bounds(after_centres, after_headings, after_lengths, after_widths)
+    if before_extents.shape[0] == n:
+        e0 = before_extents
+    else:
+        e0 = _half_extents(before_headings, before_lengths, before_widths)
+    e1 = np.empty((n, 2))
     low = np.empty((n, 2))
     high = np.empty((n, 2))
+    low_x = np.empty(n)
     for k in range(n):
+        if (
+            after_headings[k] == before_headings[k]
+            and after_lengths[k] == before_lengths[k]
+            and after_widths[k] == before_widths[k]
+        ):
+            e1[k, 0], e1[k, 1] = e0[k, 0], e0[k, 1]
+        else:
+            e1[k, 0], e1[k, 1] = _half_extent(after_headings[k], after_lengths[k], after_widths[k])
         for d in range(2):
-            low[k, d] = minimum(b0[k, d], b1[k, d])
-            high[k, d] = maximum(b0[k, 2 + d], b1[k, 2 + d])
-    order = lexsort_argsort(np.zeros(n, dtype=np.int64), low[:, 0].copy())
-    sorted_low = low[order, 0]
+            low[k, d] = minimum(before_centres[k, d] - e0[k, d], after_centres[k, d] - e1[k, d])
+            high[k, d] = maximum(before_centres[k, d] + e0[k, d], after_centres[k, d] + e1[k, d])
+        low_x[k] = low[k, 0]
+    order = resort(low_x, earlier_order)
+    sorted_low = low_x[order]
     keys = np.empty(16, dtype=np.int64)
     found = 0
     for a in range(n):
         i = order[a]
-        reach = search_sorted(sorted_low, high[i, 0], True)
-        for b in range(a + 1, reach):
+        for b in range(a + 1, n):
+            # Only the boxes starting before box i ends (searchsorted's right side, walked
+            # rather than searched: most boxes reach few others).
+            if not goes_before(sorted_low[b], high[i, 0], True):
+                break
             j = order[b]
             if not (low[i, 1] <= high[j, 1] and low[j, 1] <= high[i, 1]):
                 continue
@@ -127,24 +175,15 @@ def touching_pairs(
             steps = _substeps(math.hypot(travel_x, travel_y) / max_substep_m, max_substeps)
             for step in range(1, steps + 1):
                 fraction = step / steps
-                boxes = []
-                for k in (first, second):
-                    turn = (
-                        remainder(after_headings[k] - before_headings[k] + math.pi, math.tau)
-                        - math.pi
-                    )
-                    boxes.append(
-                        (
-                            before_centres[k, 0]
-                            + fraction * (after_centres[k, 0] - before_centres[k, 0]),
-                            before_centres[k, 1]
-                            + fraction * (after_centres[k, 1] - before_centres[k, 1]),
-                            before_headings[k] + fraction * turn,
-                            after_lengths[k],
-                            after_widths[k],
-                        )
-                    )
-                if overlap(boxes[0], boxes[1]):
+                box_first = _between(
+                    first, fraction, before_centres, before_headings, after_centres,
+                    after_headings, after_lengths, after_widths,
+                )  # fmt: skip
+                box_second = _between(
+                    second, fraction, before_centres, before_headings, after_centres,
+                    after_headings, after_lengths, after_widths,
+                )  # fmt: skip
+                if overlap(box_first, box_second):
                     if found == keys.shape[0]:
                         keys = np.concatenate((keys, np.empty(found, dtype=np.int64)))
                     keys[found] = first * n + second
@@ -154,4 +193,4 @@ def touching_pairs(
     result = np.empty((found, 2), dtype=np.int64)
     for row, k in enumerate(lexsort_argsort(keys, np.zeros(found))):
         result[row, 0], result[row, 1] = keys[k] // n, keys[k] % n
-    return result
+    return result, e1, order

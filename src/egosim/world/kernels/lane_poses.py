@@ -9,7 +9,7 @@ import numpy as np
 from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.kernels import kernel
 from egosim.world.kernels.numpy_scalars import maximum, minimum
-from egosim.world.kernels.sorting import search_sorted
+from egosim.world.kernels.sorting import search_sorted, search_sorted_near
 
 
 @kernel
@@ -17,6 +17,7 @@ def lane_poses(
     lanes: IntArray,
     s: FloatArray,
     lateral: FloatArray,
+    search_hints: IntArray,
     lane_lengths: FloatArray,
     key_base: FloatArray,
     point_key: FloatArray,
@@ -27,13 +28,21 @@ def lane_poses(
     point_heading: FloatArray,
 ) -> FloatArray:
     """LaneMap.poses_at (N, 4) x, y, z, heading, each point then moved `lateral` m to the
-    left of its lane (an empty `lateral`: not moved)."""
+    left of its lane (an empty `lateral`: not moved). search_hints (N,), or empty for
+    none: where each point's search of the point keys starts, updated in place."""
     n = lanes.shape[0]
+    hinted = search_hints.shape[0] == n
     pose = np.empty((n, 4))
     for i in range(n):
         lane = lanes[i]
         station = minimum(maximum(s[i], 0.0), lane_lengths[lane])
-        j = search_sorted(point_key, key_base[lane] + station, True) - 1
+        key = key_base[lane] + station
+        if hinted:
+            place = search_sorted_near(point_key, key, True, search_hints[i])
+            search_hints[i] = place
+        else:
+            place = search_sorted(point_key, key, True)
+        j = place - 1
         j = min(max(j, first_point[lane]), last_segment[lane])
         t = (station - point_station[j]) / (point_station[j + 1] - point_station[j])
         for c in range(points.shape[1]):

@@ -15,7 +15,7 @@ import numpy.typing as npt
 
 from egosim.world.arrays import BoolArray, FloatArray, IntArray
 from egosim.world.kernels import kernel
-from egosim.world.kernels.numpy_scalars import clip, maximum, minimum
+from egosim.world.kernels.numpy_scalars import clip, maximum, minimum, remainder
 from egosim.world.kernels.sorting import lexsort_argsort, search_sorted
 
 _UNDECIDED, _STOP, _PASS = 0, 1, 2  # npc_vehicles' yellow latch
@@ -168,9 +168,16 @@ def advance(
     idm: FloatArray,
     exponent: int,
     margins: FloatArray,
-) -> tuple[FloatArray, BoolArray, IntArray]:
+    slide_elapsed: FloatArray,
+    change_duration: FloatArray,
+    slide_from: FloatArray,
+    lateral: FloatArray,
+    change_to: IntArray,
+    change_timer: FloatArray,
+) -> tuple[FloatArray, IntArray, IntArray]:
     """NpcFleet.step up to the lane bookkeeping: (4, N) new s, speed, accel and delay,
-    who was frozen (waiting or crashed), and who ran past their lane's end.
+    who ran past their lane's end, and whose lane change is due; the lane-change slides
+    and timers run on in place (see slide).
 
     The others are the other occupants of lanes. graph rows: length, speed limit, curve
     speed, stop station; graph_lanes rows: light, turn. idm: time headway, min gap, max
@@ -278,7 +285,12 @@ def advance(
         if result[0, i] > length[here_lane]:
             past_end[passed] = i
             passed += 1
-    return result, frozen, past_end[:passed]
+    # The slides touch none of the state above, nor does the lane bookkeeping that the
+    # caller does in between touch theirs: running them here changes no result.
+    due = slide(
+        dt, slide_elapsed, change_duration, slide_from, lateral, change_to, change_timer, frozen
+    )
+    return result, past_end[:passed], due
 
 
 @kernel
@@ -310,6 +322,18 @@ def slide(
                 due[count] = i
                 count += 1
     return due[:count]
+
+
+@kernel
+def yaw_rates(pose: FloatArray, earlier_pose: FloatArray, dt: float) -> FloatArray:
+    """NpcFleet._turn's yaw rates: the heading turned from earlier_pose to pose (both
+    (N, 4) x, y, z, heading), wrapped to [-pi, pi), over dt."""
+    n = pose.shape[0]
+    rate = np.empty(n)
+    for i in range(n):
+        rate[i] = remainder(pose[i, 3] - earlier_pose[i, 3] + math.pi, math.tau) - math.pi
+        rate[i] /= dt
+    return rate
 
 
 @kernel

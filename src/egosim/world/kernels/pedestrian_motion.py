@@ -8,14 +8,15 @@ import numpy as np
 from egosim.world.arrays import BoolArray, FloatArray, IntArray
 from egosim.world.kernels import kernel
 from egosim.world.kernels.numpy_scalars import minimum
-from egosim.world.kernels.sorting import search_sorted
+from egosim.world.kernels.sorting import search_sorted_near
 
 
 @kernel
 def walk(
     dt: float,
     s: FloatArray,
-    moving: BoolArray,
+    stopped: BoolArray,
+    dormant: BoolArray,
     walk_speed: FloatArray,
     walk_allowed: BoolArray,
     key_base: FloatArray,
@@ -28,12 +29,15 @@ def walk(
     shoved: FloatArray,
     position: FloatArray,
     velocity: FloatArray,
+    search_hints: IntArray,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """New stations, headings and (3, N, 2) positions, velocities and accelerations.
 
     gates: each gate's key; gate_links rows: its owner, its crosswalk. path rows: point
     key, x, y, heading of the segment from it; first_last rows: each path's first point
-    and last segment.
+    and last segment. search_hints rows: where each pedestrian's search of the gates and
+    of the path points ended last time (any values will do: the searches start there),
+    updated in place.
     """
     n = s.shape[0]
     new_station = np.empty(n)
@@ -41,9 +45,10 @@ def walk(
     motion = np.empty((3, n, 2))
     point_key = path[0]
     for i in range(n):
-        new_s = s[i] + (walk_speed[i] * dt if moving[i] else 0.0)
+        new_s = s[i] + (0.0 if stopped[i] or dormant[i] else walk_speed[i] * dt)
         if gates.shape[0]:
-            g = search_sorted(gates, key_base[i] + s[i], False)
+            g = search_sorted_near(gates, key_base[i] + s[i], False, search_hints[0, i])
+            search_hints[0, i] = g
             safe = g if g < gates.shape[0] else 0
             if (
                 g < gates.shape[0]
@@ -57,7 +62,9 @@ def walk(
         station = minimum(new_s, length[i])
         new_station[i] = station
         key = key_base[i] + station
-        j = search_sorted(point_key, key, True) - 1
+        place = search_sorted_near(point_key, key, True, search_hints[1, i])
+        search_hints[1, i] = place
+        j = place - 1
         j = min(max(j, first_last[0, i]), first_last[1, i])
         t = (key - point_key[j]) / (point_key[j + 1] - point_key[j])
         for d in range(2):

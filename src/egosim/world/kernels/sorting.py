@@ -1,5 +1,7 @@
 """A stable argsort for kernels: numpy's np.lexsort((secondary, primary)) order (by an
-integer key, then a float key with NaN last, then position), by a bottom-up merge sort.
+integer key, then a float key with NaN last, then position), by a bottom-up merge sort;
+and the same order of one float key reached from an earlier order of it (a step's boxes
+barely move, so last step's order is nearly sorted).
 
 numba's own stable argsort gives the same order but takes several times longer to
 compile than every kernel of the step together.
@@ -58,10 +60,77 @@ def lexsort_argsort(primary: IntArray, secondary: FloatArray) -> IntArray:
     return order
 
 
+_RESORT_MOVES_PER_ELEMENT = 8
+"""resort's insertion moves allowed per element before it sorts afresh instead (an order
+far from the new one would make the insertion quadratic)."""
+
+
+@kernel
+def _precedes(keys: FloatArray, a: int, b: int) -> bool:
+    """Element a comes before element b in a stable sort of `keys` (NaN last)."""
+    x, y = keys[a], keys[b]
+    if x < y:
+        return True
+    if x > y:
+        return False
+    x_nan, y_nan = x != x, y != y  # noqa: PLR0124
+    if x_nan != y_nan:
+        return bool(y_nan)
+    return a < b
+
+
+@kernel
+def resort(keys: FloatArray, earlier: IntArray) -> IntArray:
+    """np.argsort(keys, kind="stable"), reached by insertion from `earlier` (a
+    permutation of the indices, e.g. the order of the keys a step ago); from scratch
+    when `earlier` does not fit or is far from the order."""
+    n = keys.shape[0]
+    if earlier.shape[0] != n:
+        return lexsort_argsort(np.zeros(n, dtype=np.int64), keys)
+    order: IntArray = earlier.copy()
+    budget = _RESORT_MOVES_PER_ELEMENT * n
+    for k in range(1, n):
+        moving = order[k]
+        j = k
+        while j > 0 and _precedes(keys, moving, order[j - 1]):
+            order[j] = order[j - 1]
+            j -= 1
+            budget -= 1
+        order[j] = moving
+        if budget < 0:
+            return lexsort_argsort(np.zeros(n, dtype=np.int64), keys)
+    return order
+
+
 @kernel
 def _less(a: float, b: float) -> bool:
     """numpy's sort order: a before b, NaN after every number."""
     return a < b or (b != b and a == a)  # noqa: PLR0124
+
+
+_NEAR_STEPS = 4
+"""How far search_sorted_near walks from its guess before it searches the whole array."""
+
+
+@kernel
+def goes_before(element: float, value: float, right: bool) -> bool:
+    """`element` lies before where np.searchsorted puts `value` (on its side): in a
+    sorted array, the searchsorted answer is the count of elements that do."""
+    return not _less(value, element) if right else _less(element, value)
+
+
+@kernel
+def search_sorted_near(values: FloatArray | IntArray, value: float, right: bool, guess: int) -> int:
+    """search_sorted, first trying `guess` and the few places after it (where the answer
+    was a step ago, for a value that moves on a little); the answer is the same."""
+    n = values.shape[0]
+    if 0 <= guess <= n and (guess == 0 or goes_before(values[guess - 1], value, right)):
+        place = guess
+        for _ in range(_NEAR_STEPS):
+            if place == n or not goes_before(values[place], value, right):
+                return place
+            place += 1
+    return search_sorted(values, value, right)
 
 
 @kernel

@@ -31,7 +31,7 @@ def _steer_towards(current: float, target: float, max_rate: float, dt: float) ->
 
 
 @kernel
-def advance(
+def _advance_once(
     model: FloatArray,
     state: FloatArray,
     pedals: FloatArray,
@@ -40,9 +40,7 @@ def advance(
     physics: FloatArray,
     dt: float,
 ) -> None:
-    """dynamics.advance on `state` (STATE_FIELDS) in place. pedals: accel, brake, front
-    and rear steer targets; physics: air density, gravity, governor band, blend start and
-    end speeds."""
+    """One integration step of dt: see advance."""
     (
         max_steer_rate, max_drive_force, max_power, max_reverse_speed, max_speed, drag_area,
         mass, rolling_coeff, max_brake_force, yaw_inertia, a, b, cf, cr, wheelbase,
@@ -123,3 +121,21 @@ def advance(
     state[2] += dt * (-new_vx * sin_pitch + new_vy * sin_roll * cos_pitch)
     state[5] += dt * new_yaw_rate * cos_roll / cos_pitch
     state[5] = ieee_remainder(state[5], math.tau)
+
+
+@kernel
+def advance(
+    model: FloatArray,
+    state: FloatArray,
+    pedals: FloatArray,
+    drive_direction: int,
+    parking: bool,
+    physics: FloatArray,
+    dt: float,
+    repeats: int,
+) -> None:
+    """dynamics.advance on `state` (STATE_FIELDS) in place, `repeats` times over dt with
+    the same inputs. pedals: accel, brake, front and rear steer targets; physics: air
+    density, gravity, governor band, blend start and end speeds."""
+    for _ in range(repeats):
+        _advance_once(model, state, pedals, drive_direction, parking, physics, dt)

@@ -17,7 +17,7 @@ from egosim.world.map.lanes import (
     Sidewalk,
     TrafficLightSite,
 )
-from egosim.world.map.projection import LaneProjection, LaneProjections
+from egosim.world.map.projection import LaneProjection, LaneProjections, ProjectionMemory
 
 __all__ = [
     "BUILTIN_MAP_NAMES",
@@ -32,6 +32,7 @@ __all__ = [
     "MapError",
     "MapGeometryError",
     "MapRecordError",
+    "ProjectionMemory",
     "Sidewalk",
     "TrafficLightSite",
     "UnknownLaneError",

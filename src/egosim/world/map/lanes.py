@@ -10,13 +10,18 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.world import kernels
-from egosim.world.arrays import FloatArray
+from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.kernels.lane_poses import lane_poses
 from egosim.world.map.errors import MapGeometryError, UnknownLaneError
 from egosim.world.map.georef import GeoReference
 from egosim.world.map.light_type import LightType
 from egosim.world.map.polyline import segment_headings, stations
-from egosim.world.map.projection import LaneProjection, LaneProjections, SegmentTable
+from egosim.world.map.projection import (
+    LaneProjection,
+    LaneProjections,
+    ProjectionMemory,
+    SegmentTable,
+)
 from egosim.world.map.road_coordinates import RoadCoordinates
 from egosim.world.map.road_marking import RoadMarking
 
@@ -33,6 +38,8 @@ def _frozen_array(values: object, what: str) -> FloatArray:
 
 
 _NOT_MOVED = np.empty(0)
+_NO_HINTS = np.empty(0, np.int64)
+"""No search hints: every point's search goes over the whole centreline table."""
 
 
 class _ArrayFieldsEquality:
@@ -239,13 +246,17 @@ class LaneMap:
         return self.project_many(np.array([[x, y]], dtype=np.float64), hint)[0]
 
     def project_many(
-        self, xy: npt.ArrayLike, headings: npt.ArrayLike | None = None
+        self,
+        xy: npt.ArrayLike,
+        headings: npt.ArrayLike | None = None,
+        memory: ProjectionMemory | None = None,
     ) -> LaneProjections:
         """`project` for an (N, 2) array of points (and optional (N,) heading hints, NaN
-        where a point has none)."""
+        where a point has none). A caller projecting the same points over and over (an
+        agent at rest stays where it was) may keep a `memory` of its own between calls."""
         points = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
         hint = None if headings is None else np.asarray(headings, dtype=np.float64).reshape(-1)
-        return self._segments.project(points, hint)
+        return self._segments.project(points, hint, memory)
 
     def pose_at(self, lane_id: str, s: float) -> tuple[float, float, float, float]:
         """(x, y, z, heading) on the centreline at station s, clamped to [0, length]."""
@@ -253,10 +264,17 @@ class LaneMap:
         return float(x), float(y), float(z), float(heading)
 
     def poses_at(
-        self, lane_indices: npt.ArrayLike, s: npt.ArrayLike, lateral: FloatArray | None = None
+        self,
+        lane_indices: npt.ArrayLike,
+        s: npt.ArrayLike,
+        lateral: FloatArray | None = None,
+        search_hints: IntArray | None = None,
     ) -> FloatArray:
         """(N, 4) array of x, y, z, heading for lane indices and stations (clamped); with
-        `lateral`, each point moved that far (m) to the left of its lane."""
+        `lateral`, each point moved that far (m) to the left of its lane. A caller asking
+        for the same agents step after step may keep (N,) `search_hints` of its own:
+        where the search along the centrelines ended for each point last time (any
+        values will do; updated in place), so that the next search starts there."""
         lanes = np.asarray(lane_indices, dtype=np.int64).reshape(-1)
         stations = np.asarray(s, dtype=np.float64).reshape(-1)
         if kernels.ACTIVE:
@@ -264,6 +282,7 @@ class LaneMap:
                 lanes,
                 stations,
                 _NOT_MOVED if lateral is None else lateral,
+                _NO_HINTS if search_hints is None else search_hints,
                 self.lane_lengths,
                 self._lane_key_base,
                 self._point_key,

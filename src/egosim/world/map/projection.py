@@ -82,6 +82,35 @@ class LaneProjections:
         )
 
 
+class ProjectionMemory:
+    """What a caller projecting the same points step after step (the world, its agents,
+    in the same order every step) keeps between projections: the points of its last one
+    and what was found for them (see kernels/lane_projection.py's project_points). A
+    point that has not moved is copied from here, not searched for; the results are the
+    same. One caller's own: the compiled projection updates it in place."""
+
+    def __init__(self, capacity: int = 0) -> None:
+        self.capacity = capacity
+        self.points = np.empty((capacity, 3))
+        """x, y, heading hint of each point."""
+        self.lanes = np.empty(capacity, np.int64)
+        self.facts = np.empty((6, capacity))
+        self.count = np.zeros(1, np.int64)
+        """How many of the rows above hold the last call's points."""
+
+    def grow(self, capacity: int) -> None:
+        """Room for at least `capacity` points (forgetting the last projection)."""
+        self.capacity = max(capacity, 2 * self.capacity)
+        self.points = np.empty((self.capacity, 3))
+        self.lanes = np.empty(self.capacity, np.int64)
+        self.facts = np.empty((6, self.capacity))
+        self.count[0] = 0
+
+
+_NO_MEMORY = ProjectionMemory()
+"""For callers that keep none: no room, so nothing is remembered."""
+
+
 class SegmentTable:
     """All centreline segments of a map, flattened, with the grid that finds them."""
 
@@ -104,14 +133,20 @@ class SegmentTable:
         self.width1 = np.concatenate([w[1:] for w in widths])
         self.grid = SegmentGrid(self.start, self.start + self.delta, GRID_CELL_M)
 
-    def project(self, xy: FloatArray, headings: FloatArray | None) -> LaneProjections:
+    def project(
+        self, xy: FloatArray, headings: FloatArray | None, memory: ProjectionMemory | None = None
+    ) -> LaneProjections:
         """Best lane for each point: least distance + heading error (see module constants);
-        a NaN heading hint means none for that point."""
-        # The compiled loop turns coordinates into grid cells without numpy's checks: a
-        # point that is not finite or is beyond any map (odd input) takes the numpy path.
-        if kernels.ACTIVE and np.all(np.abs(xy) < COMPILED_COORDINATE_LIMIT_M):
-            return self._project_compiled(xy, headings)
+        a NaN heading hint means none for that point. `memory`: the caller's, from its
+        last projection, if it keeps one."""
         n = len(xy)
+        if kernels.ACTIVE:
+            projected = self._project_compiled(xy, headings, memory or _NO_MEMORY)
+            # The compiled loop turns coordinates into grid cells without numpy's checks:
+            # it refuses a point that is not finite or is beyond any map (odd input),
+            # which the numpy path then places.
+            if len(projected) == n:
+                return projected
         best_seg = np.zeros(n, dtype=np.int64)
         best_t = np.zeros(n)
         pending = np.arange(n)
@@ -136,10 +171,14 @@ class SegmentTable:
             _, best_seg[some], best_t[some], _ = self._best_pairs(xy[some], hint, point, seg)
         return self._describe(xy, best_seg, best_t)
 
-    def _project_compiled(self, xy: FloatArray, headings: FloatArray | None) -> LaneProjections:
+    def _project_compiled(
+        self, xy: FloatArray, headings: FloatArray | None, memory: ProjectionMemory
+    ) -> LaneProjections:
         """project() in one compiled loop: the same arithmetic, the same results."""
         grid = self.grid
         hints = np.full(len(xy), np.nan) if headings is None else headings
+        if memory is not _NO_MEMORY and len(xy) > memory.capacity:
+            memory.grow(len(xy))
         lane, (s, lateral, heading, left, right, width) = project_points(
             np.ascontiguousarray(xy),
             np.ascontiguousarray(hints),
@@ -159,6 +198,11 @@ class SegmentTable:
             grid.offsets,
             HEADING_WEIGHT_M_PER_RAD,
             WRONG_WAY_PENALTY_M,
+            COMPILED_COORDINATE_LIMIT_M,
+            memory.points,
+            memory.lanes,
+            memory.facts,
+            memory.count,
         )
         return LaneProjections(self.lane_ids, lane, s, lateral, heading, left, right, width)
 

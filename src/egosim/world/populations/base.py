@@ -21,7 +21,8 @@ from typing import Protocol
 import numpy as np
 
 from egosim.world.arrays import FloatArray, IntArray
-from egosim.world.map import LaneMap, LaneProjections
+from egosim.world.collision import Footprints
+from egosim.world.map import LaneMap, LaneProjections, ProjectionMemory
 from egosim.world.traffic import LaneOccupants, LightsView, ObjectTable
 from egosim.world.vehicle import VehicleStatus
 
@@ -70,6 +71,12 @@ class Population(Protocol):
 
     def table(self) -> ObjectTable:
         """Its rows of the object table, in a fixed order."""
+        ...
+
+    def footprints(self) -> Footprints:
+        """The footprints of its rows of the object table (their positions, headings,
+        lengths and widths), without the table's other columns: every step's collision
+        test asks for them."""
         ...
 
     def lane_points(self) -> LanePoints:
@@ -144,13 +151,16 @@ class Surroundings:
         lights: LightsView,
         populations: Sequence[Population],
         egos: EgoPopulation | None = None,
+        memory: ProjectionMemory | None = None,
     ) -> None:
         """`egos`: the egos among `populations`, whom dormant agents wait for (none: a
-        world of no egos, where nobody wakes)."""
+        world of no egos, where nobody wakes). `memory`: the lane projection's of the
+        last step, kept by the caller from step to step (see place_on_lanes)."""
         self.lights = lights
         self._map = lane_map
         self._egos = egos
         self._populations = populations
+        self._memory = memory
         self._ego_positions: FloatArray | None = None
         self._occupants: list[LaneOccupants] | None = None
 
@@ -164,7 +174,7 @@ class Surroundings:
     def occupants_besides(self, population: Population) -> LaneOccupants:
         """Every other population's lane occupants, in the populations' order."""
         if self._occupants is None:
-            self._occupants = place_on_lanes(self._map, self._populations)
+            self._occupants = place_on_lanes(self._map, self._populations, self._memory)
         return LaneOccupants.concatenate(
             [
                 occupants
@@ -174,11 +184,20 @@ class Surroundings:
         )
 
 
-def place_on_lanes(lane_map: LaneMap, populations: Sequence[Population]) -> list[LaneOccupants]:
-    """Each population's lane occupants, from one projection of all their lane points."""
+def place_on_lanes(
+    lane_map: LaneMap, populations: Sequence[Population], memory: ProjectionMemory | None = None
+) -> list[LaneOccupants]:
+    """Each population's lane occupants, from one projection of all their lane points;
+    `memory` is the projection's of the last call (the same populations, a step ago), if
+    the caller keeps one: those who have not moved are not searched for again."""
     points = [population.lane_points() for population in populations]
+    filled = [p for p in points if len(p.headings)]
+    if not filled:
+        return [population.lane_occupants(_NOWHERE) for population in populations]
     placed = lane_map.project_many(
-        np.concatenate([p.xy for p in points]), np.concatenate([p.headings for p in points])
+        np.concatenate([p.xy for p in filled]),
+        np.concatenate([p.headings for p in filled]),
+        memory,
     )
     bounds = list(itertools.accumulate([len(p.headings) for p in points], initial=0))
     return [

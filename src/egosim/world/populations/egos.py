@@ -9,6 +9,7 @@ from dataclasses import replace
 import numpy as np
 
 from egosim.world.arrays import FloatArray, IntArray
+from egosim.world.collision import Footprints
 from egosim.world.map import LaneMap, LaneProjections
 from egosim.world.populations.base import LanePoints, Shove, Surroundings
 from egosim.world.recorded_scene import RecordedEgo
@@ -66,6 +67,10 @@ class SimulatedEgos:
         self.egos = egos
         self.scripted = scripted
         self._lane_cache: tuple[tuple[Pose, ...], LaneProjections] | None = None
+        self._surface_cache: tuple[tuple[Pose, ...], list[RoadSurface]] | None = None
+        self._placed: (
+            tuple[tuple[tuple[Pose, EgoModel], ...], tuple[LanePoints, Footprints]] | None
+        ) = None
 
     def status(self, index: int) -> VehicleStatus:
         return self.egos[index].vehicle.status()
@@ -82,6 +87,10 @@ class SimulatedEgos:
         if known is None or known[0] != poses:
             projection = self.map.project_many([(p.x, p.y) for p in poses], [p.yaw for p in poses])
             known = self._lane_cache = (poses, projection)
+        elif len(known[1]) != len(poses):
+            # lane_occupants keeps the step's whole projection: the egos' part is cut out
+            # only when someone asks.
+            known = self._lane_cache = (poses, known[1].part(0, len(poses)))
         return known[1]
 
     def table(self) -> ObjectTable:
@@ -117,37 +126,60 @@ class SimulatedEgos:
             sizes=values[:, 10:13],
         )
 
+    def footprints(self) -> Footprints:
+        return self._placement()[1]
+
     def lane_points(self) -> LanePoints:
         """Each ego's reference point, then each one's footprint centre, its yaw as hint:
         the first give the lanes (kept, see lanes), the second the lane occupants."""
+        return self._placement()[0]
+
+    def _placement(self) -> tuple[LanePoints, Footprints]:
+        """The egos' lane points and footprints, worked out together and kept while no
+        ego moves (or changes its model)."""
         motions = [ego.vehicle.motion() for ego in self.egos]
-        references = [(m.pose.x, m.pose.y) for m in motions]
-        centres = [ego.box_centre(m) for ego, m in zip(self.egos, motions, strict=True)]
-        yaws = np.array([m.pose.yaw for m in motions])
-        xy = np.array(references + centres).reshape(-1, 2)
-        return LanePoints(xy, np.concatenate((yaws, yaws)))
+        key = tuple(
+            (motion.pose, ego.vehicle.model) for ego, motion in zip(self.egos, motions, strict=True)
+        )
+        known = self._placed
+        if known is not None and known[0] == key:
+            return known[1]
+        rows = []
+        for ego, motion in zip(self.egos, motions, strict=True):
+            model = ego.vehicle.model
+            pose = motion.pose
+            centre = ego.box_centre(motion)
+            rows.append((pose.x, pose.y, *centre, pose.yaw, model.length, model.width))
+        values = np.array(rows, dtype=np.float64).reshape(len(rows), 7)
+        yaws = values[:, 4]
+        placement = (
+            LanePoints(
+                np.concatenate((values[:, 0:2], values[:, 2:4])), np.concatenate((yaws, yaws))
+            ),
+            Footprints(values[:, 2:4], yaws, values[:, 5], values[:, 6]),
+        )
+        self._placed = (key, placement)
+        return placement
 
     def lane_occupants(self, placed: LaneProjections) -> LaneOccupants:
         motions = [ego.vehicle.motion() for ego in self.egos]
         n = len(motions)
-        self._lane_cache = (tuple(m.pose for m in motions), placed.part(0, n))
+        self._lane_cache = (tuple(m.pose for m in motions), placed)
         # Ego by ego in floats: a world has a few egos, and a numpy call on so few
         # values costs more than the arithmetic.
-        lanes, stations = placed.lane_index[n:].tolist(), placed.s[n:].tolist()
-        laterals, widths = placed.lateral[n:].tolist(), placed.width[n:].tolist()
-        headings = placed.heading[n:].tolist()
-        occupants: list[tuple[int, float, float, float]] = []
+        lanes: list[int] = []
+        rows: list[tuple[float, float, float]] = []
         for k, (ego, motion) in enumerate(zip(self.egos, motions, strict=True)):
             model = ego.vehicle.model
-            if abs(laterals[k]) <= (widths[k] + model.width) / 2.0:
-                along = math.cos(motion.pose.yaw - headings[k]) * motion.velocity[0]
-                occupants.append((lanes[k], stations[k], model.length / 2.0, along))
-        if not occupants:
+            row = n + k
+            if abs(placed.lateral.item(row)) <= (placed.width.item(row) + model.width) / 2.0:
+                along = math.cos(motion.pose.yaw - placed.heading.item(row)) * motion.velocity[0]
+                lanes.append(placed.lane_index.item(row))
+                rows.append((placed.s.item(row), model.length / 2.0, along))
+        if not lanes:
             return LaneOccupants.empty()
-        lane, s, half_length, speed = zip(*occupants, strict=True)
-        return LaneOccupants(
-            np.array(lane, np.int64), np.array(s), np.array(half_length), np.array(speed)
-        )
+        values = np.array(rows, dtype=np.float64)
+        return LaneOccupants(np.array(lanes, np.int64), values[:, 0], values[:, 1], values[:, 2])
 
     def inverse_masses(self) -> FloatArray:
         inverse: FloatArray = 1.0 / np.array([ego.vehicle.model.mass for ego in self.egos])
@@ -169,7 +201,15 @@ class SimulatedEgos:
 
     def road_surfaces(self) -> list[RoadSurface]:
         """The road under each ego: the height of its lane there, and the pitch the
-        lane's grade gives a vehicle facing the ego's way (roll: none)."""
+        lane's grade gives a vehicle facing the ego's way (roll: none). Kept, like the
+        lanes, while no ego moves (an ego at rest asks for the same road every step)."""
+        poses = tuple(ego.vehicle.motion().pose for ego in self.egos)
+        known = self._surface_cache
+        if known is None or known[0] != poses:
+            known = self._surface_cache = (poses, self._road_surfaces())
+        return known[1]
+
+    def _road_surfaces(self) -> list[RoadSurface]:
         projection = self.lanes()
         n = len(projection)
         yaws = np.array([ego.vehicle.motion().pose.yaw for ego in self.egos])
@@ -227,6 +267,9 @@ class ReplayedEgos:
 
     def table(self) -> ObjectTable:
         return self.simulated.table()
+
+    def footprints(self) -> Footprints:
+        return self.simulated.footprints()
 
     def lane_points(self) -> LanePoints:
         return self.simulated.lane_points()

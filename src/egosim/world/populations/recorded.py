@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from egosim.world.arrays import FloatArray, IntArray
+from egosim.world.collision import Footprints
 from egosim.world.map import LaneProjections
 from egosim.world.populations.base import LanePoints, Shove, Surroundings
 from egosim.world.traffic import LaneOccupants, ObjectTable
@@ -30,6 +31,9 @@ class RecordedPopulation:
 
     def table(self) -> ObjectTable:
         return self.recorded
+
+    def footprints(self) -> Footprints:
+        return Footprints.of(self.recorded)
 
     def lane_points(self) -> LanePoints:
         """Every recorded position, without a heading hint."""

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from egosim.world.arrays import FloatArray, IntArray
+from egosim.world.collision import Footprints
 from egosim.world.map import LaneProjections
 from egosim.world.populations.base import LanePoints, Shove, Surroundings
 from egosim.world.traffic import LaneOccupants, ObjectTable, ObjectType
@@ -29,6 +30,9 @@ class ScriptedPopulation:
 
     def table(self) -> ObjectTable:
         return self.scripted.table(self.kind)
+
+    def footprints(self) -> Footprints:
+        return Footprints.of(self.scripted.table(self.kind))
 
     def lane_points(self) -> LanePoints:
         return LanePoints.none()

@@ -5,13 +5,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from egosim.world.arrays import FloatArray, IntArray
+from egosim.world.arrays import BoolArray, FloatArray, IntArray
+from egosim.world.collision import Footprints
 from egosim.world.map import LaneMap, LaneProjections
 from egosim.world.populations.base import LanePoints, Shove, Surroundings
 from egosim.world.signals import OFF, RED
 from egosim.world.traffic import (
     CrosswalkLights,
     LaneOccupants,
+    LightsView,
     NpcFleet,
     ObjectTable,
     PedestrianCrowd,
@@ -36,6 +38,10 @@ class SimulatedNpcs:
 
     def table(self) -> ObjectTable:
         return self.fleet.table()
+
+    def footprints(self) -> Footprints:
+        pose, dims = self.fleet.pose, self.fleet.dims
+        return Footprints(pose[:, :2], pose[:, 3], dims[:, 0], dims[:, 1])
 
     def lane_points(self) -> LanePoints:
         return LanePoints.none()
@@ -75,8 +81,13 @@ class PlacedGhosts:
     def table(self) -> ObjectTable:
         return self.ghosts.table()
 
+    def footprints(self) -> Footprints:
+        return Footprints.of(self.ghosts.table())
+
     def lane_points(self) -> LanePoints:
         table = self.ghosts.table()
+        if len(table) == 0:
+            return LanePoints.none()
         return LanePoints(table.positions[:, :2], table.headings)
 
     def lane_occupants(self, placed: LaneProjections) -> LaneOccupants:
@@ -105,9 +116,14 @@ class SimulatedPedestrians:
     def __init__(self, crowd: PedestrianCrowd, crosswalk_lights: CrosswalkLights) -> None:
         self.crowd = crowd
         self.crosswalk_lights = crosswalk_lights
+        self._walk_signals: tuple[LightsView, BoolArray] | None = None
 
     def table(self) -> ObjectTable:
         return self.crowd.table()
+
+    def footprints(self) -> Footprints:
+        crowd = self.crowd
+        return Footprints(crowd.position, crowd.heading, crowd.dims[:, 0], crowd.dims[:, 1])
 
     def lane_points(self) -> LanePoints:
         """Those who may stand in a lane: sidewalk walkers never leave the kerb."""
@@ -122,9 +138,16 @@ class SimulatedPedestrians:
 
     def step(self, dt: float, surroundings: Surroundings) -> None:
         self.wait(surroundings)
-        lights = surroundings.lights
-        stops_traffic = (lights.aspects == RED) | (lights.aspects == OFF) | lights.flashing
-        self.crowd.step(dt, self.crosswalk_lights.walk_signals(stops_traffic))
+        self.crowd.step(dt, self._walk_signals_of(surroundings.lights))
+
+    def _walk_signals_of(self, lights: LightsView) -> BoolArray:
+        """The crosswalks' walk signals under `lights`, kept while the view is the same
+        (the world hands out one view until an aspect changes)."""
+        known = self._walk_signals
+        if known is None or known[0] is not lights:
+            stops_traffic = (lights.aspects == RED) | (lights.aspects == OFF) | lights.flashing
+            known = self._walk_signals = (lights, self.crosswalk_lights.walk_signals(stops_traffic))
+        return known[1]
 
     def wait(self, surroundings: Surroundings) -> None:
         if self.crowd.dormant.any():
@@ -147,6 +170,9 @@ class SimulatedObstacles:
 
     def table(self) -> ObjectTable:
         return self.obstacles.table()
+
+    def footprints(self) -> Footprints:
+        return Footprints.of(self.obstacles.table())
 
     def lane_points(self) -> LanePoints:
         return LanePoints.none()

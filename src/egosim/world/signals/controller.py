@@ -49,11 +49,15 @@ class IntersectionController:
         self.elapsed_s = 0.0
         self.step(elapsed_s)
 
-    def step(self, dt: float) -> None:
+    def step(self, dt: float) -> bool:
+        """Run on dt s; True if a new phase began."""
         self.elapsed_s += dt
+        if self.elapsed_s < self.program[self.phase_index].duration_s:
+            return False
         while self.elapsed_s >= self.program[self.phase_index].duration_s:
             self.elapsed_s -= self.program[self.phase_index].duration_s
             self.phase_index = (self.phase_index + 1) % len(self.program)
+        return True
 
     @property
     def phase(self) -> Phase:

@@ -66,6 +66,9 @@ class TrafficSignals:
         self._overrides: dict[str, int] = {}
         self._aspects = np.full(len(self.light_ids), OFF, dtype=np.int64)
         self._signal_aspects = self._aspects
+        self.changes = 0
+        """How many times an aspect may have changed: what a reader works out from the
+        aspects holds while this stays the same."""
         self.configure(programs, default)
 
     def configure(
@@ -100,9 +103,7 @@ class TrafficSignals:
         # Phases last seconds: most steps change no aspect and need no refresh.
         changed = False
         for controller in self.controllers.values():
-            phase = controller.phase_index
-            controller.step(dt)
-            changed |= controller.phase_index != phase
+            changed |= controller.step(dt)
         if changed:
             self._refresh()
 
@@ -119,6 +120,7 @@ class TrafficSignals:
     def _update_signals(self) -> None:
         # Kept between changes: agents read the signals every step, aspects change seldom.
         self._signal_aspects = self.lane_signals.aspects(self._aspects)
+        self.changes += 1
 
     def aspects(self) -> npt.NDArray[np.int64]:
         """Aspect of every light, in `light_ids` order (read-only view)."""

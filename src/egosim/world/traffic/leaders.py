@@ -22,7 +22,8 @@ class LaneOccupants:
 
     @classmethod
     def empty(cls) -> LaneOccupants:
-        return cls(np.empty(0, np.int64), np.empty(0), np.empty(0), np.empty(0))
+        """No occupants (one shared value: arrays of no elements cannot change)."""
+        return _NOBODY
 
     @classmethod
     def concatenate(cls, parts: list[LaneOccupants]) -> LaneOccupants:
@@ -37,6 +38,9 @@ class LaneOccupants:
             np.concatenate([p.half_length for p in filled]),
             np.concatenate([p.speed for p in filled]),
         )
+
+
+_NOBODY = LaneOccupants(np.empty(0, np.int64), np.empty(0), np.empty(0), np.empty(0))
 
 
 def leaders_ahead(

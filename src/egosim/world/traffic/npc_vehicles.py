@@ -149,6 +149,9 @@ class NpcFleet:
         """Per NPC: still waiting for an ego to come within its active distance."""
         self.wake_speed = np.empty(0)
         """m/s a dormant NPC sets off at (its spawn speed)."""
+        self._pose_hints = np.empty(0, np.int64)
+        """Where each NPC's pose search along the centrelines ended (see
+        LaneMap.poses_at): it drives on a little a step, the next search starts there."""
 
     def __len__(self) -> int:
         return len(self.unique_ids)
@@ -306,7 +309,7 @@ class NpcFleet:
 
     def _step_compiled(self, dt: float, lights: LightsView, others: LaneOccupants) -> None:
         """step() through kernels/npc_motion.py: the same arithmetic, the same results."""
-        moved, frozen, past_end = npc_motion.advance(
+        moved, past_end, due = npc_motion.advance(
             dt,
             self.lane,
             self.next_lanes,
@@ -334,27 +337,28 @@ class NpcFleet:
             self._idm_figures(),
             int(self.idm.delta),
             _MARGINS,
-        )
-        self.s, self.speed, self.accel, self.delay = moved
-        self._advance_lanes(past_end)
-        due = npc_motion.slide(
-            dt,
             self.slide_elapsed,
             self.change_duration,
             self.slide_from,
             self.lateral,
             self.change_to,
             self.change_timer,
-            frozen,
         )
-        self._change_lanes_now(due)
+        self.s, self.speed, self.accel, self.delay = moved
+        if len(past_end):
+            self._advance_lanes(past_end)
+        if len(due):
+            self._change_lanes_now(due)
         self._turn(dt)
 
     def _turn(self, dt: float) -> None:
         """The poses on the lanes now, and the yaw rate (rad/s) that took them there."""
-        old_heading = self.pose[:, 3]
+        earlier = self.pose
         self.pose = self._poses()
-        self.yaw_rate = np.remainder(self.pose[:, 3] - old_heading + math.pi, math.tau) - math.pi
+        if kernels.ACTIVE:
+            self.yaw_rate = npc_motion.yaw_rates(self.pose, earlier, dt)
+            return
+        self.yaw_rate = np.remainder(self.pose[:, 3] - earlier[:, 3] + math.pi, math.tau) - math.pi
         self.yaw_rate /= dt
 
     def _idm_figures(self) -> FloatArray:
@@ -502,7 +506,9 @@ class NpcFleet:
             self.next_lanes[i, k] = previous
 
     def _poses(self) -> FloatArray:
-        pose = self.graph.lane_map.poses_at(self.lane, self.s, self.lateral)
+        if len(self._pose_hints) != len(self):
+            self._pose_hints = np.zeros(len(self), np.int64)
+        pose = self.graph.lane_map.poses_at(self.lane, self.s, self.lateral, self._pose_hints)
         sliding = np.isfinite(self.slide_elapsed)
         if np.any(sliding):
             # The heading follows the slide: d(lateral)/dt against the forward speed.

@@ -70,6 +70,8 @@ class StaticObstacles:
     def step(self, dt: float) -> bool:
         """Sliding obstacles move on, slowed by ground friction to a stop; True if any
         moved."""
+        if not self._velocities.any():
+            return False
         speed = np.hypot(self._velocities[:, 0], self._velocities[:, 1])
         sliding = np.flatnonzero(speed > 0.0)
         if sliding.size == 0:

@@ -174,6 +174,9 @@ class PedestrianCrowd:
             (self._point_key, self._points.T.reshape(2, -1), self._point_heading)
         )
         self._path_bounds = np.stack((self._first, self._last_segment)).astype(np.int64)
+        self._search_hints = np.zeros((2, len(spawns)), np.int64)
+        """Where each pedestrian's searches of the gates and the path points ended in the
+        last compiled step: the next one starts there (they walk on a little a step)."""
 
     def _place(self, s: FloatArray) -> tuple[FloatArray, FloatArray]:
         key = self._key_base + s
@@ -208,7 +211,8 @@ class PedestrianCrowd:
                 pedestrian_motion.walk(
                     dt,
                     self.s,
-                    ~(self.stopped | self.dormant),
+                    self.stopped,
+                    self.dormant,
                     self.walk_speed,
                     walk_allowed,
                     self._key_base,
@@ -221,6 +225,7 @@ class PedestrianCrowd:
                     self.shoved,
                     self.position,
                     self.velocity,
+                    self._search_hints,
                 )
             )
             return

@@ -93,6 +93,9 @@ class CommandGate:
         self._command = SAFE_BRAKE
         self._received_at: float | None = None
         self._held: ControlCommand | None = None
+        self._brake = (SAFE_BRAKE, SAFE_BRAKE)
+        """The last command in force and the full brake holding its steering (asked for
+        at every substep while the gate has timed out)."""
 
     def submit(self, command: ControlCommand, sim_time: float) -> CommandVerdict:
         """Accept `command` at sim_time (s), clamped into range, unless it is invalid."""
@@ -138,9 +141,11 @@ class CommandGate:
         if self._held is not None:
             return self._held
         if self.timed_out(sim_time):
-            return replace(
-                SAFE_BRAKE,
-                front_steer=self._command.front_steer,
-                rear_steer=self._command.rear_steer,
-            )
+            last = self._command
+            if self._brake[0] is not last:
+                brake = replace(
+                    SAFE_BRAKE, front_steer=last.front_steer, rear_steer=last.rear_steer
+                )
+                self._brake = (last, brake)
+            return self._brake[1]
         return self._command

@@ -128,11 +128,21 @@ def _figures(model: VehicleModel) -> FloatArray:
     return known[1]
 
 
-def advance(model: VehicleModel, state: VehicleState, inputs: ActuatorInputs, dt: float) -> None:
-    """Integrate the state over dt (s) in place: actuators, then speeds, then pose."""
+def advance(
+    model: VehicleModel, state: VehicleState, inputs: ActuatorInputs, dt: float, repeats: int = 1
+) -> None:
+    """Integrate the state in place over `repeats` steps of dt (s) with the same inputs:
+    in each, the actuators, then the speeds, then the pose."""
     if kernels.ACTIVE:
-        _advance_compiled(model, state, inputs, dt)
+        _advance_compiled(model, state, inputs, dt, repeats)
         return
+    for _ in range(repeats):
+        _advance_once(model, state, inputs, dt)
+
+
+def _advance_once(
+    model: VehicleModel, state: VehicleState, inputs: ActuatorInputs, dt: float
+) -> None:
     state.front_steer = steer_towards(
         state.front_steer, inputs.front_steer_target, model.max_steer_rate, dt
     )
@@ -181,7 +191,7 @@ def advance(model: VehicleModel, state: VehicleState, inputs: ActuatorInputs, dt
 
 
 def _advance_compiled(
-    model: VehicleModel, state: VehicleState, inputs: ActuatorInputs, dt: float
+    model: VehicleModel, state: VehicleState, inputs: ActuatorInputs, dt: float, repeats: int
 ) -> None:
     """advance() through kernels/vehicle_dynamics.py: the same arithmetic, the same results."""
     values = np.array(
@@ -206,6 +216,7 @@ def _advance_compiled(
         inputs.gear is Gear.PARKING,
         _PHYSICS,
         dt,
+        repeats,
     )
     (
         state.x, state.y, state.z, state.roll, state.pitch, state.yaw, state.vx, state.vy,

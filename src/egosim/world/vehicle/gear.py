@@ -17,4 +17,7 @@ class Gear(IntEnum):
     @property
     def drive_direction(self) -> int:
         """+1 if the powertrain pushes forwards, -1 backwards, 0 if it is disconnected."""
-        return {Gear.DRIVE: 1, Gear.REVERSE: -1}.get(self, 0)
+        return _DRIVE_DIRECTIONS.get(self, 0)
+
+
+_DRIVE_DIRECTIONS = {Gear.DRIVE: 1, Gear.REVERSE: -1}

@@ -181,12 +181,20 @@ class Vehicle(GatedVehicle[ControlCommand]):
 
     def step(self, dt: float, surface: RoadSurface | None = None) -> None:
         """Advance dt seconds; surface, when given, is the road under the vehicle now."""
-        substeps = self._substeps(dt)
+        substeps = list(self._substeps(dt))
         state = self._state
         self._status = self._motion = None
         if surface is not None:
             state.z, state.pitch, state.roll = surface.z, surface.pitch, surface.roll
-        for command, substep in substeps:
+        k = 0
+        while k < len(substeps):
+            command, substep = substeps[k]
+            # A pedal command's pedals do not depend on the state: the substeps it holds
+            # for are integrated in one go.
+            repeats = 1
+            if command.mode == LongitudinalMode.PEDALS:
+                while k + repeats < len(substeps) and substeps[k + repeats][0] is command:
+                    repeats += 1
             self._pedals = self._pedals_for(command, substep)
             inputs = ActuatorInputs(
                 accel_pedal=self._pedals.accel,
@@ -195,7 +203,8 @@ class Vehicle(GatedVehicle[ControlCommand]):
                 rear_steer_target=command.rear_steer,
                 gear=self.gear,
             )
-            advance(self.model, state, inputs, substep)
+            advance(self.model, state, inputs, substep, repeats)
+            k += repeats
 
     def _pedals_for(self, command: ControlCommand, dt: float) -> Pedals:
         if command.mode == LongitudinalMode.VELOCITY:
