@@ -5,7 +5,9 @@ subprocess, subscribes to every published row (so every builder runs, the LiDAR
 included) or to the `--topics` named, starts sync mode and times WaitForTick calls of
 `--ticks-per-call` ticks each; with `--ctrl-cmd`, each call is preceded by a
 SyncModeCtrlCmd for its first frame, as a driving client's loop does. Real-time factor =
-simulated seconds / wall seconds.
+simulated seconds / wall seconds. Beside each figure, the CPU time per tick (Linux's
+/proc): the simulator's loop thread, its other threads (TCPROS writers, XML-RPC, the
+embedded master) and the client's process, so where a tick's wall time goes shows.
 
 Usage: .venv/bin/python benchmarks/sync_mode.py [--ticks 2000] [--ticks-per-call 1 100]
        [--topics /Ego_topic /Object_topic ...] [--ctrl-cmd]
@@ -14,6 +16,8 @@ Usage: .venv/bin/python benchmarks/sync_mode.py [--ticks 2000] [--ticks-per-call
 from __future__ import annotations
 
 import argparse
+import os
+import resource
 import subprocess
 import threading
 import time
@@ -54,6 +58,27 @@ def simulator_client(name: str) -> Iterator[tuple[Node, subprocess.Popen[str]]]:
         simulator.wait(10)
 
 
+def process_cpu(pid: int) -> tuple[float, float]:
+    """CPU seconds (user + system) of process `pid`'s main thread and of its other
+    threads, from /proc (threads that ended are counted with the process's own total)."""
+    ticks = os.sysconf("SC_CLK_TCK")
+
+    def cpu(stat_path: str) -> float:
+        with open(stat_path) as stat:
+            fields = stat.read().rpartition(")")[2].split()
+        return (int(fields[11]) + int(fields[12])) / ticks  # utime, stime
+
+    whole = cpu(f"/proc/{pid}/stat")
+    main = cpu(f"/proc/{pid}/task/{pid}/stat")
+    return main, whole - main
+
+
+def own_cpu() -> float:
+    """CPU seconds (user + system) of this process, every thread."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
 def start_sync_mode(node: Node, profile: Profile) -> int:
     """Start sync mode as USER with TICK_MS ticks; the current frame."""
     command = profile.service("morai_msgs/MoraiSyncModeCmdSrv")
@@ -86,7 +111,7 @@ def main() -> None:
     args = parser.parse_args()
 
     profile = get_profile("26.r1")
-    with simulator_client("sync_benchmark") as (node, _):
+    with simulator_client("sync_benchmark") as (node, simulator):
         counters = {}
         for row in default_network_settings().enabled_rows():
             wanted = args.topics is None or row.name in args.topics
@@ -104,6 +129,8 @@ def main() -> None:
         for per_call in args.ticks_per_call:
             calls = max(args.ticks // per_call, 1)
             began = time.perf_counter()
+            loop_began, others_began = process_cpu(simulator.pid)
+            client_began = own_cpu()
             for _ in range(calls):
                 if args.ctrl_cmd:
                     control_proxy.call(control_request(profile, control, frame + 1))
@@ -113,10 +140,16 @@ def main() -> None:
                 )
                 tick.response.deserialize(proxy.call(tick.request.serialize(request)))
             wall = time.perf_counter() - began
+            loop_cpu, others_cpu = process_cpu(simulator.pid)
+            client_cpu = own_cpu() - client_began
             ticks = calls * per_call
             print(
                 f"{per_call:4d} ticks per WaitForTick: {ticks / wall:7.0f} ticks/s, "
-                f"{ticks * TICK_MS / 1000 / wall:5.1f}x real time"
+                f"{ticks * TICK_MS / 1000 / wall:5.1f}x real time; per tick "
+                f"{wall / ticks * 1e6:.0f} us wall, CPU: simulator loop thread "
+                f"{(loop_cpu - loop_began) / ticks * 1e6:.0f} us, its other threads "
+                f"{(others_cpu - others_began) / ticks * 1e6:.0f} us, client "
+                f"{client_cpu / ticks * 1e6:.0f} us"
             )
         received = ", ".join(f"{name} {c.count}" for name, c in sorted(counters.items()))
         print(f"messages received: {received}")

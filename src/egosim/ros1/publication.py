@@ -2,8 +2,9 @@
 
 publish() is called from the simulation loop, so per subscriber connection it only appends to
 a bounded queue drained by that connection's writer thread (or, when the connection is idle
-and the message small, offers it to the socket without blocking). A subscriber that stops
-reading loses its oldest messages (counted) and delays nobody else.
+and the message small, offers it to the socket without blocking; while output is held, keeps
+it to go out with the next ones in one write). A subscriber that stops reading loses its
+oldest messages (counted) and delays nobody else.
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from dataclasses import dataclass
 
 from .connection_header import error_header, write_header
 from .errors import ConnectionRefusedByPeerError, NodeShutdownError
-from .tcpros import close_quietly, encode_frame, send_frame, set_cork, set_nodelay
+from .tcpros import close_quietly, encode_frames, send_frames, set_cork, set_nodelay
 from .types import MessageTypeInfo
 
 log = logging.getLogger(__name__)
@@ -73,6 +74,13 @@ class _Outbox:
         self._on_closed = on_closed
         # Until open(), messages only queue: the connection header must go out first.
         self._open = False
+        # While the publisher holds output, small messages to an idle connection wait here
+        # (in order, before anything queued after them) and go out in one write when they
+        # fill _DIRECT_SEND_MAX or the hold ends: a burst of many messages then costs one
+        # system call instead of one per message.
+        self._holding = False
+        self._held: list[bytes] = []
+        self._held_size = 0
         self._thread = threading.Thread(
             target=self._write, name=f"tcpros out {stats.peer}", daemon=True
         )
@@ -86,28 +94,54 @@ class _Outbox:
             self._open = True
         self._thread.start()
 
+    def hold(self, held: bool) -> None:
+        """Keep small messages back while `held`; on release, send what was kept."""
+        with self._ready:
+            self._holding = held
+            if not held and self._held:
+                self._offer(*self._take_held())
+
     def put(self, payloads: Sequence[bytes]) -> None:
         """Queue messages to go out in this order (one write when the socket takes them)."""
         with self._ready:
             if self._closed:
                 return
-            idle = self._open and not self._queue and self._tail is None and not self._writing
             size = sum(len(data) for data in payloads)
-            if idle and size <= _DIRECT_SEND_MAX and self._send_now(payloads):
-                if self._tail is not None:
-                    self._ready.notify()
+            if self._held and self._held_size + size > _DIRECT_SEND_MAX:
+                self._offer(*self._take_held())
+            if self._holding and size <= _DIRECT_SEND_MAX and self._idle():
+                self._held.extend(payloads)
+                self._held_size += size
                 return
-            for data in payloads:
-                if len(self._queue) >= self._queue_size:
-                    self._queue.popleft()
-                    self.stats.dropped += 1
-                self._queue.append(data)
-            self._ready.notify()
+            self._offer(payloads, size)
+
+    def _idle(self) -> bool:
+        """Open, and nothing of its output left to the writer (lock held)."""
+        return self._open and not self._queue and self._tail is None and not self._writing
+
+    def _take_held(self) -> tuple[list[bytes], int]:
+        held, size = self._held, self._held_size
+        self._held, self._held_size = [], 0
+        return held, size
+
+    def _offer(self, payloads: Sequence[bytes], size: int) -> None:
+        """Send `payloads` now if the connection is idle and the socket takes them, else
+        queue them for the writer (lock held)."""
+        if size <= _DIRECT_SEND_MAX and self._idle() and self._send_now(payloads):
+            if self._tail is not None:
+                self._ready.notify()
+            return
+        for data in payloads:
+            if len(self._queue) >= self._queue_size:
+                self._queue.popleft()
+                self.stats.dropped += 1
+            self._queue.append(data)
+        self._ready.notify()
 
     def _send_now(self, payloads: Sequence[bytes]) -> bool:
         """Offer frames to the socket without blocking (lock held, writer idle); False if the
         socket took none of them. What it did not take is left in ``_tail`` for the writer."""
-        frames = b"".join(encode_frame(data) for data in payloads)
+        frames = encode_frames(payloads)
         try:
             sent = self.sock.send(frames, socket.MSG_DONTWAIT)
         except OSError:
@@ -125,6 +159,7 @@ class _Outbox:
             if self._closed:
                 return
             self._closed = True
+            self._held, self._held_size = [], 0
             self._ready.notify()
         self.stats.connected = False
         close_quietly(self.sock)
@@ -158,10 +193,9 @@ class _Outbox:
                     self._writing = True
                 if tail is not None:
                     self.sock.sendall(tail)
-                for data in batch:
-                    send_frame(self.sock, data)
-                    self.stats.bytes_sent += len(data) + 4
-                    self.stats.messages_sent += 1
+                send_frames(self.sock, batch)
+                self.stats.bytes_sent += sum(len(data) + 4 for data in batch)
+                self.stats.messages_sent += len(batch)
                 with self._ready:
                     self._writing = False
         except OSError as exc:
@@ -257,6 +291,7 @@ class Publisher:
             self._held = held
             outboxes = self._outboxes
         for outbox in outboxes:
+            outbox.hold(held)  # released: what it kept goes into the socket before uncorking
             set_cork(outbox.sock, held)
 
     def _begin_publish(self, messages: Sequence[bytes | Variants]) -> tuple[_Outbox, ...]:
@@ -306,6 +341,7 @@ class Publisher:
                 outbox.close()
                 return
             if self._held:
+                outbox.hold(True)
                 set_cork(sock, True)
             if self._latched is not None:
                 outbox.put((_variant(self._latched, served.md5sum),))
