@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 from .connection_header import error_header, write_header
 from .errors import ConnectionRefusedByPeerError, NodeShutdownError
-from .tcpros import close_quietly, encode_frames, send_frames, set_cork, set_nodelay
+from .tcpros import close_quietly, encode_frames, send_frames, set_nodelay
 from .types import MessageTypeInfo
 
 log = logging.getLogger(__name__)
@@ -51,6 +51,38 @@ class ConnectionStats:
     connected: bool = True
 
 
+class OutputHold:
+    """A node's hold on its topic output (Node.holding_output): while it is on, each
+    connection keeps the small messages it is sent and writes them 64 KiB at a time; when
+    it ends, every connection that kept some writes the rest."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._depth = 0
+        self._keeping: list[_Outbox] = []
+
+    def begin(self) -> None:
+        with self._lock:
+            self._depth += 1
+
+    def end(self) -> None:
+        with self._lock:
+            self._depth -= 1
+            if self._depth:
+                return
+            keeping, self._keeping = self._keeping, []
+        for outbox in keeping:
+            outbox.send_kept()
+
+    def keeps(self, outbox: _Outbox) -> bool:
+        """Whether `outbox` is to keep what it is sent now (called under its lock); if so,
+        it is told to send what it kept when the hold ends."""
+        with self._lock:
+            if self._depth:
+                self._keeping.append(outbox)
+            return self._depth > 0
+
+
 class _Outbox:
     """One subscriber connection: a bounded queue drained by its own writer thread."""
 
@@ -60,6 +92,7 @@ class _Outbox:
         stats: ConnectionStats,
         queue_size: int,
         on_closed: Callable[[_Outbox], None],
+        output_hold: OutputHold,
     ) -> None:
         self.sock = sock
         self.stats = stats
@@ -74,11 +107,11 @@ class _Outbox:
         self._on_closed = on_closed
         # Until open(), messages only queue: the connection header must go out first.
         self._open = False
-        # While the publisher holds output, small messages to an idle connection wait here
+        # While the node holds its output, small messages to an idle connection wait here
         # (in order, before anything queued after them) and go out in one write when they
         # fill _DIRECT_SEND_MAX or the hold ends: a burst of many messages then costs one
         # system call instead of one per message.
-        self._holding = False
+        self._output_hold = output_hold
         self._held: list[bytes] = []
         self._held_size = 0
         self._thread = threading.Thread(
@@ -94,11 +127,10 @@ class _Outbox:
             self._open = True
         self._thread.start()
 
-    def hold(self, held: bool) -> None:
-        """Keep small messages back while `held`; on release, send what was kept."""
+    def send_kept(self) -> None:
+        """The output hold has ended: send what was kept."""
         with self._ready:
-            self._holding = held
-            if not held and self._held:
+            if self._held and not self._closed:
                 self._offer(*self._take_held())
 
     def put(self, payloads: Sequence[bytes]) -> None:
@@ -107,9 +139,11 @@ class _Outbox:
             if self._closed:
                 return
             size = sum(len(data) for data in payloads)
-            if self._held and self._held_size + size > _DIRECT_SEND_MAX:
-                self._offer(*self._take_held())
-            if self._holding and size <= _DIRECT_SEND_MAX and self._idle():
+            keep = size <= _DIRECT_SEND_MAX and self._idle() and self._output_hold.keeps(self)
+            if self._held and (not keep or self._held_size + size > _DIRECT_SEND_MAX):
+                self._offer(*self._take_held())  # what was kept goes first
+                keep = keep and self._idle()
+            if keep:
                 self._held.extend(payloads)
                 self._held_size += size
                 return
@@ -224,6 +258,7 @@ class Publisher:
         queue_size: int = 100,
         negotiate: Negotiator | None = None,
         on_close: Callable[[Publisher], None] | None = None,
+        output_hold: OutputHold | None = None,
     ) -> None:
         if queue_size < 1:
             raise ValueError("queue_size must be at least 1")
@@ -240,7 +275,7 @@ class Publisher:
         self._latched: bytes | Variants | None = None
         self._latch_fixed = False
         self._closed = False
-        self._held = False
+        self._output_hold = output_hold or OutputHold()
         self.messages_published = 0
 
     @property
@@ -284,16 +319,6 @@ class Publisher:
             self._latched = message
             self._latch_fixed = True
 
-    def hold_output(self, held: bool) -> None:
-        """While held, every connection packs what it is sent into full packets and sends
-        the rest when released (see Node.holding_output)."""
-        with self._lock:
-            self._held = held
-            outboxes = self._outboxes
-        for outbox in outboxes:
-            outbox.hold(held)  # released: what it kept goes into the socket before uncorking
-            set_cork(outbox.sock, held)
-
     def _begin_publish(self, messages: Sequence[bytes | Variants]) -> tuple[_Outbox, ...]:
         """Count ``messages`` and latch the last; the connections they go to. A connection
         accepted after this point gets the last as its latched message instead."""
@@ -333,16 +358,13 @@ class Publisher:
         if header.get("tcp_nodelay") == "1":
             set_nodelay(sock)
         stats = ConnectionStats(connection_id, header.get("callerid", peer), served.md5sum)
-        outbox = _Outbox(sock, stats, self.queue_size, self._forget)
+        outbox = _Outbox(sock, stats, self.queue_size, self._forget, self._output_hold)
         # The outbox joins before the reply goes out, so a subscriber that has read the reply
         # gets every message published after it.
         with self._lock:
             if self._closed:
                 outbox.close()
                 return
-            if self._held:
-                outbox.hold(True)
-                set_cork(sock, True)
             if self._latched is not None:
                 outbox.put((_variant(self._latched, served.md5sum),))
             self._outboxes = (*self._outboxes, outbox)

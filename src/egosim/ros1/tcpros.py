@@ -107,14 +107,6 @@ def set_nodelay(sock: socket.socket, enabled: bool = True) -> None:
     sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1 if enabled else 0)
 
 
-def set_cork(sock: socket.socket, enabled: bool) -> None:
-    """Hold partial packets until uncorked (Linux's TCP_CORK; elsewhere nothing happens)."""
-    cork = getattr(socket, "TCP_CORK", None)
-    if cork is not None:
-        with contextlib.suppress(OSError):  # a connection closing meanwhile has nothing to hold
-            sock.setsockopt(socket.IPPROTO_TCP, cork, 1 if enabled else 0)
-
-
 def close_quietly(sock: socket.socket) -> None:
     with contextlib.suppress(OSError):
         sock.shutdown(socket.SHUT_RDWR)

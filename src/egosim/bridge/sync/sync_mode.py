@@ -33,7 +33,6 @@ WaitForTickResponse.time is the world's simulation time in seconds with 6 decima
 from __future__ import annotations
 
 import logging
-from contextlib import nullcontext
 
 from ...msgs import get_profile
 from ...msgs.typed import morai_26_r1, morai_2021_08
@@ -124,9 +123,9 @@ def serve_wait_for_tick(
         elif (ticks := max(target - session.frame, 1)) > MAX_TICKS_PER_REQUEST:
             log.error("%s: %d ticks at once (max %d)", row.name, ticks, MAX_TICKS_PER_REQUEST)
         else:
-            # Every frame's outputs are out before the reply, so several frames' may go
-            # out together (one frame's gain nothing from it).
-            with context.hold_output() if ticks > 1 else nullcontext():
+            # Every frame's outputs are out before the reply, so they go out together, at
+            # the end: the subscribers' side wakes once for them, not once per row.
+            with context.hold_output():
                 for _ in range(ticks):
                     _tick(context, session)
             ticked = True
