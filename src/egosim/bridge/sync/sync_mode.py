@@ -33,6 +33,7 @@ WaitForTickResponse.time is the world's simulation time in seconds with 6 decima
 from __future__ import annotations
 
 import logging
+from contextlib import nullcontext
 
 from ...msgs import get_profile
 from ...msgs.typed import morai_26_r1, morai_2021_08
@@ -123,9 +124,11 @@ def serve_wait_for_tick(
         elif (ticks := max(target - session.frame, 1)) > MAX_TICKS_PER_REQUEST:
             log.error("%s: %d ticks at once (max %d)", row.name, ticks, MAX_TICKS_PER_REQUEST)
         else:
-            # Every frame's outputs are out before the reply, so they go out together, at
-            # the end: the subscribers' side wakes once for them, not once per row.
-            with context.hold_output():
+            # Every frame's outputs are out before the reply, so several frames' go out
+            # together. One frame's rows go out as they are built: the subscribers' side
+            # reads them while the tick goes on (held to the end, it reads them after,
+            # and its next request comes later).
+            with context.hold_output() if ticks > 1 else nullcontext():
                 for _ in range(ticks):
                     _tick(context, session)
             ticked = True
