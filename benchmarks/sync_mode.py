@@ -9,8 +9,11 @@ simulated seconds / wall seconds. Beside each figure, the CPU time per tick (Lin
 /proc): the simulator's loop thread, its other threads (TCPROS writers, XML-RPC, the
 embedded master) and the client's process, so where a tick's wall time goes shows.
 
+With `--rounds N`, each setting is timed N times in turn on the same simulator, then the
+best round of each is printed again (the figure that a busy machine disturbs least).
+
 Usage: .venv/bin/python benchmarks/sync_mode.py [--ticks 2000] [--ticks-per-call 1 100]
-       [--topics /Ego_topic /Object_topic ...] [--ctrl-cmd]
+       [--rounds 1] [--topics /Ego_topic /Object_topic ...] [--ctrl-cmd]
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 
 from loopback import free_port, start_simulator
 
@@ -98,10 +102,35 @@ def control_request(profile: Profile, control: ServiceType, frame: int) -> bytes
     return control.request.serialize(control.request.new(request=request))
 
 
+@dataclass(frozen=True)
+class Round:
+    """One timed run of WaitForTick calls: ticks, wall seconds and CPU seconds."""
+
+    per_call: int
+    ticks: int
+    wall: float
+    loop_cpu: float
+    others_cpu: float
+    client_cpu: float
+
+    def __str__(self) -> str:
+        per_tick = 1e6 / self.ticks
+        return (
+            f"{self.per_call:4d} ticks per WaitForTick: {self.ticks / self.wall:7.0f} ticks/s, "
+            f"{self.ticks * TICK_MS / 1000 / self.wall:5.1f}x real time; per tick "
+            f"{self.wall * per_tick:.0f} us wall, CPU: simulator loop thread "
+            f"{self.loop_cpu * per_tick:.0f} us, its other threads "
+            f"{self.others_cpu * per_tick:.0f} us, client {self.client_cpu * per_tick:.0f} us"
+        )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--ticks", type=int, default=2000)
     parser.add_argument("--ticks-per-call", type=int, nargs="+", default=[1, 100])
+    parser.add_argument(
+        "--rounds", type=int, default=1, help="time each setting this many times, then the best"
+    )
     parser.add_argument(
         "--topics", nargs="*", help="subscribe to these rows only (default: every one)"
     )
@@ -126,31 +155,40 @@ def main() -> None:
         control_proxy = node.service_proxy("/SyncModeCtrlCmd", control, persistent=True)
         subscribed = "every published row" if args.topics is None else " ".join(counters)
         print(f"town + default scenario, {TICK_MS} ms ticks, subscribed: {subscribed}")
-        for per_call in args.ticks_per_call:
-            calls = max(args.ticks // per_call, 1)
-            began = time.perf_counter()
-            loop_began, others_began = process_cpu(simulator.pid)
-            client_began = own_cpu()
-            for _ in range(calls):
-                if args.ctrl_cmd:
-                    control_proxy.call(control_request(profile, control, frame + 1))
-                frame += per_call
-                request = tick.request.new(
-                    request=profile.message("morai_msgs/WaitForTick").new(user_id=USER, frame=frame)
+        best: dict[int, Round] = {}
+        for _ in range(args.rounds):
+            for per_call in args.ticks_per_call:
+                calls = max(args.ticks // per_call, 1)
+                began = time.perf_counter()
+                loop_began, others_began = process_cpu(simulator.pid)
+                client_began = own_cpu()
+                for _ in range(calls):
+                    if args.ctrl_cmd:
+                        control_proxy.call(control_request(profile, control, frame + 1))
+                    frame += per_call
+                    request = tick.request.new(
+                        request=profile.message("morai_msgs/WaitForTick").new(
+                            user_id=USER, frame=frame
+                        )
+                    )
+                    tick.response.deserialize(proxy.call(tick.request.serialize(request)))
+                wall = time.perf_counter() - began
+                loop_cpu, others_cpu = process_cpu(simulator.pid)
+                timed = Round(
+                    per_call,
+                    calls * per_call,
+                    wall,
+                    loop_cpu - loop_began,
+                    others_cpu - others_began,
+                    own_cpu() - client_began,
                 )
-                tick.response.deserialize(proxy.call(tick.request.serialize(request)))
-            wall = time.perf_counter() - began
-            loop_cpu, others_cpu = process_cpu(simulator.pid)
-            client_cpu = own_cpu() - client_began
-            ticks = calls * per_call
-            print(
-                f"{per_call:4d} ticks per WaitForTick: {ticks / wall:7.0f} ticks/s, "
-                f"{ticks * TICK_MS / 1000 / wall:5.1f}x real time; per tick "
-                f"{wall / ticks * 1e6:.0f} us wall, CPU: simulator loop thread "
-                f"{(loop_cpu - loop_began) / ticks * 1e6:.0f} us, its other threads "
-                f"{(others_cpu - others_began) / ticks * 1e6:.0f} us, client "
-                f"{client_cpu / ticks * 1e6:.0f} us"
-            )
+                print(timed)
+                if per_call not in best or timed.wall < best[per_call].wall:
+                    best[per_call] = timed
+        if args.rounds > 1:
+            print(f"best of {args.rounds} rounds:")
+            for timed in best.values():
+                print(timed)
         received = ", ".join(f"{name} {c.count}" for name, c in sorted(counters.items()))
         print(f"messages received: {received}")
 
