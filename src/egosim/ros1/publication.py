@@ -74,11 +74,14 @@ class OutputHold:
         for outbox in keeping:
             outbox.send_kept()
 
-    def keeps(self, outbox: _Outbox) -> bool:
+    def keeps(self, outbox: _Outbox, first: bool) -> bool:
         """Whether `outbox` is to keep what it is sent now (called under its lock); if so,
-        it is told to send what it kept when the hold ends."""
+        and it keeps nothing yet (`first`), it is told to send what it kept when the hold
+        ends."""
+        if not self._depth:  # the common case, without the lock: no hold began
+            return False
         with self._lock:
-            if self._depth:
+            if self._depth and first:
                 self._keeping.append(outbox)
             return self._depth > 0
 
@@ -139,7 +142,11 @@ class _Outbox:
             if self._closed:
                 return
             size = sum(len(data) for data in payloads)
-            keep = size <= _DIRECT_SEND_MAX and self._idle() and self._output_hold.keeps(self)
+            keep = (
+                size <= _DIRECT_SEND_MAX
+                and self._idle()
+                and self._output_hold.keeps(self, first=not self._held)
+            )
             if self._held and (not keep or self._held_size + size > _DIRECT_SEND_MAX):
                 self._offer(*self._take_held())  # what was kept goes first
                 keep = keep and self._idle()
