@@ -25,11 +25,11 @@ def set_ctrl_mode(context: BridgeContext, mode: ControlMode) -> None:
         option=OPTION_CTRL_MODE, ctrl_mode=int(mode), gear=-1
     )
     request = profile.message("morai_msgs/MoraiEventCmdSrvRequest").new(request=event)
-    HANDLERS.services["event_cmd"](context, context.row("event_cmd"), request)
+    HANDLERS.services["event_cmd"].handle(context, context.row("event_cmd"), request)
 
 
 def drive(context: BridgeContext, message: object) -> None:
-    HANDLERS.subscribers["ctrl_cmd"](context, context.row("ctrl_cmd"), message)
+    HANDLERS.subscribers["ctrl_cmd"].handle(context, context.row("ctrl_cmd"), message)
 
 
 def test_one_command_holds_and_a_mode_change_releases_it() -> None:

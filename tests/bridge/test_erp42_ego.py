@@ -23,7 +23,7 @@ def erp42_context() -> BridgeContext:
 def test_a_55_kmh_ctrl_cmd_drives_the_erp42_at_its_25_kmh_cap() -> None:
     context = erp42_context()
     command = context.profile.message("morai_msgs/CtrlCmd").new(longlCmdType=2, velocity=55.0)
-    handle, row = HANDLERS.subscribers["ctrl_cmd"], context.row("ctrl_cmd")
+    handle, row = HANDLERS.subscribers["ctrl_cmd"].handle, context.row("ctrl_cmd")
     fastest = 0.0
     for _ in range(round(20.0 / context.world.physics_step_s)):
         handle(context, row, command)

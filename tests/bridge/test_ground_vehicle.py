@@ -41,7 +41,7 @@ def twist(linear_x: float, angular_z: float) -> object:
 
 def run(context: BridgeContext, row_key: str, message, seconds: float = 3.0) -> None:
     """Deliver `message` on row `row_key` before every step, as a 100 Hz stream would."""
-    handle, row = HANDLERS.subscribers[row_key], context.row(row_key)
+    handle, row = HANDLERS.subscribers[row_key].handle, context.row(row_key)
     for _ in range(round(seconds / context.world.physics_step_s)):
         handle(context, row, message)
         context.world.step()

@@ -148,6 +148,20 @@ def test_every_row_of_the_table_is_served() -> None:
     assert all(row.key in kinds[row.direction] for row in ROWS)
 
 
+def test_every_handler_takes_its_row_s_type() -> None:
+    profile = get_profile("26.r1")
+    taken = {
+        row.key: (row.type_name, HANDLERS.subscribers[row.key].takes(profile).name)
+        for row in ROWS
+        if row.direction is Direction.SUBSCRIBE
+    } | {
+        row.key: (f"{row.type_name}Request", HANDLERS.services[row.key].takes(profile).name)
+        for row in ROWS
+        if row.direction is Direction.SERVICE
+    }
+    assert {key: names for key, names in taken.items() if names[0] != names[1]} == {}
+
+
 def test_live_settings_keep_the_cameras_on_the_camera_row_s_topic() -> None:
     context = simulation_context(World(build_builtin_map("straight")))
     scenario = parse_scenario(

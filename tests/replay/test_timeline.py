@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 from rosbags.rosbag1 import Writer
 
+from egosim.msgs import PROFILES, get_profile
 from egosim.replay import (
     BagError,
     BagTimeline,
@@ -15,6 +16,7 @@ from egosim.replay import (
     ReplayTopics,
     UnsupportedReleaseError,
 )
+from egosim.replay.releases import RELEASE_NAMES
 from tests.replay.drive import (
     CONTROL,
     DURATION_S,
@@ -165,6 +167,43 @@ def test_zero_header_stamps_fall_back_to_receive_time(tmp_path: Path) -> None:
     assert timeline.control.times.tolist() == [2.5]
     assert timeline.sample(2.4).control is None
     assert timeline.sample(2.5).control is not None
+
+
+@pytest.mark.parametrize("release", ["24.r2", "2021.08"])
+def test_a_bag_of_an_older_release_replays_its_steering(tmp_path: Path, release: str) -> None:
+    """Before 26.r1 the front steer is EgoVehicleStatus.wheel_angle (deg) and
+    CtrlCmd.steering (rad), and neither message has a rear steer."""
+    profile = get_profile(release)
+    ego_type, control_type = (
+        profile.message("morai_msgs/EgoVehicleStatus"),
+        profile.message("morai_msgs/CtrlCmd"),
+    )
+    bag = tmp_path / "older.bag"
+    with Writer(bag) as writer:
+        ego = writer.add_connection(
+            "/Ego_topic", ego_type.store_name, msgdef=ego_type.definition, md5sum=ego_type.md5sum
+        )
+        ctrl = writer.add_connection(
+            "/ctrl_cmd",
+            control_type.store_name,
+            msgdef=control_type.definition,
+            md5sum=control_type.md5sum,
+        )
+        status = ego_type.new(wheel_angle=10.0)
+        status.header.stamp.sec = 1
+        writer.write(ego, stamp(0), ego_type.serialize(status))
+        writer.write(ctrl, stamp(0), control_type.serialize(control_type.new(steering=0.2)))
+    timeline = BagTimeline.open(bag)
+    frame = timeline.sample(0.0)
+    assert timeline.profile == release
+    assert frame.ego is not None and frame.control is not None
+    assert frame.ego.front_steer == pytest.approx(math.radians(10.0))
+    assert frame.ego.rear_steer == 0.0
+    assert (frame.control.front_steer, frame.control.rear_steer) == (pytest.approx(0.2), 0.0)
+
+
+def test_every_release_egosim_speaks_can_be_replayed() -> None:
+    assert RELEASE_NAMES == PROFILES
 
 
 def test_other_release_is_reported_clearly(tmp_path: Path) -> None:

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import http.client
 import xmlrpc.client
-from typing import Any
+
+from egosim.view.ros_graph import nodes_of
 
 SIMULATOR_NODE = "/egosim"
 NOT_THE_STACK = frozenset({SIMULATOR_NODE, "/master"})
@@ -17,19 +18,24 @@ def stack_connected(master_uri: str, timeout_s: float = 2.0) -> bool:
     than the log topics (every rospy node publishes /rosout as it starts)."""
     transport = _TimeoutTransport(timeout_s)
     try:
-        # The master's reply is XML-RPC data, untyped by nature.
-        reply: Any = xmlrpc.client.ServerProxy(master_uri, transport=transport).getSystemState(
+        reply: object = xmlrpc.client.ServerProxy(master_uri, transport=transport).getSystemState(
             CALLER_ID
         )
     except (OSError, xmlrpc.client.Error):
         return False
-    code, _, state = reply
-    if code != 1:
+    # XML-RPC data, narrowed here: [code, status, [publishers, subscribers, services]]
+    if not (isinstance(reply, list | tuple) and len(reply) == 3 and reply[0] == 1):
+        return False
+    state = reply[2]
+    if not (isinstance(state, list | tuple) and len(state) == 3):
         return False
     publishers, subscribers, _ = state
+    if not (isinstance(publishers, list | tuple) and isinstance(subscribers, list | tuple)):
+        return False
     return any(
-        topic not in LOG_TOPICS and any(node not in NOT_THE_STACK for node in nodes)
-        for topic, nodes in [*publishers, *subscribers]
+        node["name"] not in NOT_THE_STACK
+        and any(topic not in LOG_TOPICS for topic in [*node["publishes"], *node["subscribes"]])
+        for node in nodes_of((publishers, subscribers, ()))
     )
 
 

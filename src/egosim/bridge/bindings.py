@@ -1,10 +1,12 @@
-"""Which handler serves each row of the protocol table."""
+"""Which handler serves each row of the protocol table, and the type each one takes."""
 
 from __future__ import annotations
 
+from ..msgs import get_profile
 from . import sim_clock
 from .core import Handlers
 from .egos import ego, events, extended_status, ghost, ground_vehicle, multi_ego
+from .receivers import handler, prepared_handler
 from .replay import replay_rows
 from .scene import lights, markers, objects, scenarios, specs
 from .sensors import camera_rows, sensor_files, sensor_rows
@@ -32,43 +34,100 @@ HANDLERS = Handlers(
         "markers": markers.build_scene_markers,
     },
     subscribers={
-        "ctrl_cmd": ego.on_ctrl_cmd,
-        "ghost_ctrl_cmd": ghost.on_ghost_ctrl_cmd,
-        "npc_ghost": ghost.on_npc_ghost,
-        "multi_ego_setting": multi_ego.on_multi_ego_setting,
-        "webot_cmd": ground_vehicle.on_webot_cmd,
-        "gv_direct_cmd": ground_vehicle.on_gv_direct_cmd,
-        "gv_state_cmd": ground_vehicle.on_gv_state_cmd,
-        "set_traffic_light": lights.on_set_traffic_light,
-        "intersection_control": lights.on_intersection_control,
-        "scenario_load": scenarios.on_scenario_load,
-        "lamps": events.on_lamps,
-        "sensor_pos_control": sensor_rows.on_sensor_pos_control,
-        "save_sensor_data": sensor_files.on_save_sensor_data,
+        "ctrl_cmd": handler(lambda p: p.message("morai_msgs/CtrlCmd"), ego.on_ctrl_cmd),
+        "ghost_ctrl_cmd": handler(
+            lambda p: p.message("morai_msgs/GhostMessage"), ghost.on_ghost_ctrl_cmd
+        ),
+        "npc_ghost": handler(lambda p: p.message("morai_msgs/NpcGhostCmd"), ghost.on_npc_ghost),
+        "multi_ego_setting": handler(
+            lambda p: p.message("morai_msgs/MultiEgoSetting"), multi_ego.on_multi_ego_setting
+        ),
+        "webot_cmd": handler(
+            lambda p: p.message("geometry_msgs/Twist"), ground_vehicle.on_webot_cmd
+        ),
+        "gv_direct_cmd": handler(
+            lambda p: p.message("morai_msgs/GVDirectCmd"), ground_vehicle.on_gv_direct_cmd
+        ),
+        "gv_state_cmd": handler(
+            lambda p: p.message("morai_msgs/GVStateCmd"), ground_vehicle.on_gv_state_cmd
+        ),
+        "set_traffic_light": handler(
+            lambda p: p.message("morai_msgs/SetTrafficLight"), lights.on_set_traffic_light
+        ),
+        "intersection_control": handler(
+            lambda p: p.message("morai_msgs/IntersectionControl"), lights.on_intersection_control
+        ),
+        "scenario_load": prepared_handler(
+            lambda p: p.message("morai_msgs/ScenarioLoad"),
+            scenarios.prepare_scenario,
+            scenarios.on_scenario_load,
+        ),
+        "lamps": handler(lambda p: p.message("morai_msgs/Lamps"), events.on_lamps),
+        "sensor_pos_control": handler(
+            lambda p: p.message("morai_msgs/SensorPosControl"), sensor_rows.on_sensor_pos_control
+        ),
+        "save_sensor_data": handler(
+            lambda p: p.message("morai_msgs/SaveSensorData"), sensor_files.on_save_sensor_data
+        ),
     },
     services={
-        "event_cmd": events.serve_event_cmd,
-        "map_spec": specs.serve_map_spec,
-        "vehicle_spec": specs.serve_vehicle_spec,
-        "tl_info": lights.serve_tl_info,
-        "scenario_load_srv": scenarios.serve_scenario_load,
-        "sync_mode_cmd": sync_mode.serve_sync_mode_cmd,
-        "sync_mode_wait_for_tick": sync_mode.serve_wait_for_tick,
-        "sync_mode_ctrl_cmd": sync_mode.serve_ctrl_cmd,
-        "sync_mode_set_gear": sync_mode.serve_set_gear,
-        "sync_mode_scenario_load": sync_mode.serve_scenario_load,
-        "sync_mode_add_object": sync_objects.serve_add_object,
-        "sync_mode_remove_object": sync_objects.serve_remove_object,
-        "sim_proc": replay_rows.serve_sim_proc,
+        "event_cmd": handler(
+            lambda p: p.message("morai_msgs/MoraiEventCmdSrvRequest"), events.serve_event_cmd
+        ),
+        "map_spec": handler(
+            lambda p: p.message("morai_msgs/MoraiMapSpecSrvRequest"), specs.serve_map_spec
+        ),
+        "vehicle_spec": handler(
+            lambda p: p.message("morai_msgs/MoraiVehicleSpecSrvRequest"), specs.serve_vehicle_spec
+        ),
+        "tl_info": handler(
+            lambda p: p.message("morai_msgs/MoraiTLInfoSrvRequest"), lights.serve_tl_info
+        ),
+        "scenario_load_srv": prepared_handler(
+            lambda p: p.message("morai_msgs/MoraiScenarioLoadSrvRequest"),
+            scenarios.prepare_scenario_service,
+            scenarios.serve_scenario_load,
+        ),
+        "sync_mode_cmd": handler(
+            lambda p: p.message("morai_msgs/MoraiSyncModeCmdSrvRequest"),
+            sync_mode.serve_sync_mode_cmd,
+        ),
+        "sync_mode_wait_for_tick": handler(
+            lambda p: p.message("morai_msgs/MoraiWaitForTickSrvRequest"),
+            sync_mode.serve_wait_for_tick,
+        ),
+        "sync_mode_ctrl_cmd": handler(
+            lambda p: p.message("morai_msgs/MoraiSyncModeCtrlCmdSrvRequest"),
+            sync_mode.serve_ctrl_cmd,
+        ),
+        "sync_mode_set_gear": handler(
+            lambda p: p.message("morai_msgs/MoraiSyncModeSetGearSrvRequest"),
+            sync_mode.serve_set_gear,
+        ),
+        "sync_mode_scenario_load": prepared_handler(
+            lambda p: p.message("morai_msgs/MoraiSyncModeSLSrvRequest"),
+            scenarios.prepare_scenario_service,
+            sync_mode.serve_scenario_load,
+        ),
+        "sync_mode_add_object": handler(
+            lambda p: p.message("morai_msgs/MoraiSyncModeAddObjectSrvRequest"),
+            sync_objects.serve_add_object,
+        ),
+        "sync_mode_remove_object": handler(
+            lambda p: p.message("morai_msgs/MoraiSyncModeRemoveObjectSrvRequest"),
+            sync_objects.serve_remove_object,
+        ),
+        "sim_proc": handler(
+            lambda p: p.message("morai_msgs/MoraiSimProcSrvRequest"), replay_rows.serve_sim_proc
+        ),
     },
     openers={"camera": camera_rows.open_camera_rows},
     release_adapters={
-        ("sync_mode_wait_for_tick", "2021.08"): sync_mode.apply_tick_command,
-    },
-    preparers={
-        "scenario_load": scenarios.prepare_scenario,
-        "scenario_load_srv": scenarios.prepare_scenario_service,
-        "sync_mode_scenario_load": scenarios.prepare_scenario_service,
+        # the request as a 2021.08 client sent it (its WaitForTick carries the CtrlCmd)
+        ("sync_mode_wait_for_tick", "2021.08"): handler(
+            lambda _: get_profile("2021.08").message("morai_msgs/MoraiWaitForTickSrvRequest"),
+            sync_mode.apply_tick_command,
+        ),
     },
     latched={"markers": markers.build_map_markers},
     unheard={

@@ -13,9 +13,10 @@ from collections.abc import Callable, Iterator
 from contextlib import AbstractContextManager, contextmanager, nullcontext
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Protocol, TypeVar
+from typing import TYPE_CHECKING, Protocol, TypeVar
 
 from ..logthrottle import LogThrottle
+from ..msgs import TypedMessageType
 from ..msgs.typed import standard
 from ..replay import ReplaySession
 from ..world import World
@@ -42,17 +43,25 @@ MAP_FRAME = "map"
 
 Entry = TypeVar("Entry")
 """An entry of a world log (a collision, an event)."""
-
-# (context, row, ...) handlers opened at run time, e.g. the topics of an added ego.
-RowHandler = Callable[..., Any]
+M = TypeVar("M")
+"""The message a row opened at run time takes (a type of egosim.msgs.typed)."""
 
 
 class RowBinder(Protocol):
     """Binds rows of the table at run time (the bridge): a topic row under a namespace
-    (Bridge.open_row), or a whole new table (Bridge.apply_settings)."""
+    (Bridge.open_publisher, Bridge.open_subscriber), e.g. the topics of an added ego, or
+    a whole new table (Bridge.apply_settings)."""
 
-    def open_row(
-        self, key: str, namespace: str, handler: RowHandler
+    def open_publisher(
+        self, key: str, namespace: str, build: Callable[[BridgeContext, Row], object]
+    ) -> Callable[[], None] | None: ...
+
+    def open_subscriber(
+        self,
+        key: str,
+        namespace: str,
+        takes: Callable[[CanonicalProfile], TypedMessageType[M]],
+        handle: Callable[[BridgeContext, Row, M], None],
     ) -> Callable[[], None] | None: ...
 
     def apply_settings(self, settings: NetworkSettings) -> list[str]: ...
@@ -118,7 +127,7 @@ class BridgeContext:
     """The main ego's GPS, IMU and LiDAR, as the network settings configure them."""
     replay: ReplaySession
     """The rosbag replay system behind /Morai_SimProc; bags resolve in data_roots."""
-    sync: SyncSession
+    sync: SyncSession[BridgeContext]
     """Synchronous mode: whether a client owns time, the frame, requests kept for later."""
     data_roots: tuple[Path, ...] = ()
     """Where file names from the network (scenarios, bags, sensor data) resolve."""

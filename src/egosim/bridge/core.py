@@ -2,11 +2,11 @@
 
 Each row's behaviour is a handler (bridge/bindings.py): a builder for
 publishers, a message handler for subscribers, a request handler for
-services; every handler gets the context and its effective row (the name in
-use, under its namespace). Builders run on the loop thread in the tick
-pipeline's publish stage; received messages and service requests are decoded
-on the transport's threads and applied on the loop thread through the loop's
-inbox.
+services (bridge/receivers.py: each with the type it takes); every handler gets the
+context and its effective row (the name in use, under its namespace). Builders run
+on the loop thread in the tick pipeline's publish stage; received messages and
+service requests are decoded on the transport's threads and applied on the loop
+thread through the loop's inbox.
 """
 
 from __future__ import annotations
@@ -16,10 +16,11 @@ import logging
 import struct
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any, Protocol, TypeVar, cast
+from typing import Protocol, TypeVar
 
 from ..logthrottle import LogThrottle
-from ..msgs import MessageType, MsgsError, get_profile
+from ..msgs import MessageType, MsgsError, TypedMessageType, get_profile
+from ..msgs.typed import standard
 from ..ros1 import (
     BadRequestError,
     ConnectionRefusedByPeerError,
@@ -35,6 +36,7 @@ from .protocol.messages import time_msg
 from .protocol.network import NetworkSettings
 from .protocol.releases import (
     CANONICAL_PROFILE,
+    CanonicalProfile,
     Release,
     ServiceRelease,
     canonical,
@@ -46,30 +48,19 @@ from .protocol.releases import (
 )
 from .protocol.table import Direction, Row
 from .rate_schedule import RateSchedule
+from .receivers import Receiver, handler
 
 log = logging.getLogger(__name__)
 throttle = LogThrottle(log)
 
 T = TypeVar("T")
+M = TypeVar("M")
 
 # (context, row) -> a message, several (a list or tuple), or None when there is nothing to
 # say; each builder declares its row's message type (egosim.msgs.typed)
 Builder = Callable[[BridgeContext, Row], object]
-# A message or request decoded by the type its row names in the table, which is data: the
-# handler declares that type (egosim.msgs.typed), and nothing here can check it statically.
-Received = Any
-MessageHandler = Callable[[BridgeContext, Row, Received], None]  # (context, row, message)
 # (topic, message type, serialized bytes, stamp ns): sees every message sent or received
 Tap = Callable[[str, MessageType[object], bytes, int], None]
-RequestHandler = Callable[
-    [BridgeContext, Row, Received], object
-]  # (context, row, request) -> response
-# (context, row, request as the client sent it): applies a request field only one
-# release has, before the row's handler answers
-ReleaseAdapter = Callable[[BridgeContext, Row, Received], None]
-# (context, row, message or request) -> what the row's handler gets instead: work done on
-# the transport's thread, such as reading a user's file, so the loop never waits on it
-Preparer = Callable[[BridgeContext, Row, Received], object]
 # (context, row): what a publishing row due with no subscriber and no tap does instead of
 # being built
 Unheard = Callable[[BridgeContext, Row], None]
@@ -89,12 +80,11 @@ class Inbox(Protocol):
 @dataclass(frozen=True)
 class Handlers:
     publishers: dict[str, Builder] = field(default_factory=dict)
-    subscribers: dict[str, MessageHandler] = field(default_factory=dict)
-    services: dict[str, RequestHandler] = field(default_factory=dict)
+    subscribers: dict[str, Receiver[None]] = field(default_factory=dict)
+    services: dict[str, Receiver[object]] = field(default_factory=dict)  # -> the response
     # (service row key, release) -> what to do with a request field that only that
-    # release has, before the row's handler answers
-    release_adapters: dict[tuple[str, str], ReleaseAdapter] = field(default_factory=dict)
-    preparers: dict[str, Preparer] = field(default_factory=dict)
+    # release has (the request as the client sent it), before the row's handler answers
+    release_adapters: dict[tuple[str, str], Receiver[None]] = field(default_factory=dict)
     # publishing rows that open topics of their own, given the bridge and the effective
     # row (the camera row: one topic per configured camera name)
     openers: dict[str, Opener] = field(default_factory=dict)
@@ -226,22 +216,36 @@ class Bridge:
         self.outlets.remove(outlet)
         outlet.publisher.close()
 
-    def open_row(
-        self, key: str, namespace: str, handler: Builder | MessageHandler
+    def open_publisher(self, key: str, namespace: str, build: Builder) -> Callable[[], None] | None:
+        """Advertise the publishing row `key` under `namespace` at run time (loop thread),
+        built by `build`, e.g. the status of an ego that appears; returns what withdraws
+        it, or None when the network settings disable the row."""
+        row = self._namespaced(key, namespace, Direction.PUBLISH)
+        return None if row is None else self.advertise(row, build)
+
+    def open_subscriber(
+        self,
+        key: str,
+        namespace: str,
+        takes: Callable[[CanonicalProfile], TypedMessageType[M]],
+        handle: Callable[[BridgeContext, Row, M], None],
     ) -> Callable[[], None] | None:
-        """Advertise or subscribe the topic row `key` under `namespace` at run time (loop
-        thread) with `handler`, e.g. the topics of an ego that appears; returns what
-        closes it, or None when the network settings disable the row."""
+        """Subscribe the row `key` under `namespace` at run time (loop thread), its
+        messages (of the type `takes` names) handled by `handle`; returns what closes it,
+        or None when the network settings disable the row."""
+        row = self._namespaced(key, namespace, Direction.SUBSCRIBE)
+        return None if row is None else self._subscribe(row, handler(takes, handle)).close
+
+    def _namespaced(self, key: str, namespace: str, direction: Direction) -> Row | None:
+        """The effective row `key` under `namespace`; None when it is disabled."""
         row = self.settings.row(key)
+        if row.direction is not direction:
+            raise ValueError(
+                f"{row.name} ({row.direction.value}) is not opened as {direction.value}"
+            )
         if not row.enabled:
             return None
-        row = replace(row, name=f"{namespace.rstrip('/')}/{row.name.lstrip('/~')}")
-        if row.direction is Direction.SUBSCRIBE:
-            # the row's direction says which of the two the handler is
-            return self._subscribe(row, cast(MessageHandler, handler)).close
-        if row.direction is not Direction.PUBLISH:
-            raise ValueError(f"{row.name}: only topics are opened at run time")
-        return self.advertise(row, cast(Builder, handler))
+        return replace(row, name=f"{namespace.rstrip('/')}/{row.name.lstrip('/~')}")
 
     def advertise(self, row: Row, build: Builder) -> Callable[[], None]:
         """Advertise a publishing row (of the table, namespaced, or an opener's); returns
@@ -303,7 +307,7 @@ class Bridge:
         outlet: Outlet,
         message: object,
         data: bytes,
-        stamped_header: Any = None,
+        stamped_header: standard.Header | None = None,
         stamp_ns: int = 0,
     ) -> Callable[[str], bytes]:
         """`message` in the release a subscriber's md5sum names: `data` for the canonical
@@ -345,10 +349,9 @@ class Bridge:
         self.outlets.append(outlet)
         return outlet
 
-    def _subscribe(self, row: Row, handle: MessageHandler) -> Subscriber:
+    def _subscribe(self, row: Row, receiver: Receiver[None]) -> Subscriber:
         """Subscribe asking for any md5sum; decode each publisher's release by its md5sum."""
         releases = releases_of(row.type_name, self.default_release)
-        message_type = canonical(row.type_name)
 
         def received(data: bytes, header: Mapping[str, str]) -> None:
             caller = header.get("callerid", "?")
@@ -364,10 +367,9 @@ class Bridge:
                     row.type_name,
                 )
                 return
+            sent_type = release.message_type
             try:
-                message = convert(
-                    release.message_type.deserialize(data), release.message_type, message_type
-                )
+                handle = receiver.receive(self.context, row, sent_type.deserialize(data), sent_type)
             except MsgsError as exc:
                 throttle.log(
                     logging.ERROR,
@@ -378,10 +380,8 @@ class Bridge:
                     exc,
                 )
                 return
-            self._tap(row.name, release.message_type, data)
-            prepare = self.handlers.preparers.get(row.key)
-            prepared = message if prepare is None else prepare(self.context, row, message)
-            self.inbox.post(lambda: handle(self.context, row, prepared))
+            self._tap(row.name, sent_type, data)
+            self.inbox.post(handle)
 
         any_release = TopicType(row.type_name, "*", releases[0].message_type.definition)
         return self.node.subscribe(row.name, any_release, received)
@@ -390,7 +390,7 @@ class Bridge:
         """Serve the row to clients of any release, each answered in its own."""
         releases = service_releases_of(row.type_name, self.default_release)
         canonical_type = get_profile(CANONICAL_PROFILE).service(row.type_name)
-        handle = self.handlers.services[row.key]
+        receiver = self.handlers.services[row.key]
 
         def release_of(header: Mapping[str, str]) -> ServiceRelease:
             release = service_release_for_md5(releases, header.get("md5sum", "*"))
@@ -406,15 +406,18 @@ class Bridge:
                 sent = served.request.deserialize(data)
             except MsgsError as exc:
                 raise BadRequestError(f"undecodable {served.request.name}: {exc}") from None
-            request = convert(sent, served.request, canonical_type.request)
-            adapt = self.handlers.release_adapters.get((row.key, release.profile_name))
-            prepare = self.handlers.preparers.get(row.key)
-            prepared = request if prepare is None else prepare(self.context, row, request)
+            adapter = self.handlers.release_adapters.get((row.key, release.profile_name))
+            adapt = (
+                None
+                if adapter is None
+                else adapter.receive(self.context, row, sent, served.request)
+            )
+            handle = receiver.receive(self.context, row, sent, served.request)
 
             def answer() -> object:
                 if adapt is not None:
-                    adapt(self.context, row, sent)
-                return handle(self.context, row, prepared)
+                    adapt()
+                return handle()
 
             response = self.inbox.call(answer)
             return served.response.serialize(

@@ -2,7 +2,7 @@
 
 profile = get_profile("26.r1")
 ctrl = profile.message("morai_msgs/CtrlCmd")
-data = ctrl.serialize(ctrl.new(longlCmdType=1, accel=0.5))
+data = ctrl.serialize(ctrl.new(longlCmdType=1, accel=0.5))  # a wrong field: a type error
 ctrl.md5sum, ctrl.definition           # as sent in a TCPROS connection header
 profile.service("morai_msgs/MoraiEventCmdSrv").request
 """
@@ -16,19 +16,23 @@ from .errors import (
     UnknownProfileError,
     UnknownTypeError,
 )
-from .message_type import MessageType, ServiceType
+from .message_type import MessageType, ServiceType, TypedMessageType
 from .profile import Profile, get_profile
+from .values import FieldValue, Message
 
 __all__ = [
     "DEFAULT_PROFILE",
     "PROFILES",
     "DefinitionError",
     "ExportError",
+    "FieldValue",
+    "Message",
     "MessageType",
     "MsgsError",
     "Profile",
     "SerializationError",
     "ServiceType",
+    "TypedMessageType",
     "UnknownProfileError",
     "UnknownTypeError",
     "get_profile",

@@ -9,11 +9,14 @@ from __future__ import annotations
 import functools
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import cast
 
 import numpy as np
 from rosbags.interfaces import Nodetype
+from rosbags.interfaces.typing import FieldDesc
 from rosbags.typesys.store import Typestore
+
+from .values import BaseValue, FieldValue, Message
 
 NUMPY_DTYPES = {
     "bool": np.bool_,
@@ -31,11 +34,11 @@ NUMPY_DTYPES = {
     "float64": np.float64,
 }
 
-Maker = Callable[[], Any]
+Maker = Callable[[], FieldValue]
 """Makes a fresh default value of one field."""
 
 
-def default_base(typename: str) -> Any:
+def default_base(typename: str) -> BaseValue:
     if typename == "string":
         return ""
     if typename == "bool":
@@ -50,28 +53,28 @@ class DefaultsPlan:
     """How to make one message type with every field at its default."""
 
     store_name: str
-    message_class: type
+    message_class: type[Message]
     field_names: frozenset[str]
-    constants: dict[str, Any]
+    constants: dict[str, BaseValue]
     """Defaults of the base-type fields: immutable, so every message may share them."""
     makers: tuple[tuple[str, Maker], ...]
     """The other fields (messages, lists, arrays): made afresh for each message, so no
     two messages ever share a mutable default."""
 
-    def new(self, values: dict[str, Any]) -> Any:
+    def new(self, **values: FieldValue) -> Message:
         """A message with `values` set and every other field at its default."""
         if not values.keys() <= self.field_names:
             unknown = sorted(set(values) - self.field_names)
             raise TypeError(f"{self.store_name} has no field(s) {', '.join(unknown)}")
         if len(values) == len(self.field_names):  # every field given: no default to make
             return self.message_class(**values)
-        fields = {**self.constants, **values}
+        fields: dict[str, FieldValue] = {**self.constants, **values}
         for name, make in self.makers:
             if name not in values:
                 fields[name] = make()
         return self.message_class(**fields)
 
-    def fresh(self) -> Any:
+    def fresh(self) -> Message:
         """A message with every field at its default."""
         return self.message_class(**self.constants, **{name: make() for name, make in self.makers})
 
@@ -81,8 +84,8 @@ def defaults_plan(store: Typestore, store_name: str) -> DefaultsPlan:
     """The plan of `store_name`, worked out on first use (a store's types never change once
     registered)."""
     fields = store.fielddefs[store_name][1]
-    constants = {}
-    makers = []
+    constants: dict[str, BaseValue] = {}
+    makers: list[tuple[str, Maker]] = []
     for name, desc in fields:
         if desc[0] == Nodetype.BASE:
             constants[name] = default_base(desc[1][0])
@@ -90,29 +93,31 @@ def defaults_plan(store: Typestore, store_name: str) -> DefaultsPlan:
             makers.append((name, field_maker(store, desc)))
     return DefaultsPlan(
         store_name=store_name,
-        message_class=store.types[store_name],
+        # rosbags generates a dataclass per type (its stubs promise only a constructor)
+        message_class=cast("type[Message]", store.types[store_name]),
         field_names=frozenset(name for name, _ in fields),
         constants=constants,
         makers=tuple(makers),
     )
 
 
-def field_maker(store: Typestore, desc: tuple[Any, Any]) -> Maker:
-    nodetype, args = desc
-    if nodetype == Nodetype.BASE:
-        return functools.partial(default_base, args[0])
-    if nodetype == Nodetype.NAME:
-        return defaults_plan(store, args).fresh
-    (subtype, subargs), count = args
-    is_numeric = subtype == Nodetype.BASE and subargs[0] != "string"
-    if nodetype == Nodetype.SEQUENCE:
-        return functools.partial(np.zeros, 0, NUMPY_DTYPES[subargs[0]]) if is_numeric else list
-    if is_numeric:
-        return functools.partial(np.zeros, count, NUMPY_DTYPES[subargs[0]])
-    make_element = field_maker(store, (subtype, subargs))
-    return lambda: [make_element() for _ in range(count)]
+def field_maker(store: Typestore, desc: FieldDesc) -> Maker:
+    if desc[0] == Nodetype.BASE:
+        return functools.partial(default_base, desc[1][0])
+    if desc[0] == Nodetype.NAME:
+        return defaults_plan(store, desc[1]).fresh
+    element, count = desc[1]
+    if element[0] == Nodetype.BASE and element[1][0] != "string":
+        dtype = NUMPY_DTYPES[element[1][0]]
+        return functools.partial(np.zeros, 0 if desc[0] == Nodetype.SEQUENCE else count, dtype)
+    if desc[0] == Nodetype.SEQUENCE:
+        return list
+    if element[0] == Nodetype.NAME:
+        make_message = defaults_plan(store, element[1]).fresh
+        return lambda: [make_message() for _ in range(count)]
+    return lambda: [""] * count  # a fixed-length array of strings
 
 
-def default_message(store: Typestore, store_name: str, **values: Any) -> Any:
+def default_message(store: Typestore, store_name: str, **values: FieldValue) -> Message:
     """An instance of `store_name` with `values` set and every other field at its default."""
-    return defaults_plan(store, store_name).new(values)
+    return defaults_plan(store, store_name).new(**values)

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from importlib import resources
+from typing import Final
 
 from .errors import UnknownProfileError
 
-DEFAULT_PROFILE = "26.r1"
+DEFAULT_PROFILE: Final = "26.r1"
 PROFILES: tuple[str, ...] = ("26.r1", "24.r2", "2021.08")
 # Standard types missing from rosbags' Noetic store, shipped for every profile.
 STANDARD_FOLDER = "standard"

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from hashlib import md5
-from typing import Any
 
 from rosbags.interfaces import Nodetype
+from rosbags.interfaces.typing import BaseDesc, FieldDesc, NameDesc
 from rosbags.typesys.msg import denormalize_msgtype
 from rosbags.typesys.store import Typestore
 
@@ -27,16 +27,19 @@ def direct_depends(store: Typestore, store_name: str) -> list[str]:
     """Message types used by the fields of `store_name`, in field order."""
     depends: list[str] = []
     for _, desc in store.fielddefs[store_name][1]:
-        nodetype, args = element_desc(desc)
-        if nodetype == Nodetype.NAME and args not in BUILTIN_TIME_TYPES and args not in depends:
-            depends.append(args)
+        element = element_desc(desc)
+        if element[0] != Nodetype.NAME:
+            continue
+        if element[1] not in BUILTIN_TIME_TYPES and element[1] not in depends:
+            depends.append(element[1])
     return depends
 
 
-def element_desc(desc: tuple[Any, Any]) -> tuple[Any, Any]:
+def element_desc(desc: FieldDesc) -> BaseDesc | NameDesc:
     """The description of a field's element type (the field's own, for non-arrays)."""
-    nodetype, args = desc
-    return args[0] if nodetype in (Nodetype.ARRAY, Nodetype.SEQUENCE) else desc
+    if desc[0] == Nodetype.ARRAY or desc[0] == Nodetype.SEQUENCE:
+        return desc[1][0]
+    return desc
 
 
 def all_depends(store: Typestore, store_name: str) -> list[str]:
@@ -66,13 +69,13 @@ def md5_text(store: Typestore, store_name: str) -> str:
         if desc[0] in (Nodetype.ARRAY, Nodetype.SEQUENCE):
             count = desc[1][1]
             suffix = f"[{count}]" if count else "[]"
-        nodetype, args = element_desc(desc)
-        if nodetype == Nodetype.BASE:
-            lines.append(f"{args[0]}{suffix} {name}")
-        elif args in BUILTIN_TIME_TYPES:
-            lines.append(f"{BUILTIN_TIME_TYPES[args]}{suffix} {name}")
+        element = element_desc(desc)
+        if element[0] == Nodetype.BASE:
+            lines.append(f"{element[1][0]}{suffix} {name}")
+        elif element[1] in BUILTIN_TIME_TYPES:
+            lines.append(f"{BUILTIN_TIME_TYPES[element[1]]}{suffix} {name}")
         else:
-            lines.append(f"{store.generate_msgdef(args)[1]} {name}")
+            lines.append(f"{store.generate_msgdef(element[1])[1]} {name}")
     return "\n".join(lines)
 
 

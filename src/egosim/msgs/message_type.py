@@ -3,27 +3,58 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Generic, TypeVar, cast
+from typing import Generic, Protocol, TypeVar, cast
 
+from rosbags.interfaces.typing import FieldDesc
 from rosbags.typesys.msg import normalize_msgtype
 from rosbags.typesys.store import Typestore
 
 from .defaults import DefaultsPlan, defaults_plan
 from .errors import SerializationError
 from .packing import Packer, packer
+from .values import FieldValue
 
 M = TypeVar("M")
-"""A message's type: a Protocol of egosim.msgs.typed, or Any for a type named at run time."""
+"""A message's type: a Protocol of egosim.msgs.typed, or object for a type named at run time."""
+M_co = TypeVar("M_co", covariant=True)
 Request = TypeVar("Request")
 Response = TypeVar("Response")
 
 
+class MessageMaker(Protocol[M_co]):
+    """Makes a message from the fields given by name, every other field at its default."""
+
+    def __call__(self, **values: FieldValue) -> M_co: ...
+
+
+class TypedMessageType(Protocol[M]):
+    """What the typed view of a message type (egosim.msgs.typed's `<Name>Type`) has of a
+    `MessageType[M]`; each view adds a `new` whose keywords are the type's fields."""
+
+    name: str
+    md5sum: str
+    definition: str
+    store: Typestore
+    store_name: str
+    make: type[M]
+
+    @property
+    def fields(self) -> list[tuple[str, FieldDesc]]: ...
+
+    def serialize(self, message: M) -> bytes: ...
+
+    def deserialize(self, data: bytes | memoryview) -> M: ...
+
+
 @dataclass(eq=False)
 class MessageType(Generic[M]):
-    """One ROS 1 message type: its identity on the wire and its (de)serialisation.
+    """One ROS 1 message type: its identity on the wire, construction and (de)serialisation.
 
     `M` only tells the type checker what the messages hold (egosim.msgs.typed): at run
-    time they are rosbags' classes."""
+    time they are rosbags' classes. A type looked up by a name written in the code is
+    seen through its typed view, whose `new` and `make` the type checker checks; one
+    named at run time checks its field names when a message is made and its values
+    when it is serialised."""
 
     name: str
     md5sum: str
@@ -35,27 +66,24 @@ class MessageType(Generic[M]):
     defaults: DefaultsPlan = field(init=False, repr=False)
     pack: Packer = field(init=False, repr=False)
     """The type's precompiled serialiser, tried first (packing.py)."""
+    new: MessageMaker[M] = field(init=False, repr=False)
+    """A message with the fields given set and every other field at its ROS default."""
+    make: type[M] = field(init=False, repr=False)
+    """The type's class itself: a message from every one of its fields (none defaulted),
+    the cheapest way to build one, for rows that build many."""
 
     def __post_init__(self) -> None:
         self.store_name = normalize_msgtype(self.name)
         self.defaults = defaults_plan(self.store, self.store_name)
         self.pack = packer(self.store, self.store_name)
+        # the class registered for store_name, the one `M` describes
+        self.new = cast("MessageMaker[M]", self.defaults.new)
+        self.make = cast("type[M]", self.defaults.message_class)
 
     @property
-    def fields(self) -> list[tuple[str, Any]]:
+    def fields(self) -> list[tuple[str, FieldDesc]]:
         """(name, rosbags field description) pairs, in wire order."""
         return list(self.store.fielddefs[self.store_name][1])
-
-    def new(self, **values: Any) -> M:
-        """A message with `values` set and every other field at its ROS default."""
-        message: M = self.defaults.new(values)
-        return message
-
-    def make(self, **fields: Any) -> M:
-        """A message from every one of its fields (none defaulted): the cheapest way to
-        build one, for rows that build many."""
-        message: M = self.defaults.message_class(**fields)
-        return message
 
     def serialize(self, message: M) -> bytes:
         data = self.pack(message)

@@ -16,14 +16,16 @@ from __future__ import annotations
 import functools
 import struct
 from collections.abc import Callable
-from typing import Any
+from typing import cast
 
 import numpy as np
 from rosbags.interfaces import Nodetype
+from rosbags.interfaces.typing import BaseDesc, FieldDesc, NameDesc
 from rosbags.typesys.store import Typestore
 
-Packer = Callable[[Any], bytes | None]
-"""A message's ROS 1 bytes, or None when its layout does not take it as it is."""
+Packer = Callable[[object], bytes | None]
+"""A message's ROS 1 bytes, or None when its layout does not take it as it is (any
+object: whatever is not a message of the type is not taken)."""
 
 FORMATS = {
     "bool": "?",
@@ -61,7 +63,10 @@ class _Writer:
     def __init__(self, store: Typestore) -> None:
         self.store = store
         self.lines: list[str] = []
-        self.names: dict[str, Any] = {"_UnpackableError": _UnpackableError, "_ndarray": np.ndarray}
+        self.names: dict[str, object] = {
+            "_UnpackableError": _UnpackableError,
+            "_ndarray": np.ndarray,
+        }
         self.run_format = ""
         self.run_values: list[str] = []
         self.counter = 0
@@ -91,18 +96,14 @@ class _Writer:
             if name != EMPTY_MEMBER:
                 self.field(desc, f"{value}.{name}", depth)
 
-    def field(self, desc: tuple[Any, Any], value: str, depth: int) -> None:
-        nodetype, args = desc
-        if nodetype == Nodetype.NAME:
-            self.message(args, value, depth)
-        elif nodetype == Nodetype.BASE:
-            self.base(args[0], value, depth)
-        elif nodetype == Nodetype.ARRAY:
-            (subtype, subargs), length = args
-            self.array(subtype, subargs, value, depth, length)
+    def field(self, desc: FieldDesc, value: str, depth: int) -> None:
+        if desc[0] == Nodetype.NAME:
+            self.message(desc[1], value, depth)
+        elif desc[0] == Nodetype.BASE:
+            self.base(desc[1][0], value, depth)
         else:
-            (subtype, subargs), _ = args
-            self.array(subtype, subargs, value, depth, None)
+            element, length = desc[1]
+            self.array(element, value, depth, length if desc[0] == Nodetype.ARRAY else None)
 
     def base(self, typename: str, value: str, depth: int) -> None:
         if typename != "string":
@@ -114,14 +115,16 @@ class _Writer:
         self.flush(depth)
         self.emit(depth, f"_out({encoded})")
 
-    def array(self, subtype: Any, subargs: Any, value: str, depth: int, length: int | None) -> None:
+    def array(
+        self, element: BaseDesc | NameDesc, value: str, depth: int, length: int | None
+    ) -> None:
         """A fixed-length array (`length`) or a sequence (None) of one element type."""
         items = self.fresh("a")
         self.emit(depth, f"{items} = {value}")
-        numeric = subtype == Nodetype.BASE and subargs[0] != "string"
+        numeric = element[0] == Nodetype.BASE and element[1][0] != "string"
         if numeric:
             dtype = self.fresh("dtype")
-            self.names[dtype] = DTYPES[subargs[0]]
+            self.names[dtype] = DTYPES[element[1][0]]
             self.emit(
                 depth,
                 f"if type({items}) is not _ndarray or {items}.dtype != {dtype} "
@@ -138,7 +141,7 @@ class _Writer:
         self.flush(depth)
         item = self.fresh("e")
         self.emit(depth, f"for {item} in {items}:")
-        self.field((subtype, subargs), item, depth + 1)
+        self.field(element, item, depth + 1)
         self.flush(depth + 1)
 
 
@@ -161,7 +164,6 @@ def packer(store: Typestore, store_name: str) -> Packer:
             "    return b''.join(_parts)",
         ]
     )
-    namespace: dict[str, Any] = dict(writer.names)
+    namespace = dict(writer.names)
     exec(compile(source, f"<packer of {store_name}>", "exec"), namespace)
-    pack: Packer = namespace["pack"]
-    return pack
+    return cast(Packer, namespace["pack"])  # the `def pack` just executed

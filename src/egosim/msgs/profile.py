@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import functools
-from typing import TYPE_CHECKING, Any, Literal, overload
+from typing import TYPE_CHECKING, Literal, overload
 
+from rosbags.interfaces.typing import Typesdict
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from rosbags.typesys.msg import denormalize_msgtype, normalize_msgtype
 
@@ -59,7 +60,7 @@ class Profile:
         self._own_texts: dict[str, str] = {}
         self._package_messages: list[str] = []
         self._services: dict[str, ServiceText] = {}
-        types: dict[str, Any] = {}
+        types: Typesdict = {}
         for package in load_package_definitions(name):
             for short, text in package.messages.items():
                 ros_name = f"{package.package}/{short}"
@@ -71,9 +72,9 @@ class Profile:
                 types.update(self._parse(srv.response, f"{ros_name}Response"))
                 self._services[ros_name] = srv
         self.store.register(types)
-        self._messages: dict[str, MessageType[Any]] = {}
+        self._messages: dict[str, MessageType[object]] = {}
 
-    def _parse(self, text: str, ros_name: str) -> dict[str, Any]:
+    def _parse(self, text: str, ros_name: str) -> Typesdict:
         store_name = normalize_msgtype(ros_name)
         try:
             parsed = get_types_from_msg(text, store_name)
@@ -88,7 +89,7 @@ class Profile:
             return self._own_texts[store_name]
         return self.store.gendefhash(store_name, {})[0]
 
-    def message(self, name: str) -> MessageType[Any]:
+    def message(self, name: str) -> MessageType[object]:
         """The message type `pkg/Name` (also accepts rosbags' `pkg/msg/Name`)."""
         if found := self._messages.get(name):  # the hot path: builders ask per message
             return found
@@ -106,7 +107,7 @@ class Profile:
         self._messages[name] = self._messages[ros_name]
         return self._messages[name]
 
-    def service(self, name: str) -> ServiceType[Any, Any]:
+    def service(self, name: str) -> ServiceType[object, object]:
         """The service type `pkg/Name`."""
         if name not in self._services:
             raise UnknownTypeError(f"no service type {name!r} in profile {self.name}")
@@ -167,9 +168,13 @@ def get_profile(name: Literal["24.r2"]) -> morai_24_r2.ReleaseProfile: ...  # ty
 def get_profile(name: Literal["2021.08"]) -> morai_2021_08.ReleaseProfile: ...  # type: ignore[overload-overlap]
 @overload
 def get_profile(name: str) -> Profile: ...
-def get_profile(name: str = DEFAULT_PROFILE) -> Profile:
-    """The profile `name`, built once per process; a release named literally is typed
-    (its `message` and `service` know each type's fields)."""
+def get_profile(
+    name: str = DEFAULT_PROFILE,
+) -> (
+    Profile | morai_26_r1.ReleaseProfile | morai_24_r2.ReleaseProfile | morai_2021_08.ReleaseProfile
+):
+    """The profile `name`, built once per process; a release named literally is seen
+    through its typed view (its `message` and `service` know each type's fields)."""
     return built_profile(name)
 
 

@@ -12,7 +12,7 @@ their coarse level (egosim.sensors.scene_tiles).
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
@@ -24,6 +24,9 @@ from egosim.sensors.camera_render import SKY_RGB, RenderRequest
 from egosim.sensors.camera_scene import StaticScene
 from egosim.sensors.errors import RendererUnavailableError
 from egosim.sensors.scene_tiles import visible_ranges
+
+if TYPE_CHECKING:  # moderngl is imported where a renderer opens (open_renderer)
+    import moderngl
 
 COLOR_VERTEX_SHADER = """
 #version 330
@@ -101,7 +104,7 @@ def vertex_bytes(mesh: Mesh) -> bytes:
 class GlRenderer:
     """CameraRenderer on a moderngl context (see open_renderer)."""
 
-    def __init__(self, context: Any) -> None:
+    def __init__(self, context: moderngl.Context) -> None:
         self._ctx = context
         color = context.program(
             vertex_shader=COLOR_VERTEX_SHADER, fragment_shader=COLOR_FRAGMENT_SHADER
@@ -110,24 +113,28 @@ class GlRenderer:
             vertex_shader=DEPTH_VERTEX_SHADER, fragment_shader=DEPTH_FRAGMENT_SHADER
         )
         self._programs = {mode: depth if mode is CameraMode.DEPTH else color for mode in CameraMode}
+        self._clip_from_scene = {
+            mode: _uniform(program, "clip_from_scene") for mode, program in self._programs.items()
+        }
+        self._eye_from_scene = _uniform(depth, "eye_from_scene")
         self._scene: StaticScene | None = None
-        self._static: tuple[Any, dict[CameraMode, Any]] | None = None
+        self._static: tuple[moderngl.Buffer, dict[CameraMode, moderngl.VertexArray]] | None = None
         self._dynamic_buffer = context.buffer(reserve=VERTEX.itemsize * 3, dynamic=True)
         self._dynamic_arrays = self._vertex_arrays(self._dynamic_buffer)
-        self._targets: dict[tuple[int, int, bool], Any] = {}
+        self._targets: dict[tuple[int, int, bool], moderngl.Framebuffer] = {}
 
     @property
     def description(self) -> str:
         info = self._ctx.info
         return f"OpenGL {info['GL_VERSION']} on {info['GL_RENDERER']}"
 
-    def _vertex_arrays(self, buffer: Any) -> dict[CameraMode, Any]:
+    def _vertex_arrays(self, buffer: moderngl.Buffer) -> dict[CameraMode, moderngl.VertexArray]:
         return {
             mode: self._ctx.vertex_array(self._programs[mode], [(buffer, layout, *attributes)])
             for mode, (layout, attributes) in MODE_LAYOUTS.items()
         }
 
-    def _framebuffer(self, width: int, height: int, depth_mode: bool) -> Any:
+    def _framebuffer(self, width: int, height: int, depth_mode: bool) -> moderngl.Framebuffer:
         key = (width, height, depth_mode)
         if key not in self._targets:
             ctx = self._ctx
@@ -153,7 +160,7 @@ class GlRenderer:
         self._static = (buffer, self._vertex_arrays(buffer))
         self._scene = scene
 
-    def _static_arrays(self, scene: StaticScene) -> dict[CameraMode, Any]:
+    def _static_arrays(self, scene: StaticScene) -> dict[CameraMode, moderngl.VertexArray]:
         self.load(scene)
         assert self._static is not None
         return self._static[1]
@@ -177,10 +184,9 @@ class GlRenderer:
         eye, clip = scene_matrices(
             request.view, intrinsics, request.near_m, request.far_m, request.scene.origin
         )
-        program = self._programs[mode]
-        program["clip_from_scene"].write(clip.T.astype("f4").tobytes())
+        self._clip_from_scene[mode].write(clip.T.astype("f4").tobytes())
         if depth_mode:
-            program["eye_from_scene"].write(eye.T.astype("f4").tobytes())
+            self._eye_from_scene.write(eye.T.astype("f4").tobytes())
 
         static = self._static_arrays(request.scene)[mode]
         eye_in_scene = request.view.origin - request.scene.origin
@@ -203,6 +209,16 @@ class GlRenderer:
         return np.ascontiguousarray(pixels[::-1])
 
 
+def _uniform(program: moderngl.Program, name: str) -> moderngl.Uniform:
+    """The uniform `name` of `program` (a program's members are also its attributes and
+    varyings)."""
+    from moderngl import Uniform  # noqa: PLC0415 - a program exists: open_renderer imported it
+
+    member = program[name]
+    assert isinstance(member, Uniform), f"{name} is no uniform of the shader program"
+    return member
+
+
 def open_renderer() -> GlRenderer:
     """The OpenGL renderer on a headless EGL context; RendererUnavailableError if none."""
     try:
@@ -211,8 +227,14 @@ def open_renderer() -> GlRenderer:
         raise RendererUnavailableError(f"moderngl is not installed ({error})") from None
     try:
         # The runtime libraries' sonames (libegl1, libgl1), not the -dev packages' links.
-        egl: dict[str, Any] = {"backend": "egl", "libgl": "libGL.so.1", "libegl": "libEGL.so.1"}
-        context = moderngl.create_context(standalone=True, require=330, **egl)
+        # moderngl's stub types every keyword setting as a dict; glcontext takes strings.
+        context = moderngl.create_context(
+            standalone=True,
+            require=330,
+            backend="egl",  # type: ignore[arg-type]
+            libgl="libGL.so.1",  # type: ignore[arg-type]
+            libegl="libEGL.so.1",  # type: ignore[arg-type]
+        )
     except Exception as error:  # glcontext raises bare Exceptions for a missing libEGL/driver
         raise RendererUnavailableError(
             f"no OpenGL 3.3 through EGL ({error}); install {' '.join(SYSTEM_PACKAGES)}"

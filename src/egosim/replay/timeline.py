@@ -4,29 +4,34 @@ from __future__ import annotations
 
 import logging
 import os
-from collections.abc import Iterable
-from dataclasses import dataclass
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Final, Generic, Protocol, TypeVar
 
 import numpy as np
 from rosbags.interfaces import Connection
 from rosbags.rosbag1 import Reader, ReaderError
 from rosbags.typesys.msg import denormalize_msgtype
 
-from egosim.msgs import PROFILES, MessageType, MsgsError, Profile, get_profile
+from egosim.msgs import PROFILES, MsgsError
 
 from .errors import BagError, BagInUseError, MissingTopicsError, UnsupportedReleaseError
 from .frame import ReplayFrame
 from .recordings import is_recording
+from .releases import BagRelease, Decoder, bag_release
 from .repair import needs_repair, repair_bag
-from .tracks import ControlTrack, EgoTrack, ObjectTrack
+from .tracks import ControlTrack, CtrlCmd, EgoStatus, EgoTrack, ObjectList, ObjectTrack
 
 log = logging.getLogger(__name__)
 
-EGO_TYPE = "morai_msgs/EgoVehicleStatus"
-OBJECTS_TYPE = "morai_msgs/ObjectStatusList"
-CONTROL_TYPE = "morai_msgs/CtrlCmd"
+M = TypeVar("M")
+"""The messages of one topic (its type, in the bag's release)."""
+Track = TypeVar("Track")
+
+EGO_TYPE: Final = "morai_msgs/EgoVehicleStatus"
+OBJECTS_TYPE: Final = "morai_msgs/ObjectStatusList"
+CONTROL_TYPE: Final = "morai_msgs/CtrlCmd"
 
 
 @dataclass(frozen=True)
@@ -45,12 +50,69 @@ DEFAULT_TOPICS = ReplayTopics()
 
 
 @dataclass
-class _Decoded:
-    """One topic's messages with their two clocks: header stamp (0 if none) and receive time."""
+class _Clocks:
+    """A topic's two clocks per message: header stamp (0 if none) and receive time, ns."""
 
-    messages: list[Any]
     header_ns: np.ndarray
     received_ns: np.ndarray
+
+
+class _Reading(Protocol):
+    """A topic being read from the bag, whatever its type."""
+
+    def read(self, data: bytes | memoryview, received_ns: int) -> None: ...
+
+
+@dataclass
+class _Recorded(Generic[M]):
+    """One topic's messages, decoded as they come out of the bag, with their clocks."""
+
+    decoder: Decoder[M]
+    stamp_ns: Callable[[M], int]
+    """A message's header stamp, ns (0: none)."""
+    messages: list[M] = field(default_factory=list)
+    header_ns: list[int] = field(default_factory=list)
+    received_ns: list[int] = field(default_factory=list)
+
+    def read(self, data: bytes | memoryview, received_ns: int) -> None:
+        message = self.decoder.deserialize(data)
+        self.messages.append(message)
+        self.header_ns.append(self.stamp_ns(message))
+        self.received_ns.append(received_ns)
+
+    def clocks(self) -> _Clocks:
+        return _Clocks(
+            np.array(self.header_ns, dtype=np.int64), np.array(self.received_ns, dtype=np.int64)
+        )
+
+
+def _header_stamp_ns(message: EgoStatus | ObjectList) -> int:
+    stamp = message.header.stamp
+    return stamp.sec * 10**9 + stamp.nanosec
+
+
+def _unstamped(message: CtrlCmd) -> int:
+    return 0  # CtrlCmd has no header
+
+
+@dataclass
+class _Decoded:
+    """The replay topics' messages; a topic the bag lacks has none."""
+
+    ego: _Recorded[EgoStatus]
+    objects: _Recorded[ObjectList]
+    control: _Recorded[CtrlCmd]
+
+    @classmethod
+    def of(cls, release: BagRelease) -> _Decoded:
+        ego: Decoder[EgoStatus] = release.message(EGO_TYPE)
+        objects: Decoder[ObjectList] = release.message(OBJECTS_TYPE)
+        control: Decoder[CtrlCmd] = release.message(CONTROL_TYPE)
+        return cls(
+            _Recorded(ego, _header_stamp_ns),
+            _Recorded(objects, _header_stamp_ns),
+            _Recorded(control, _unstamped),
+        )
 
 
 class BagTimeline:
@@ -113,41 +175,31 @@ class BagTimeline:
             with Reader(path) as reader:
                 connections = _replay_connections(reader.connections, topics)
                 release = _matching_release(connections, profile)
-                decoded = _decode(reader, connections, release)
+                decoded = _decode(reader, connections, release, topics)
         except (ReaderError, KeyError, ValueError) as exc:  # ValueError: text that is not UTF-8
             raise BagError(f"cannot read {path}: {exc}") from exc
-        return cls._from_decoded(path, release.name, decoded, topics)
+        return cls._from_decoded(path, release.name, decoded, sorted(connections))
 
     @classmethod
     def _from_decoded(
-        cls, path: Path, profile: str, decoded: dict[str, _Decoded], topics: ReplayTopics
+        cls, path: Path, profile: str, decoded: _Decoded, topics: list[str]
     ) -> BagTimeline:
-        offset_ns = _receive_to_header_offset(decoded.values())
-        times = {
-            topic: np.where(d.header_ns != 0, d.header_ns, d.received_ns + offset_ns)
-            for topic, d in decoded.items()
-        }
-        if not any(len(t) for t in times.values()):
-            raise MissingTopicsError(f"{path} has no messages on {sorted(decoded)}")
-        start_ns = min(int(t.min()) for t in times.values() if len(t))
-        end_ns = max(int(t.max()) for t in times.values() if len(t))
-
-        def track(topic: str, kind: Any) -> Any:
-            if topic not in decoded or not len(times[topic]):
-                return None
-            order = np.argsort(times[topic], kind="stable")
-            seconds = (times[topic][order] - start_ns) / 1e9
-            messages = decoded[topic].messages
-            return kind.from_messages(seconds, [messages[k] for k in order])
-
+        clocks = [r.clocks() for r in (decoded.ego, decoded.objects, decoded.control)]
+        offset_ns = _receive_to_header_offset(clocks)
+        times = [np.where(c.header_ns != 0, c.header_ns, c.received_ns + offset_ns) for c in clocks]
+        if not any(len(t) for t in times):
+            raise MissingTopicsError(f"{path} has no messages on {topics}")
+        start_ns = min(int(t.min()) for t in times if len(t))
+        end_ns = max(int(t.max()) for t in times if len(t))
+        ego_times, object_times, control_times = times
         return cls(
             path,
             profile,
             start_ns,
             end_ns,
-            track(topics.ego, EgoTrack),
-            track(topics.objects, ObjectTrack),
-            track(topics.control, ControlTrack),
+            _track(decoded.ego.messages, ego_times, start_ns, EgoTrack.from_messages),
+            _track(decoded.objects.messages, object_times, start_ns, ObjectTrack.from_messages),
+            _track(decoded.control.messages, control_times, start_ns, ControlTrack.from_messages),
         )
 
     def sample(self, t: float) -> ReplayFrame:
@@ -191,20 +243,31 @@ def _replay_connections(
     return found
 
 
-def _matching_release(connections: dict[str, list[Connection]], profile: str | None) -> Profile:
+def _track(
+    messages: Sequence[M],
+    times_ns: np.ndarray,
+    start_ns: int,
+    build: Callable[[np.ndarray, Sequence[M]], Track],
+) -> Track | None:
+    """A topic's track, its messages in time order (times in s from `start_ns`); None
+    when it has none."""
+    if not len(times_ns):
+        return None
+    order = np.argsort(times_ns, kind="stable")
+    return build((times_ns[order] - start_ns) / 1e9, [messages[k] for k in order])
+
+
+def _matching_release(connections: dict[str, list[Connection]], profile: str | None) -> BagRelease:
     """The morai_msgs release whose md5sums every replay connection carries."""
     candidates = [profile] if profile else list(PROFILES)
     seen = {(denormalize_msgtype(c.msgtype), c.digest) for cs in connections.values() for c in cs}
     for name in candidates:
-        try:
-            release = get_profile(name)
-        except MsgsError as exc:
-            raise UnsupportedReleaseError(str(exc)) from exc
+        release = bag_release(name)
         if all(release.message(type_name).md5sum == md5 for type_name, md5 in seen):
             return release
     known = "; ".join(
         f"{name}: "
-        + ", ".join(f"{t} {get_profile(name).message(t).md5sum}" for t, _ in sorted(seen))
+        + ", ".join(f"{t} {bag_release(name).message(t).md5sum}" for t, _ in sorted(seen))
         for name in candidates
     )
     raise UnsupportedReleaseError(
@@ -215,36 +278,27 @@ def _matching_release(connections: dict[str, list[Connection]], profile: str | N
 
 
 def _decode(
-    reader: Reader, connections: dict[str, list[Connection]], release: Profile
-) -> dict[str, _Decoded]:
-    types: dict[str, MessageType[object]] = {
-        topic: release.message(denormalize_msgtype(cs[0].msgtype))
-        for topic, cs in connections.items()
+    reader: Reader,
+    connections: dict[str, list[Connection]],
+    release: BagRelease,
+    topics: ReplayTopics,
+) -> _Decoded:
+    decoded = _Decoded.of(release)
+    reading: dict[str, _Reading] = {
+        topics.ego: decoded.ego,
+        topics.objects: decoded.objects,
+        topics.control: decoded.control,
     }
-    messages: dict[str, list[Any]] = {topic: [] for topic in connections}
-    header_ns: dict[str, list[int]] = {topic: [] for topic in connections}
-    received_ns: dict[str, list[int]] = {topic: [] for topic in connections}
     wanted = [c for cs in connections.values() for c in cs]
     for connection, received, raw in reader.messages(connections=wanted):
         try:
-            message = types[connection.topic].deserialize(raw)
+            reading[connection.topic].read(raw, received)
         except MsgsError as exc:
             raise BagError(f"corrupt message on {connection.topic}: {exc}") from exc
-        stamp = message.header.stamp if hasattr(message, "header") else None
-        messages[connection.topic].append(message)
-        header_ns[connection.topic].append(stamp.sec * 10**9 + stamp.nanosec if stamp else 0)
-        received_ns[connection.topic].append(received)
-    return {
-        topic: _Decoded(
-            messages[topic],
-            np.array(header_ns[topic], dtype=np.int64),
-            np.array(received_ns[topic], dtype=np.int64),
-        )
-        for topic in connections
-    }
+    return decoded
 
 
-def _receive_to_header_offset(decoded: Iterable[_Decoded]) -> int:
+def _receive_to_header_offset(decoded: Iterable[_Clocks]) -> int:
     """Median (header stamp - receive time) over stamped messages, ns; 0 when none is stamped."""
     differences = [d.header_ns[d.header_ns != 0] - d.received_ns[d.header_ns != 0] for d in decoded]
     stamped = np.concatenate(differences) if differences else np.zeros(0, dtype=np.int64)

@@ -2,24 +2,37 @@
 
 Each track holds one row per message (times in s from the bag's start,
 ascending) and answers `sample(t)` with a bisection and one row of arithmetic,
-so sampling costs the same for a minute or an hour of recording.
+so sampling costs the same for a minute or an hour of recording. A track is made from
+its topic's messages in whichever release the bag was recorded (releases.py).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import overload
 
 import numpy as np
 
+from egosim.msgs.typed import morai_24_r2, morai_26_r1, morai_2021_08, standard
+from egosim.world.arrays import FloatArray
+
 from .frame import ControlCommand, EgoState, ObjectState, Vector
+
+EgoStatus = (
+    morai_26_r1.EgoVehicleStatus | morai_24_r2.EgoVehicleStatus | morai_2021_08.EgoVehicleStatus
+)
+"""An EgoVehicleStatus of any release (before 26.r1: the front steer is `wheel_angle`, and
+there is no rear steer)."""
+ObjectList = (
+    morai_26_r1.ObjectStatusList | morai_24_r2.ObjectStatusList | morai_2021_08.ObjectStatusList
+)
+CtrlCmd = morai_26_r1.CtrlCmd | morai_24_r2.CtrlCmd | morai_2021_08.CtrlCmd
+"""A CtrlCmd of any release (before 26.r1: the front steer is `steering`, and there is no
+rear steer)."""
 
 KMH_TO_MS = 1.0 / 3.6
 TWO_PI = 2.0 * math.pi
-
-# ObjectStatusList keeps three lists; `_CATEGORIES` is their order in a frame.
-_CATEGORIES = ("npc_list", "pedestrian_list", "obstacle_list")
 
 
 def _bracket(times: np.ndarray, t: float) -> tuple[int, int, float]:
@@ -34,13 +47,31 @@ def _bracket(times: np.ndarray, t: float) -> tuple[int, int, float]:
     return i, i + 1, float((t - times[i]) / span) if span > 0 else 0.0
 
 
-def _wrap(angle: np.ndarray | float) -> Any:
+@overload
+def _wrap(angle: float) -> float: ...
+@overload
+def _wrap(angle: FloatArray) -> FloatArray: ...
+def _wrap(angle: float | FloatArray) -> float | FloatArray:
     """Angles (rad) into [-pi, pi)."""
     return (angle + math.pi) % TWO_PI - math.pi
 
 
-def _vector(message: Any) -> list[float]:
-    return [message.x, message.y, message.z]
+def _vector(vector: standard.Vector3) -> list[float]:
+    return [vector.x, vector.y, vector.z]
+
+
+def _ego_steer(m: EgoStatus) -> list[float]:
+    """Front and rear steer, deg."""
+    if hasattr(m, "wheel_angle"):  # a release before 26.r1
+        return [m.wheel_angle, 0.0]
+    return [m.front_steer_angle, m.rear_steer_angle]
+
+
+def _command_steer(m: CtrlCmd) -> list[float]:
+    """Front and rear steer, rad."""
+    if hasattr(m, "steering"):  # a release before 26.r1
+        return [m.steering, 0.0]
+    return [m.front_steer, m.rear_steer]
 
 
 def _triple(row: Sequence[float], start: int) -> Vector:
@@ -58,7 +89,7 @@ class EgoTrack:
         self.columns = columns
 
     @classmethod
-    def from_messages(cls, times: np.ndarray, messages: Sequence[Any]) -> EgoTrack:
+    def from_messages(cls, times: np.ndarray, messages: Sequence[EgoStatus]) -> EgoTrack:
         rows = [
             [
                 *_vector(m.position),
@@ -67,8 +98,7 @@ class EgoTrack:
                 m.heading,
                 m.accel,
                 m.brake,
-                m.front_steer_angle,
-                m.rear_steer_angle,
+                *_ego_steer(m),
             ]
             for m in messages
         ]
@@ -130,15 +160,17 @@ class ObjectTrack:
         self._row_kinds = kinds.tolist()
 
     @classmethod
-    def from_messages(cls, times: np.ndarray, messages: Sequence[Any]) -> ObjectTrack:
+    def from_messages(cls, times: np.ndarray, messages: Sequence[ObjectList]) -> ObjectTrack:
         offsets = [0]
         keys: list[int] = []
         kinds: list[tuple[int, int]] = []
         names: list[str] = []
         rows: list[list[float]] = []
         for message in messages:
-            for category, list_name in enumerate(_CATEGORIES):
-                for obj in getattr(message, list_name):
+            # the category of an object: its list's place in a frame
+            lists = (message.npc_list, message.pedestrian_list, message.obstacle_list)
+            for category, objects in enumerate(lists):
+                for obj in objects:
                     keys.append(obj.unique_id * 4 + category)
                     kinds.append((category, obj.type))
                     names.append(obj.name)
@@ -228,14 +260,13 @@ class ControlTrack:
         self.columns = columns
 
     @classmethod
-    def from_messages(cls, times: np.ndarray, messages: Sequence[Any]) -> ControlTrack:
+    def from_messages(cls, times: np.ndarray, messages: Sequence[CtrlCmd]) -> ControlTrack:
         rows = [
             [
                 m.longlCmdType,
                 m.accel,
                 m.brake,
-                m.front_steer,
-                m.rear_steer,
+                *_command_steer(m),
                 m.velocity * KMH_TO_MS,
                 m.acceleration,
             ]

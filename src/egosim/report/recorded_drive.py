@@ -8,22 +8,26 @@ import os
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Final
 
 import numpy as np
 from rosbags.interfaces import Connection
 from rosbags.rosbag1 import Reader, ReaderError
 from rosbags.typesys.msg import denormalize_msgtype
 
-from egosim.msgs import PROFILES, MsgsError, Profile, get_profile
+from egosim.msgs import PROFILES, MsgsError
+from egosim.msgs.typed import morai_24_r2, morai_26_r1, morai_2021_08, standard
 from egosim.replay import DEFAULT_TOPICS, BagError, BagTimeline, MissingTopicsError, ReplayTopics
+from egosim.replay.releases import BagRelease, bag_release
 from egosim.world.arrays import FloatArray
 from egosim.world.collision import ContactTracker
 
 log = logging.getLogger(__name__)
 
-COLLISION_TYPE = "morai_msgs/CollisionData"
-LIGHT_STATUS_TYPE = "morai_msgs/GetTrafficLightStatus"
+COLLISION_TYPE: Final = "morai_msgs/CollisionData"
+LIGHT_STATUS_TYPE: Final = "morai_msgs/GetTrafficLightStatus"
+CollisionData = morai_26_r1.CollisionData | morai_24_r2.CollisionData | morai_2021_08.CollisionData
+"""A CollisionData of any release."""
 #: The ego's side of each contact pair the tracker follows (one topic: one ego).
 EGO_SIDE = -1
 
@@ -121,23 +125,33 @@ class _Events:
 
 
 def _read_events(timeline: BagTimeline) -> _Events:
-    listings: dict[str, list[tuple[float, Any]]] = {}  # collision topic -> (t, message)
+    # collision topic -> (t, message)
+    listings: dict[str, list[tuple[float, CollisionData]]] = {}
     lights: list[LightState] = []
+
+    def time_s(header: standard.Header) -> float:
+        return (header.stamp.sec * 10**9 + header.stamp.nanosec - timeline.start_ns) / 1e9
+
     try:
         with Reader(timeline.path) as reader:
             releases = _event_connections(reader.connections, timeline.profile)
             wanted = [c for c in reader.connections if c.id in releases]
             for connection, _, raw in reader.messages(connections=wanted):
-                type_name = denormalize_msgtype(connection.msgtype)
-                message = releases[connection.id].message(type_name).deserialize(raw)
-                stamp = message.header.stamp
-                t = (stamp.sec * 10**9 + stamp.nanosec - timeline.start_ns) / 1e9
-                if type_name == LIGHT_STATUS_TYPE:
+                release = releases[connection.id]
+                if denormalize_msgtype(connection.msgtype) == LIGHT_STATUS_TYPE:
+                    light = release.message(LIGHT_STATUS_TYPE).deserialize(raw)
                     lights.append(
-                        LightState(t, message.trafficLightIndex, int(message.trafficLightStatus))
+                        LightState(
+                            time_s(light.header),
+                            light.trafficLightIndex,
+                            int(light.trafficLightStatus),
+                        )
                     )
                 else:
-                    listings.setdefault(connection.topic, []).append((t, message))
+                    collision = release.message(COLLISION_TYPE).deserialize(raw)
+                    listings.setdefault(connection.topic, []).append(
+                        (time_s(collision.header), collision)
+                    )
     except (ReaderError, KeyError, ValueError, MsgsError) as exc:
         raise BagError(f"cannot read {timeline.path}: {exc}") from exc
     collisions: list[RecordedCollision] = []
@@ -154,7 +168,7 @@ def _read_events(timeline: BagTimeline) -> _Events:
 
 
 def _contacts(
-    messages: list[tuple[float, Any]],
+    messages: list[tuple[float, CollisionData]],
 ) -> tuple[list[RecordedCollision], list[RecordedCollision]]:
     """The contacts that one topic's CollisionData messages (by time) list, each once, at
     its first listing: (those that began in the recording, those the first message lists)."""
@@ -172,13 +186,13 @@ def _contacts(
     return began, under_way
 
 
-def _event_connections(connections: Iterable[Connection], preferred: str) -> dict[int, Profile]:
+def _event_connections(connections: Iterable[Connection], preferred: str) -> dict[int, BagRelease]:
     """The collision and light-status connections to read (by id), each with its release.
 
     A topic served to clients of several releases was recorded once per release: only one
     release of each topic is read (the ego's when it has it), so no event counts twice.
     """
-    by_topic: dict[str, list[tuple[Connection, Profile]]] = {}
+    by_topic: dict[str, list[tuple[Connection, BagRelease]]] = {}
     order = [preferred, *(name for name in PROFILES if name != preferred)]
     for connection in connections:
         type_name = denormalize_msgtype(connection.msgtype)
@@ -186,9 +200,9 @@ def _event_connections(connections: Iterable[Connection], preferred: str) -> dic
             continue
         release = next(
             (
-                get_profile(name)
+                bag_release(name)
                 for name in order
-                if get_profile(name).message(type_name).md5sum == connection.digest
+                if bag_release(name).message(type_name).md5sum == connection.digest
             ),
             None,
         )
@@ -196,7 +210,7 @@ def _event_connections(connections: Iterable[Connection], preferred: str) -> dic
             log.warning("%s: %s has an unknown md5sum; not read", connection.topic, type_name)
             continue
         by_topic.setdefault(connection.topic, []).append((connection, release))
-    chosen: dict[int, Profile] = {}
+    chosen: dict[int, BagRelease] = {}
     for candidates in by_topic.values():
         best = min(order.index(release.name) for _, release in candidates)
         chosen.update((c.id, r) for c, r in candidates if order.index(r.name) == best)

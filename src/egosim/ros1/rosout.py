@@ -6,9 +6,9 @@ import dataclasses
 import logging
 import threading
 from functools import cache
-from typing import Any
 
-from egosim.msgs import DEFAULT_PROFILE, MessageType, get_profile
+from egosim.msgs import DEFAULT_PROFILE, get_profile
+from egosim.msgs.typed import standard
 
 from .errors import NodeShutdownError
 from .publication import Publisher
@@ -19,12 +19,12 @@ _DEBUG = 1
 
 
 @cache
-def log_type() -> MessageType[Any]:
+def log_type() -> standard.LogType:
     return get_profile(DEFAULT_PROFILE).message("rosgraph_msgs/Log")
 
 
 @cache
-def _header_type() -> MessageType[Any]:
+def _header_type() -> standard.HeaderType:
     return get_profile(DEFAULT_PROFILE).message("std_msgs/Header")
 
 

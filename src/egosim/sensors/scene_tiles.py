@@ -14,7 +14,6 @@ software rasteriser pays for each triangle however small.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -43,7 +42,9 @@ class SceneTiles:
 
 
 def tile_order(
-    positions: npt.NDArray[np.floating[Any]], details: IntArray, size_m: float = TILE_SIZE_M
+    positions: npt.NDArray[np.float32] | FloatArray,
+    details: IntArray,
+    size_m: float = TILE_SIZE_M,
 ) -> tuple[IntArray, SceneTiles]:
     """The vertex order that stores a triangle list's (3 N, 3) `positions` as the fine
     level's tiles, then the coarse level's, and those tiles; `details` (N,) are the

@@ -5,7 +5,9 @@ Frames and units of every EgoVehicleStatus field are listed in docs/protocol.md.
 
 from __future__ import annotations
 
-from ...msgs.typed import morai_26_r1
+from typing import TypedDict
+
+from ...msgs.typed import morai_26_r1, standard
 from ...world import EgoLaneState
 from ...world.vehicle import ControlCommand, Vehicle, VehicleStatus
 from ..context import BridgeContext
@@ -15,41 +17,75 @@ from ..protocol.table import Row
 from ..protocol.units import deg, heading_deg, mps
 from .ground_vehicle import commanded_vehicle
 
-WHEEL_SUFFIXES = (
-    ("fl", "front_left"),
-    ("fr", "front_right"),
-    ("rl", "rear_left"),
-    ("rr", "rear_right"),
-)
+
+class EgoMotionFields(TypedDict):
+    """The fields EgoVehicleStatus and EgoVehicleStatusExtended share but the header."""
+
+    unique_id: int
+    acceleration: standard.Vector3
+    position: standard.Vector3
+    velocity: standard.Vector3
+    heading: float
+    accel: float
+    brake: float
+
+
+class EgoVehicleStatusFields(EgoMotionFields):
+    """Every morai_msgs/EgoVehicleStatus field but its header."""
+
+    front_steer_angle: float
+    rear_steer_angle: float
+    lateral_offset: float
+    distance_left_lane_boundary: float
+    distance_right_lane_boundary: float
+    cross_track_error: float
+    tire_lateral_force_fl: float
+    tire_lateral_force_fr: float
+    tire_lateral_force_rl: float
+    tire_lateral_force_rr: float
+    side_slip_angle_fl: float
+    side_slip_angle_fr: float
+    side_slip_angle_rl: float
+    side_slip_angle_rr: float
+    tire_cornering_stiffness_fl: float
+    tire_cornering_stiffness_fr: float
+    tire_cornering_stiffness_rl: float
+    tire_cornering_stiffness_rr: float
 
 
 def ego_vehicle_status_fields(
     profile: CanonicalProfile, unique_id: int, status: VehicleStatus, lane: EgoLaneState | None
-) -> dict[str, object]:
-    """Every morai_msgs/EgoVehicleStatus field of one ego but its header; lane fields are 0
-    off the road network."""
-    wheels: dict[str, float] = {}
-    for suffix, attribute in WHEEL_SUFFIXES:
-        wheel = getattr(status.wheels, attribute)
-        wheels[f"tire_lateral_force_{suffix}"] = wheel.lateral_force
-        wheels[f"side_slip_angle_{suffix}"] = deg(wheel.slip_angle)
-        wheels[f"tire_cornering_stiffness_{suffix}"] = wheel.cornering_stiffness
-    lateral = lane.lateral_offset if lane is not None else 0.0
+) -> EgoVehicleStatusFields:
+    """Every morai_msgs/EgoVehicleStatus field of one ego but its header, in protocol
+    units; lane fields are 0 off the road network."""
+    wheels = status.wheels
+    fl, fr, rl, rr = wheels.front_left, wheels.front_right, wheels.rear_left, wheels.rear_right
     return {
         **ego_motion_fields(profile, unique_id, status),
         "front_steer_angle": deg(status.front_steer),
         "rear_steer_angle": deg(status.rear_steer),
-        "lateral_offset": lateral,
+        "lateral_offset": lane.lateral_offset if lane is not None else 0.0,
         "distance_left_lane_boundary": lane.distance_left if lane is not None else 0.0,
         "distance_right_lane_boundary": lane.distance_right if lane is not None else 0.0,
         "cross_track_error": lane.cross_track_error if lane is not None else 0.0,
-        **wheels,
+        "tire_lateral_force_fl": fl.lateral_force,
+        "tire_lateral_force_fr": fr.lateral_force,
+        "tire_lateral_force_rl": rl.lateral_force,
+        "tire_lateral_force_rr": rr.lateral_force,
+        "side_slip_angle_fl": deg(fl.slip_angle),
+        "side_slip_angle_fr": deg(fr.slip_angle),
+        "side_slip_angle_rl": deg(rl.slip_angle),
+        "side_slip_angle_rr": deg(rr.slip_angle),
+        "tire_cornering_stiffness_fl": fl.cornering_stiffness,
+        "tire_cornering_stiffness_fr": fr.cornering_stiffness,
+        "tire_cornering_stiffness_rl": rl.cornering_stiffness,
+        "tire_cornering_stiffness_rr": rr.cornering_stiffness,
     }
 
 
 def ego_motion_fields(
     profile: CanonicalProfile, unique_id: int, status: VehicleStatus
-) -> dict[str, object]:
+) -> EgoMotionFields:
     """The fields EgoVehicleStatus and EgoVehicleStatusExtended share but the header, in
     protocol units."""
     pose = status.pose

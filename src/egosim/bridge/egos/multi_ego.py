@@ -19,7 +19,6 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Callable
-from typing import Any
 
 from ...msgs.typed import morai_26_r1
 from ...world.vehicle import Gear, Pose
@@ -52,6 +51,9 @@ FLOAT_ARRAYS = (
 """The arrays that move an ego (a teleport)."""
 PER_EGO_ARRAYS = (*FLOAT_ARRAYS, "gear", "ctrl_mode", "turn_signal", "brake_light")
 
+Entry = dict[str, float]
+"""One ego's attributes, by the name of the array that gave each (all of them numbers)."""
+
 
 class SettingError(ValueError):
     """Why a MultiEgoSetting message cannot be applied."""
@@ -81,14 +83,14 @@ def on_multi_ego_setting(
     _sync_ego_rows(context)
 
 
-def _entries(message: morai_26_r1.MultiEgoSetting, existing: int) -> dict[int, dict[str, Any]]:
+def _entries(message: morai_26_r1.MultiEgoSetting, existing: int) -> dict[int, Entry]:
     """Each configured ego's attributes by position, checked."""
     count = int(message.number_of_ego_vehicle)
     if count < 1:
         raise SettingError(f"number_of_ego_vehicle {count}: the main ego always exists")
     if not 0 <= message.camera_index < count:
         raise SettingError(f"camera_index {message.camera_index} is not an ego (0..{count - 1})")
-    indices = _values(message, "ego_index")
+    indices = [int(i) for i in _values(message, "ego_index")]
     arrays = {name: _values(message, name) for name in PER_EGO_ARRAYS}
     for name, values in arrays.items():
         if len(values) not in (0, len(indices)):
@@ -117,13 +119,13 @@ def _entries(message: morai_26_r1.MultiEgoSetting, existing: int) -> dict[int, d
     return entries
 
 
-def _values(message: morai_26_r1.MultiEgoSetting, name: str) -> list[Any]:
+def _values(message: morai_26_r1.MultiEgoSetting, name: str) -> list[float]:
     """A message array as plain Python numbers (the decoder may give a numpy array)."""
     values = getattr(message, name)
     return values.tolist() if hasattr(values, "tolist") else list(values)
 
 
-def _pose(entry: dict[str, Any], current: Pose | None) -> Pose:
+def _pose(entry: Entry, current: Pose | None) -> Pose:
     """The entry's pose; attributes it leaves out keep `current`'s (0 for a new ego)."""
     current = current or Pose()
     return Pose(
@@ -136,7 +138,7 @@ def _pose(entry: dict[str, Any], current: Pose | None) -> Pose:
     )
 
 
-def _apply(context: BridgeContext, k: int, entry: dict[str, Any], by: str) -> None:
+def _apply(context: BridgeContext, k: int, entry: Entry, by: str) -> None:
     ego = context.world.egos[k]
     vehicle = ego.vehicle
     status = vehicle.status()
@@ -171,10 +173,11 @@ def _sync_ego_rows(context: BridgeContext) -> None:
 def _open_ego_rows(rows: RowBinder, k: int) -> list[Callable[[], None]]:
     namespace = ego_namespace(k)
     closers = [
-        rows.open_row("ego_status", namespace, lambda ctx, row: ego_status_of(ctx, k)),
-        rows.open_row(
+        rows.open_publisher("ego_status", namespace, lambda ctx, row: ego_status_of(ctx, k)),
+        rows.open_subscriber(
             "ctrl_cmd",
             namespace,
+            lambda profile: profile.message("morai_msgs/CtrlCmd"),
             lambda ctx, row, msg: drive_with_ctrl_cmd(ctx, row, k, msg),
         ),
     ]

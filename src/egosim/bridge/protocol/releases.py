@@ -12,18 +12,22 @@ is dropped on the way out and, on the way in, takes the value IMPLIED_FIELDS giv
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, TypeVar, cast
+from typing import Final, TypeVar, cast
 
 from rosbags.interfaces import Nodetype
+from rosbags.interfaces.typing import FieldDesc
 from rosbags.typesys.store import Typestore
 
 from ...msgs import PROFILES, MessageType, ServiceType, UnknownTypeError, get_profile
 from ...msgs.defaults import default_message
 from ...msgs.fulltext import BUILTIN_TIME_TYPES, element_desc
+from ...msgs.message_type import TypedMessageType
 from ...msgs.typed import morai_26_r1
+from ...msgs.values import FieldValue, Message
 
-CANONICAL_PROFILE = "26.r1"
+CANONICAL_PROFILE: Final = "26.r1"
 CanonicalProfile = morai_26_r1.ReleaseProfile
 """The profile handlers build and read, typed: each type's fields are known."""
 
@@ -42,7 +46,7 @@ MOVED_FIELDS: dict[str, dict[str, str]] = {
 }
 
 # type -> {field later releases added: its value in a message of a release without it}
-IMPLIED_FIELDS: dict[str, dict[str, Any]] = {
+IMPLIED_FIELDS: dict[str, dict[str, FieldValue]] = {
     # 2021.08 cannot choose the tick length: MORAI SIM ticks its fixed 20 ms step.
     "morai_msgs/SyncModeCmd": {"time_step": 20},
 }
@@ -107,23 +111,26 @@ def release_for_md5(releases: tuple[Release, ...], md5sum: str) -> Release | Non
     return next((r for r in releases if r.message_type.md5sum == md5sum), None)
 
 
-def convert(message: Source, source: MessageType[Source], target: MessageType[Target]) -> Target:
+def convert(
+    message: Source, source: TypedMessageType[Source], target: TypedMessageType[Target]
+) -> Target:
     """`message`, of type `source`, as a message of `target` (same type, other release)."""
     if source.md5sum == target.md5sum and source.name == target.name:
         return cast(Target, message)  # the same type: a release's twin of source's class
-    converted: Target = _convert(message, target.store, target.store_name)
-    return converted
+    # made as the class registered for target's store_name, the one `Target` describes
+    return cast(Target, _convert(message, target.store, target.store_name))
 
 
-def _convert(message: Any, store: Typestore, store_name: str) -> Any:
+def _convert(message: object, store: Typestore, store_name: str) -> Message:
+    """`message` (of any release) as a `store_name` of `store`, its fields read by name."""
     ros_name = store_name.replace("/msg/", "/", 1)
     renamed = RENAMED_FIELDS.get(ros_name, {})
     aliases = {**renamed, **{old: new for new, old in renamed.items()}}
-    values = {}
+    values: dict[str, FieldValue] = {}
     for name, desc in store.fielddefs[store_name][1]:
         source_name = name if hasattr(message, name) else aliases.get(name)
         if source_name is not None and hasattr(message, source_name):
-            values[name] = _convert_value(getattr(message, source_name), desc, store)
+            values[name] = _converted_field(message, source_name, desc, store)
         elif name in IMPLIED_FIELDS.get(ros_name, {}):
             values[name] = IMPLIED_FIELDS[ros_name][name]
     result = default_message(store, store_name, **values)
@@ -135,28 +142,33 @@ def _convert(message: Any, store: Typestore, store_name: str) -> Any:
     return result
 
 
-def _convert_value(value: Any, desc: tuple[Any, Any], store: Typestore) -> Any:
-    nodetype, args = element_desc(desc)
-    if nodetype != Nodetype.NAME or args in BUILTIN_TIME_TYPES:
+def _converted_field(message: object, name: str, desc: FieldDesc, store: Typestore) -> FieldValue:
+    """Field `name` of `message` as a field described by `desc` in `store` holds it."""
+    element = element_desc(desc)
+    if element[0] != Nodetype.NAME or element[1] in BUILTIN_TIME_TYPES:
+        value: FieldValue = getattr(message, name)
         return value
     if desc[0] == Nodetype.NAME:
-        return _convert(value, store, args)
-    return [_convert(item, store, args) for item in value]
+        return _convert(getattr(message, name), store, element[1])
+    items: Sequence[object] = getattr(message, name)
+    return [_convert(item, store, element[1]) for item in items]
 
 
-def _get_path(message: Any, path: str) -> Any:
-    for part in path.split("."):
+def _get_path(message: object, path: str) -> FieldValue:
+    *parents, last = path.split(".")
+    for part in parents:
         message = getattr(message, part)
-    return message
+    value: FieldValue = getattr(message, last)
+    return value
 
 
-def _set_path(message: Any, path: str, value: Any) -> None:
+def _set_path(message: object, path: str, value: FieldValue) -> None:
     *parents, last = path.split(".")
     for part in parents:
         message = getattr(message, part)
     setattr(message, last, value)
 
 
-def canonical(type_name: str) -> MessageType[Any]:
+def canonical(type_name: str) -> MessageType[object]:
     """The canonical release's `type_name`, named at run time (a row's type)."""
     return get_profile(CANONICAL_PROFILE).message(type_name)

@@ -54,19 +54,22 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields, replace
 from enum import Enum
-from typing import Any, TypeVar
+from typing import TypeVar, overload
 
 from ...json_value import JsonObject, JsonValue
 from ...sensors import GpsNoise, ImuNoise, LidarConfig, MountPose, SensorConfigError
 from ...sensors.camera import CameraConfig, CameraMode, FovAxis
 from ...sensors.image_encoding import ImageFormat
 from ...sensors.radar import RadarConfig, RadarNoise
+from ...sensors.vectors import Vector3Tuple
 from ...yamltext import Problems, YamlDocument, YamlFileError
 from .table import DEPTH_TOPIC
 from .units import rad
 
 T = TypeVar("T")
+D = TypeVar("D")
 PointSettings = TypeVar("PointSettings", "GpsSettings", "ImuSettings")
+NoiseModel = TypeVar("NoiseModel", GpsNoise, ImuNoise, RadarNoise)
 E = TypeVar("E", bound=Enum)
 
 SENSOR_KINDS = ("gps", "imu", "lidar")
@@ -74,7 +77,6 @@ SENSOR_KINDS = ("gps", "imu", "lidar")
 (3, 4, ... in the order of `cameras:`), then the radar."""
 SECTION_KEYS = ("seed", *SENSOR_KINDS, "cameras", "radar")
 CAMERA_NUMBERS = ("width", "height", "fov_deg", "rate_hz", "jpeg_quality")
-CAMERA_INTEGERS = ("width", "height", "jpeg_quality")
 RADAR_NUMBERS = (
     "horizontal_fov_deg",
     "vertical_fov_deg",
@@ -256,20 +258,31 @@ def _camera(document: YamlDocument, path: Path, item: JsonValue) -> CameraSettin
         return CameraSettings()
     known = ("frame_id", "topic", "mode", "fov_axis", "format", "mount", *CAMERA_NUMBERS)
     data = _check_keys(document, path, item, known)
-    values: dict[str, Any] = {}  # CameraConfig's fields by name, for replace()
-    for name in CAMERA_NUMBERS:
-        if name in data:
-            values[name] = _number(
-                document, (*path, name), data[name], integer=name in CAMERA_INTEGERS
-            )
-    rate = values.get("rate_hz")
-    values["mode"] = _choice(document, (*path, "mode"), data.get("mode", "rgb"), CameraMode)
-    values["fov_axis"] = _choice(
-        document, (*path, "fov_axis"), data.get("fov_axis", "vertical"), FovAxis
-    )
+    read = _Fields(document, path, data)
     defaults = CameraConfig()
-    values["mount"] = _mount(document, (*path, "mount"), data.get("mount"), defaults.mount)
-    config = _built(document, path, lambda: replace(defaults, **values))
+    width = read.integer("width", defaults.width)
+    height = read.integer("height", defaults.height)
+    fov_deg = read.number("fov_deg", defaults.fov_deg)
+    rate = read.number("rate_hz", None)
+    jpeg_quality = read.integer("jpeg_quality", defaults.jpeg_quality)
+    mode = _choice(document, (*path, "mode"), data.get("mode", "rgb"), CameraMode)
+    fov_axis = _choice(document, (*path, "fov_axis"), data.get("fov_axis", "vertical"), FovAxis)
+    mount = _mount(document, (*path, "mount"), data.get("mount"), defaults.mount)
+    config = _built(
+        document,
+        path,
+        lambda: replace(
+            defaults,
+            width=width,
+            height=height,
+            fov_deg=fov_deg,
+            rate_hz=defaults.rate_hz if rate is None else rate,
+            jpeg_quality=jpeg_quality,
+            mode=mode,
+            fov_axis=fov_axis,
+            mount=mount,
+        ),
+    )
     image_format = None
     if "format" in data:
         image_format = _choice(document, (*path, "format"), data["format"], ImageFormat)
@@ -287,15 +300,29 @@ def _radar(document: YamlDocument, path: Path, section: JsonValue) -> RadarSetti
     if section is None:
         return defaults
     data = _check_keys(document, path, section, ("frame_id", "mount", "noise", *RADAR_NUMBERS))
-    values: dict[str, Any] = {}  # RadarConfig's fields by name, for replace()
-    for name in RADAR_NUMBERS:
-        if name in data:
-            values[name] = _number(
-                document, (*path, name), data[name], integer=name == "max_detections"
-            )
-    values["mount"] = _mount(document, (*path, "mount"), data.get("mount"), defaults.config.mount)
-    values["noise"] = _noise(document, (*path, "noise"), data.get("noise"), RadarNoise)
-    config = _built(document, path, lambda: replace(defaults.config, **values))
+    read = _Fields(document, path, data)
+    default = defaults.config
+    horizontal_fov_deg = read.number("horizontal_fov_deg", default.horizontal_fov_deg)
+    vertical_fov_deg = read.number("vertical_fov_deg", default.vertical_fov_deg)
+    min_range_m = read.number("min_range_m", default.min_range_m)
+    max_range_m = read.number("max_range_m", default.max_range_m)
+    max_detections = read.integer("max_detections", default.max_detections)
+    mount = _mount(document, (*path, "mount"), data.get("mount"), default.mount)
+    noise = _noise(document, (*path, "noise"), data.get("noise"), default.noise)
+    config = _built(
+        document,
+        path,
+        lambda: replace(
+            default,
+            horizontal_fov_deg=horizontal_fov_deg,
+            vertical_fov_deg=vertical_fov_deg,
+            min_range_m=min_range_m,
+            max_range_m=max_range_m,
+            max_detections=max_detections,
+            mount=mount,
+            noise=noise,
+        ),
+    )
     return RadarSettings(frame_id=_frame_id(document, path, data, defaults.frame_id), config=config)
 
 
@@ -325,7 +352,7 @@ def _point_sensor(
     with problems.collecting():
         mount = _mount(document, (*path, "mount"), data.get("mount"), defaults.mount)
     with problems.collecting():
-        model = _noise(document, (*path, "noise"), data.get("noise"), type(defaults.noise))
+        model = _noise(document, (*path, "noise"), data.get("noise"), defaults.noise)
     problems.raise_any()
     return replace(defaults, frame_id=frame_id, mount=mount, noise=model)
 
@@ -336,40 +363,54 @@ def _lidar(document: YamlDocument, path: Path, section: JsonValue) -> LidarSetti
         return defaults
     data = _check_keys(document, path, section, ("frame_id", "mount", *LIDAR_FIELDS))
     problems = Problems()
-    geometry: dict[str, Any] = {}  # LidarConfig's fields by name, for replace()
+    default = defaults.config
     resolution = data.get("horizontal_resolution_deg")
     not_positive = (
         isinstance(resolution, int | float) and not isinstance(resolution, bool) and resolution <= 0
     )
     if not_positive:
         problems.add(document.error((*path, "horizontal_resolution_deg"), "must be > 0 deg"))
-    for name in LIDAR_FIELDS:
-        if name in data and not (name == "horizontal_resolution_deg" and not_positive):
-            with problems.collecting():
-                geometry[name] = _number(
-                    document, (*path, name), data[name], integer=name == "channels"
-                )
-    if not problems.found:
-        channels = geometry.get("channels", defaults.config.channels)
-        resolution = geometry.get(
-            "horizontal_resolution_deg", defaults.config.horizontal_resolution_deg
-        )
-        if channels * 360.0 / resolution > MAX_LIDAR_RAYS:
-            problems.add(
-                document.error(
-                    path,
-                    f"channels x 360 / horizontal_resolution_deg is "
-                    f"{channels * 360.0 / resolution:.0f} rays a scan (at most {MAX_LIDAR_RAYS})",
-                )
+    read = _Fields(document, path, data, problems)
+    channels = read.integer("channels", default.channels)
+    min_elevation_deg = read.number("min_elevation_deg", default.min_elevation_deg)
+    max_elevation_deg = read.number("max_elevation_deg", default.max_elevation_deg)
+    horizontal_resolution_deg = (
+        default.horizontal_resolution_deg
+        if not_positive
+        else read.number("horizontal_resolution_deg", default.horizontal_resolution_deg)
+    )
+    min_range_m = read.number("min_range_m", default.min_range_m)
+    max_range_m = read.number("max_range_m", default.max_range_m)
+    rays = channels * 360.0 / horizontal_resolution_deg
+    if not problems.found and rays > MAX_LIDAR_RAYS:
+        problems.add(
+            document.error(
+                path,
+                f"channels x 360 / horizontal_resolution_deg is "
+                f"{rays:.0f} rays a scan (at most {MAX_LIDAR_RAYS})",
             )
-    mount = defaults.config.mount
+        )
+    mount = default.mount
     with problems.collecting():
         mount = _mount(document, (*path, "mount"), data.get("mount"), mount)
     frame_id = defaults.frame_id
     with problems.collecting():
         frame_id = _frame_id(document, path, data, frame_id)
     problems.raise_any()
-    config = _built(document, path, lambda: replace(defaults.config, mount=mount, **geometry))
+    config = _built(
+        document,
+        path,
+        lambda: replace(
+            default,
+            channels=channels,
+            min_elevation_deg=min_elevation_deg,
+            max_elevation_deg=max_elevation_deg,
+            horizontal_resolution_deg=horizontal_resolution_deg,
+            min_range_m=min_range_m,
+            max_range_m=max_range_m,
+            mount=mount,
+        ),
+    )
     return LidarSettings(frame_id=frame_id, config=config)
 
 
@@ -388,22 +429,101 @@ def _mount(document: YamlDocument, path: Path, section: JsonValue, default: Moun
     return replace(default, **values)
 
 
-def _noise(document: YamlDocument, path: Path, section: JsonValue, kind: Callable[..., T]) -> T:
-    """GpsNoise or ImuNoise from their own field names (std values, bias vectors)."""
+def _noise(
+    document: YamlDocument, path: Path, section: JsonValue, default: NoiseModel
+) -> NoiseModel:
+    """A noise model from its own field names (std values, bias vectors); a field left
+    out keeps `default`'s value."""
     if section is None:
-        return kind()
-    names = tuple(f.name for f in fields(kind))  # type: ignore[arg-type]
-    data = _check_keys(document, path, section, names)
+        return default
+    data = _check_keys(document, path, section, tuple(f.name for f in fields(default)))
     problems = Problems()
-    values: dict[str, Any] = {}  # the noise model's fields by name
-    for name, value in data.items():
-        with problems.collecting():
-            if name.endswith("_bias_rad_s") or name.endswith("_bias_m_s2"):
-                values[name] = _vector(document, (*path, name), value, RANGES[name])
-            else:
-                values[name] = _number(document, (*path, name), value)
+    build = _noise_builder(_Fields(document, path, data, problems), default)
     problems.raise_any()
-    return _built(document, path, lambda: kind(**values))
+    return _built(document, path, build)
+
+
+@overload
+def _noise_builder(read: _Fields, default: GpsNoise) -> Callable[[], GpsNoise]: ...
+@overload
+def _noise_builder(read: _Fields, default: ImuNoise) -> Callable[[], ImuNoise]: ...
+@overload
+def _noise_builder(read: _Fields, default: RadarNoise) -> Callable[[], RadarNoise]: ...
+def _noise_builder(
+    read: _Fields, default: GpsNoise | ImuNoise | RadarNoise
+) -> Callable[[], GpsNoise] | Callable[[], ImuNoise] | Callable[[], RadarNoise]:
+    """What builds the noise model whose fields `read` reads (the model checks them)."""
+    if isinstance(default, GpsNoise):
+        horizontal_std_m = read.number("horizontal_std_m", default.horizontal_std_m)
+        vertical_std_m = read.number("vertical_std_m", default.vertical_std_m)
+        return lambda: replace(
+            default, horizontal_std_m=horizontal_std_m, vertical_std_m=vertical_std_m
+        )
+    if isinstance(default, ImuNoise):
+        orientation_std_rad = read.number("orientation_std_rad", default.orientation_std_rad)
+        angular_velocity_std_rad_s = read.number(
+            "angular_velocity_std_rad_s", default.angular_velocity_std_rad_s
+        )
+        linear_acceleration_std_m_s2 = read.number(
+            "linear_acceleration_std_m_s2", default.linear_acceleration_std_m_s2
+        )
+        angular_velocity_bias_rad_s = read.vector(
+            "angular_velocity_bias_rad_s", default.angular_velocity_bias_rad_s
+        )
+        linear_acceleration_bias_m_s2 = read.vector(
+            "linear_acceleration_bias_m_s2", default.linear_acceleration_bias_m_s2
+        )
+        return lambda: replace(
+            default,
+            orientation_std_rad=orientation_std_rad,
+            angular_velocity_std_rad_s=angular_velocity_std_rad_s,
+            linear_acceleration_std_m_s2=linear_acceleration_std_m_s2,
+            angular_velocity_bias_rad_s=angular_velocity_bias_rad_s,
+            linear_acceleration_bias_m_s2=linear_acceleration_bias_m_s2,
+        )
+    range_std_m = read.number("range_std_m", default.range_std_m)
+    azimuth_std_rad = read.number("azimuth_std_rad", default.azimuth_std_rad)
+    range_rate_std_m_s = read.number("range_rate_std_m_s", default.range_rate_std_m_s)
+    return lambda: replace(
+        default,
+        range_std_m=range_std_m,
+        azimuth_std_rad=azimuth_std_rad,
+        range_rate_std_m_s=range_rate_std_m_s,
+    )
+
+
+@dataclass(frozen=True)
+class _Fields:
+    """The fields of one checked mapping, each read within its range or else its default.
+
+    Without `problems` a wrong field raises; with them it is reported there and reads as
+    its default, so that every problem of the mapping is found at once."""
+
+    document: YamlDocument
+    path: Path
+    data: JsonObject
+    problems: Problems | None = None
+
+    def number(self, name: str, default: D) -> float | D:
+        return self._read(name, default, lambda path, value: _number(self.document, path, value))
+
+    def integer(self, name: str, default: D) -> int | D:
+        return self._read(name, default, lambda path, value: _integer(self.document, path, value))
+
+    def vector(self, name: str, default: D) -> Vector3Tuple | D:
+        bounds = RANGES[name]
+        return self._read(
+            name, default, lambda path, value: _vector(self.document, path, value, bounds)
+        )
+
+    def _read(self, name: str, default: D, read: Callable[[Path, JsonValue], T]) -> T | D:
+        if name not in self.data:
+            return default
+        if self.problems is None:
+            return read((*self.path, name), self.data[name])
+        with self.problems.collecting():
+            return read((*self.path, name), self.data[name])
+        return default
 
 
 def _frame_id(document: YamlDocument, path: Path, data: JsonObject, default: str) -> str:
@@ -451,9 +571,14 @@ def _number(
     return value
 
 
+def _integer(document: YamlDocument, path: Path, value: JsonValue) -> int:
+    """An integer within the range of the field `path` ends in."""
+    return int(_number(document, path, value, integer=True))
+
+
 def _vector(
     document: YamlDocument, path: Path, value: JsonValue, bounds: tuple[float, float]
-) -> tuple[float, float, float]:
+) -> Vector3Tuple:
     if not isinstance(value, list) or len(value) != 3:
         raise document.error(path, "expected a list of 3 numbers (x, y, z)")
     x, y, z = (

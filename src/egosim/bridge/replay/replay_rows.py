@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import TypedDict
 
-from ...msgs.typed import morai_26_r1
+from ...msgs.typed import morai_26_r1, standard
 from ...replay import BagTimeline, CommandResult, Mode, ObjectState, ReplayTopics
 from ...sensors.rotation import quaternion_from_euler
 from ...world.traffic import ObjectType
@@ -26,6 +27,17 @@ from .replayed_scene import recorded_scene, shows_nothing_recorded, world_object
 
 # The yaw rate ReplayInfo reports is the slope of the recorded heading over this span (s).
 YAW_RATE_SPAN_S = 0.002
+
+
+class RecordedEgoFields(TypedDict, total=False):
+    """ReplayInfo's fields of the recorded ego: none when the bag has no ego."""
+
+    ego_acc: float
+    ego_brake: float
+    ego_steer: float
+    orientation: standard.Quaternion
+    linear_acceleration: standard.Vector3
+    angular_velocity: standard.Vector3
 
 
 def replay_topics(settings: NetworkSettings) -> ReplayTopics:
@@ -91,7 +103,7 @@ def publish_replay_info(context: BridgeContext, row: Row) -> morai_26_r1.ReplayI
     frame = timeline.sample(session.playback_time)
     profile = context.profile
     ego = frame.ego
-    fields: dict[str, object] = {}
+    fields: RecordedEgoFields = {}
     if ego is not None:
         fields = {
             "ego_acc": ego.accel_pedal,

@@ -10,8 +10,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import TypedDict
 
-from ...msgs.typed import morai_26_r1
+from ...msgs.typed import morai_26_r1, standard
 from ...world.collision import VehicleCollision
 from ...world.traffic import ObjectState
 from ..context import BridgeContext
@@ -32,7 +33,20 @@ def _turned(vector: Sequence[float], c: float, s: float) -> tuple[float, float, 
     return (c * x + s * y, -s * x + c * y, z)
 
 
-def object_status_fields(profile: CanonicalProfile, state: ObjectState) -> dict[str, object]:
+class ObjectStatusFields(TypedDict):
+    """The fields ObjectStatus and ObjectStatusExtended share."""
+
+    unique_id: int
+    type: int
+    name: str
+    heading: float
+    velocity: standard.Vector3
+    acceleration: standard.Vector3
+    size: standard.Vector3
+    position: standard.Vector3
+
+
+def object_status_fields(profile: CanonicalProfile, state: ObjectState) -> ObjectStatusFields:
     """The fields ObjectStatus and ObjectStatusExtended share, in protocol units."""
     c, s = math.cos(state.heading), math.sin(state.heading)
     vx, vy, vz = _turned(state.velocity, c, s)

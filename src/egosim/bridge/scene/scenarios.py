@@ -14,7 +14,7 @@ from __future__ import annotations
 import logging
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Generic, TypeVar
+from typing import Generic, Protocol, TypeVar
 
 from ...datapaths import PathOutsideRootsError, resolve_in_roots
 from ...msgs.typed import morai_26_r1
@@ -40,6 +40,14 @@ the fields read here."""
 
 
 Load = TypeVar("Load", bound=ScenarioLoadFields)
+Load_co = TypeVar("Load_co", bound=ScenarioLoadFields, covariant=True)
+
+
+class LoadingRequest(Protocol[Load_co]):
+    """A scenario-loading service's request (MoraiScenarioLoadSrv's, MoraiSyncModeSLSrv's)."""
+
+    @property
+    def request(self) -> Load_co: ...
 
 
 @dataclass(frozen=True)
@@ -90,10 +98,8 @@ def prepare_scenario(
 
 
 def prepare_scenario_service(
-    context: BridgeContext,
-    row: Row,
-    request: morai_26_r1.MoraiScenarioLoadSrvRequest | morai_26_r1.MoraiSyncModeSLSrvRequest,
-) -> ScenarioRequest[ScenarioLoadFields]:
+    context: BridgeContext, row: Row, request: LoadingRequest[Load]
+) -> ScenarioRequest[Load]:
     """A scenario-loading service's request (its `request` field), read (transport thread)."""
     return read_scenario(request.request, context.data_roots)
 
@@ -158,7 +164,7 @@ def apply_network_settings(context: BridgeContext, scenario: Scenario) -> None:
 
 
 def on_scenario_load(
-    context: BridgeContext, row: Row, prepared: ScenarioRequest[ScenarioLoadFields]
+    context: BridgeContext, row: Row, prepared: ScenarioRequest[morai_26_r1.ScenarioLoad]
 ) -> None:
     try:
         load_requested_scenario(context, prepared)
@@ -167,7 +173,7 @@ def on_scenario_load(
 
 
 def serve_scenario_load(
-    context: BridgeContext, row: Row, prepared: ScenarioRequest[ScenarioLoadFields]
+    context: BridgeContext, row: Row, prepared: ScenarioRequest[morai_26_r1.ScenarioLoad]
 ) -> morai_26_r1.MoraiScenarioLoadSrvResponse:
     """/Service_MoraiSL: MoraiSrvResponse.result true when the scenario was loaded."""
     try:

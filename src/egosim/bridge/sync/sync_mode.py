@@ -35,7 +35,7 @@ from __future__ import annotations
 import logging
 from contextlib import nullcontext
 
-from ...msgs import get_profile
+from ...msgs import Message, get_profile
 from ...msgs.typed import morai_26_r1, morai_2021_08
 from ...world.vehicle import Gear
 from ..context import BridgeContext
@@ -51,7 +51,7 @@ MAX_TICKS_PER_REQUEST = 500
 MAX_TIME_STEP_MS = 1000
 
 
-def _session(context: BridgeContext, row: Row) -> SyncSession | None:
+def _session(context: BridgeContext, row: Row) -> SyncSession[BridgeContext] | None:
     """The active session, or None (logged) when sync mode is not started."""
     session = context.sync
     if not session.active:
@@ -64,7 +64,7 @@ def result_message(context: BridgeContext, ok: bool) -> morai_26_r1.SyncModeResu
     return context.profile.message("morai_msgs/SyncModeResultResponse").new(result=ok)
 
 
-def service_response(context: BridgeContext, service_type: str, response: object) -> object:
+def service_response(context: BridgeContext, service_type: str, response: Message) -> object:
     return context.profile.message(f"morai_msgs/{service_type}Response").new(response=response)
 
 
@@ -146,7 +146,7 @@ def serve_wait_for_tick(
     )
 
 
-def _tick(context: BridgeContext, session: SyncSession) -> None:
+def _tick(context: BridgeContext, session: SyncSession[BridgeContext]) -> None:
     frame = session.frame + 1
     for name, action in session.due(frame):
         if not action(context):
@@ -158,7 +158,7 @@ def _tick(context: BridgeContext, session: SyncSession) -> None:
     session.frame = frame
 
 
-def at_frame(context: BridgeContext, row: Row, frame: int, action: Action) -> bool:
+def at_frame(context: BridgeContext, row: Row, frame: int, action: Action[BridgeContext]) -> bool:
     """Apply `action`, requested on `row`, in the tick producing `frame` (see the
     module's docstring)."""
     session = _session(context, row)
@@ -172,7 +172,9 @@ def at_frame(context: BridgeContext, row: Row, frame: int, action: Action) -> bo
     return True
 
 
-def driving(row: Row, command: morai_26_r1.CtrlCmd, sensor_capture: bool = False) -> Action:
+def driving(
+    row: Row, command: morai_26_r1.CtrlCmd, sensor_capture: bool = False
+) -> Action[BridgeContext]:
     """The action that hands the main ego a (26.r1) CtrlCmd requested on `row` (and, with
     `sensor_capture`, has the tick publish the camera frames)."""
 

@@ -10,16 +10,20 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Generic, TypeVar
 
 MAX_PENDING_ACTIONS = 10_000
 
+Context = TypeVar("Context")
+"""What an action is applied to: the bridge's context (bridge/context.py, which holds
+the session)."""
+
 # An action applied in a later tick: (context) -> whether it succeeded.
-Action = Callable[[Any], bool]
+Action = Callable[[Context], bool]
 
 
 @dataclass
-class SyncSession:
+class SyncSession(Generic[Context]):
     """The synchronous-mode state of a run."""
 
     active: bool = False
@@ -33,7 +37,7 @@ class SyncSession:
     capture_cameras: bool = False
     """The tick being produced publishes the camera frames (SyncModeCtrlCmd's
     sensor_capture); cleared when the tick ends."""
-    _pending: dict[int, list[tuple[str, Action]]] = field(default_factory=dict)
+    _pending: dict[int, list[tuple[str, Action[Context]]]] = field(default_factory=dict)
     _pending_count: int = 0
 
     @property
@@ -50,7 +54,7 @@ class SyncSession:
         self.active, self.awaiting_client = False, False
         self.drop_pending()
 
-    def schedule(self, frame: int, service: str, action: Action) -> bool:
+    def schedule(self, frame: int, service: str, action: Action[Context]) -> bool:
         """Keep `action` for the tick producing `frame`; False when too many wait."""
         if self._pending_count >= MAX_PENDING_ACTIONS:
             return False
@@ -58,7 +62,7 @@ class SyncSession:
         self._pending_count += 1
         return True
 
-    def due(self, frame: int) -> list[tuple[str, Action]]:
+    def due(self, frame: int) -> list[tuple[str, Action[Context]]]:
         """The (service, action) pairs kept for `frame`, in arrival order, now taken."""
         actions = self._pending.pop(frame, [])
         self._pending_count -= len(actions)

@@ -10,51 +10,104 @@ from typing import ClassVar, Protocol
 import numpy as np
 from numpy.typing import NDArray
 
+from ..message_type import TypedMessageType
+from ..values import Message
 
-class Duration(Protocol):
+
+class Duration(Message, Protocol):
     """builtin_interfaces/Duration."""
 
     sec: int
     nanosec: int
 
+    def __init__(self, *, sec: int, nanosec: int) -> None: ...
 
-class Time(Protocol):
+
+class DurationType(TypedMessageType[Duration], Protocol):
+    """The MessageType of builtin_interfaces/Duration."""
+
+    def new(self, *, sec: int = ..., nanosec: int = ...) -> Duration: ...
+
+
+class Time(Message, Protocol):
     """builtin_interfaces/Time."""
 
     sec: int
     nanosec: int
 
+    def __init__(self, *, sec: int, nanosec: int) -> None: ...
 
-class Point(Protocol):
+
+class TimeType(TypedMessageType[Time], Protocol):
+    """The MessageType of builtin_interfaces/Time."""
+
+    def new(self, *, sec: int = ..., nanosec: int = ...) -> Time: ...
+
+
+class Point(Message, Protocol):
     """geometry_msgs/Point."""
 
     x: float
     y: float
     z: float
 
+    def __init__(self, *, x: float, y: float, z: float) -> None: ...
 
-class Pose(Protocol):
+
+class PointType(TypedMessageType[Point], Protocol):
+    """The MessageType of geometry_msgs/Point."""
+
+    def new(self, *, x: float = ..., y: float = ..., z: float = ...) -> Point: ...
+
+
+class Pose(Message, Protocol):
     """geometry_msgs/Pose."""
 
     position: Point
     orientation: Quaternion
 
+    def __init__(self, *, position: Point, orientation: Quaternion) -> None: ...
 
-class PoseStamped(Protocol):
+
+class PoseType(TypedMessageType[Pose], Protocol):
+    """The MessageType of geometry_msgs/Pose."""
+
+    def new(self, *, position: Point = ..., orientation: Quaternion = ...) -> Pose: ...
+
+
+class PoseStamped(Message, Protocol):
     """geometry_msgs/PoseStamped."""
 
     header: Header
     pose: Pose
 
+    def __init__(self, *, header: Header, pose: Pose) -> None: ...
 
-class PoseWithCovariance(Protocol):
+
+class PoseStampedType(TypedMessageType[PoseStamped], Protocol):
+    """The MessageType of geometry_msgs/PoseStamped."""
+
+    def new(self, *, header: Header = ..., pose: Pose = ...) -> PoseStamped: ...
+
+
+class PoseWithCovariance(Message, Protocol):
     """geometry_msgs/PoseWithCovariance."""
 
     pose: Pose
     covariance: NDArray[np.float64]
 
+    def __init__(self, *, pose: Pose, covariance: NDArray[np.float64]) -> None: ...
 
-class Quaternion(Protocol):
+
+class PoseWithCovarianceType(TypedMessageType[PoseWithCovariance], Protocol):
+    """The MessageType of geometry_msgs/PoseWithCovariance."""
+
+    def new(
+        self, *, pose: Pose = ..., covariance: NDArray[np.float64] = ...
+    ) -> PoseWithCovariance: ...
+
+
+class Quaternion(Message, Protocol):
     """geometry_msgs/Quaternion."""
 
     x: float
@@ -62,45 +115,99 @@ class Quaternion(Protocol):
     z: float
     w: float
 
+    def __init__(self, *, x: float, y: float, z: float, w: float) -> None: ...
 
-class Transform(Protocol):
+
+class QuaternionType(TypedMessageType[Quaternion], Protocol):
+    """The MessageType of geometry_msgs/Quaternion."""
+
+    def new(
+        self, *, x: float = ..., y: float = ..., z: float = ..., w: float = ...
+    ) -> Quaternion: ...
+
+
+class Transform(Message, Protocol):
     """geometry_msgs/Transform."""
 
     translation: Vector3
     rotation: Quaternion
 
+    def __init__(self, *, translation: Vector3, rotation: Quaternion) -> None: ...
 
-class TransformStamped(Protocol):
+
+class TransformType(TypedMessageType[Transform], Protocol):
+    """The MessageType of geometry_msgs/Transform."""
+
+    def new(self, *, translation: Vector3 = ..., rotation: Quaternion = ...) -> Transform: ...
+
+
+class TransformStamped(Message, Protocol):
     """geometry_msgs/TransformStamped."""
 
     header: Header
     child_frame_id: str
     transform: Transform
 
+    def __init__(self, *, header: Header, child_frame_id: str, transform: Transform) -> None: ...
 
-class Twist(Protocol):
+
+class TransformStampedType(TypedMessageType[TransformStamped], Protocol):
+    """The MessageType of geometry_msgs/TransformStamped."""
+
+    def new(
+        self, *, header: Header = ..., child_frame_id: str = ..., transform: Transform = ...
+    ) -> TransformStamped: ...
+
+
+class Twist(Message, Protocol):
     """geometry_msgs/Twist."""
 
     linear: Vector3
     angular: Vector3
 
+    def __init__(self, *, linear: Vector3, angular: Vector3) -> None: ...
 
-class TwistWithCovariance(Protocol):
+
+class TwistType(TypedMessageType[Twist], Protocol):
+    """The MessageType of geometry_msgs/Twist."""
+
+    def new(self, *, linear: Vector3 = ..., angular: Vector3 = ...) -> Twist: ...
+
+
+class TwistWithCovariance(Message, Protocol):
     """geometry_msgs/TwistWithCovariance."""
 
     twist: Twist
     covariance: NDArray[np.float64]
 
+    def __init__(self, *, twist: Twist, covariance: NDArray[np.float64]) -> None: ...
 
-class Vector3(Protocol):
+
+class TwistWithCovarianceType(TypedMessageType[TwistWithCovariance], Protocol):
+    """The MessageType of geometry_msgs/TwistWithCovariance."""
+
+    def new(
+        self, *, twist: Twist = ..., covariance: NDArray[np.float64] = ...
+    ) -> TwistWithCovariance: ...
+
+
+class Vector3(Message, Protocol):
     """geometry_msgs/Vector3."""
 
     x: float
     y: float
     z: float
 
+    def __init__(self, *, x: float, y: float, z: float) -> None: ...
 
-class Odometry(Protocol):
+
+class Vector3Type(TypedMessageType[Vector3], Protocol):
+    """The MessageType of geometry_msgs/Vector3."""
+
+    def new(self, *, x: float = ..., y: float = ..., z: float = ...) -> Vector3: ...
+
+
+class Odometry(Message, Protocol):
     """nav_msgs/Odometry."""
 
     header: Header
@@ -108,21 +215,59 @@ class Odometry(Protocol):
     pose: PoseWithCovariance
     twist: TwistWithCovariance
 
+    def __init__(
+        self,
+        *,
+        header: Header,
+        child_frame_id: str,
+        pose: PoseWithCovariance,
+        twist: TwistWithCovariance,
+    ) -> None: ...
 
-class Path(Protocol):
+
+class OdometryType(TypedMessageType[Odometry], Protocol):
+    """The MessageType of nav_msgs/Odometry."""
+
+    def new(
+        self,
+        *,
+        header: Header = ...,
+        child_frame_id: str = ...,
+        pose: PoseWithCovariance = ...,
+        twist: TwistWithCovariance = ...,
+    ) -> Odometry: ...
+
+
+class Path(Message, Protocol):
     """nav_msgs/Path."""
 
     header: Header
     poses: list[PoseStamped]
 
+    def __init__(self, *, header: Header, poses: list[PoseStamped]) -> None: ...
 
-class Clock(Protocol):
+
+class PathType(TypedMessageType[Path], Protocol):
+    """The MessageType of nav_msgs/Path."""
+
+    def new(self, *, header: Header = ..., poses: list[PoseStamped] = ...) -> Path: ...
+
+
+class Clock(Message, Protocol):
     """rosgraph_msgs/Clock."""
 
     clock: Time
 
+    def __init__(self, *, clock: Time) -> None: ...
 
-class Log(Protocol):
+
+class ClockType(TypedMessageType[Clock], Protocol):
+    """The MessageType of rosgraph_msgs/Clock."""
+
+    def new(self, *, clock: Time = ...) -> Clock: ...
+
+
+class Log(Message, Protocol):
     """rosgraph_msgs/Log."""
 
     DEBUG: ClassVar[int]
@@ -139,8 +284,38 @@ class Log(Protocol):
     line: int
     topics: list[str]
 
+    def __init__(
+        self,
+        *,
+        header: Header,
+        level: int,
+        name: str,
+        msg: str,
+        file: str,
+        function: str,
+        line: int,
+        topics: list[str],
+    ) -> None: ...
 
-class CameraInfo(Protocol):
+
+class LogType(TypedMessageType[Log], Protocol):
+    """The MessageType of rosgraph_msgs/Log."""
+
+    def new(
+        self,
+        *,
+        header: Header = ...,
+        level: int = ...,
+        name: str = ...,
+        msg: str = ...,
+        file: str = ...,
+        function: str = ...,
+        line: int = ...,
+        topics: list[str] = ...,
+    ) -> Log: ...
+
+
+class CameraInfo(Message, Protocol):
     """sensor_msgs/CameraInfo."""
 
     header: Header
@@ -155,16 +330,62 @@ class CameraInfo(Protocol):
     binning_y: int
     roi: RegionOfInterest
 
+    def __init__(
+        self,
+        *,
+        header: Header,
+        height: int,
+        width: int,
+        distortion_model: str,
+        D: NDArray[np.float64],
+        K: NDArray[np.float64],
+        R: NDArray[np.float64],
+        P: NDArray[np.float64],
+        binning_x: int,
+        binning_y: int,
+        roi: RegionOfInterest,
+    ) -> None: ...
 
-class CompressedImage(Protocol):
+
+class CameraInfoType(TypedMessageType[CameraInfo], Protocol):
+    """The MessageType of sensor_msgs/CameraInfo."""
+
+    def new(
+        self,
+        *,
+        header: Header = ...,
+        height: int = ...,
+        width: int = ...,
+        distortion_model: str = ...,
+        D: NDArray[np.float64] = ...,
+        K: NDArray[np.float64] = ...,
+        R: NDArray[np.float64] = ...,
+        P: NDArray[np.float64] = ...,
+        binning_x: int = ...,
+        binning_y: int = ...,
+        roi: RegionOfInterest = ...,
+    ) -> CameraInfo: ...
+
+
+class CompressedImage(Message, Protocol):
     """sensor_msgs/CompressedImage."""
 
     header: Header
     format: str
     data: NDArray[np.uint8]
 
+    def __init__(self, *, header: Header, format: str, data: NDArray[np.uint8]) -> None: ...
 
-class Image(Protocol):
+
+class CompressedImageType(TypedMessageType[CompressedImage], Protocol):
+    """The MessageType of sensor_msgs/CompressedImage."""
+
+    def new(
+        self, *, header: Header = ..., format: str = ..., data: NDArray[np.uint8] = ...
+    ) -> CompressedImage: ...
+
+
+class Image(Message, Protocol):
     """sensor_msgs/Image."""
 
     header: Header
@@ -175,8 +396,36 @@ class Image(Protocol):
     step: int
     data: NDArray[np.uint8]
 
+    def __init__(
+        self,
+        *,
+        header: Header,
+        height: int,
+        width: int,
+        encoding: str,
+        is_bigendian: int,
+        step: int,
+        data: NDArray[np.uint8],
+    ) -> None: ...
 
-class Imu(Protocol):
+
+class ImageType(TypedMessageType[Image], Protocol):
+    """The MessageType of sensor_msgs/Image."""
+
+    def new(
+        self,
+        *,
+        header: Header = ...,
+        height: int = ...,
+        width: int = ...,
+        encoding: str = ...,
+        is_bigendian: int = ...,
+        step: int = ...,
+        data: NDArray[np.uint8] = ...,
+    ) -> Image: ...
+
+
+class Imu(Message, Protocol):
     """sensor_msgs/Imu."""
 
     header: Header
@@ -187,8 +436,36 @@ class Imu(Protocol):
     linear_acceleration: Vector3
     linear_acceleration_covariance: NDArray[np.float64]
 
+    def __init__(
+        self,
+        *,
+        header: Header,
+        orientation: Quaternion,
+        orientation_covariance: NDArray[np.float64],
+        angular_velocity: Vector3,
+        angular_velocity_covariance: NDArray[np.float64],
+        linear_acceleration: Vector3,
+        linear_acceleration_covariance: NDArray[np.float64],
+    ) -> None: ...
 
-class NavSatFix(Protocol):
+
+class ImuType(TypedMessageType[Imu], Protocol):
+    """The MessageType of sensor_msgs/Imu."""
+
+    def new(
+        self,
+        *,
+        header: Header = ...,
+        orientation: Quaternion = ...,
+        orientation_covariance: NDArray[np.float64] = ...,
+        angular_velocity: Vector3 = ...,
+        angular_velocity_covariance: NDArray[np.float64] = ...,
+        linear_acceleration: Vector3 = ...,
+        linear_acceleration_covariance: NDArray[np.float64] = ...,
+    ) -> Imu: ...
+
+
+class NavSatFix(Message, Protocol):
     """sensor_msgs/NavSatFix."""
 
     COVARIANCE_TYPE_UNKNOWN: ClassVar[int]
@@ -203,8 +480,36 @@ class NavSatFix(Protocol):
     position_covariance: NDArray[np.float64]
     position_covariance_type: int
 
+    def __init__(
+        self,
+        *,
+        header: Header,
+        status: NavSatStatus,
+        latitude: float,
+        longitude: float,
+        altitude: float,
+        position_covariance: NDArray[np.float64],
+        position_covariance_type: int,
+    ) -> None: ...
 
-class NavSatStatus(Protocol):
+
+class NavSatFixType(TypedMessageType[NavSatFix], Protocol):
+    """The MessageType of sensor_msgs/NavSatFix."""
+
+    def new(
+        self,
+        *,
+        header: Header = ...,
+        status: NavSatStatus = ...,
+        latitude: float = ...,
+        longitude: float = ...,
+        altitude: float = ...,
+        position_covariance: NDArray[np.float64] = ...,
+        position_covariance_type: int = ...,
+    ) -> NavSatFix: ...
+
+
+class NavSatStatus(Message, Protocol):
     """sensor_msgs/NavSatStatus."""
 
     STATUS_NO_FIX: ClassVar[int]
@@ -218,8 +523,16 @@ class NavSatStatus(Protocol):
     status: int
     service: int
 
+    def __init__(self, *, status: int, service: int) -> None: ...
 
-class PointCloud2(Protocol):
+
+class NavSatStatusType(TypedMessageType[NavSatStatus], Protocol):
+    """The MessageType of sensor_msgs/NavSatStatus."""
+
+    def new(self, *, status: int = ..., service: int = ...) -> NavSatStatus: ...
+
+
+class PointCloud2(Message, Protocol):
     """sensor_msgs/PointCloud2."""
 
     header: Header
@@ -232,8 +545,40 @@ class PointCloud2(Protocol):
     data: NDArray[np.uint8]
     is_dense: bool
 
+    def __init__(
+        self,
+        *,
+        header: Header,
+        height: int,
+        width: int,
+        fields: list[PointField],
+        is_bigendian: bool,
+        point_step: int,
+        row_step: int,
+        data: NDArray[np.uint8],
+        is_dense: bool,
+    ) -> None: ...
 
-class PointField(Protocol):
+
+class PointCloud2Type(TypedMessageType[PointCloud2], Protocol):
+    """The MessageType of sensor_msgs/PointCloud2."""
+
+    def new(
+        self,
+        *,
+        header: Header = ...,
+        height: int = ...,
+        width: int = ...,
+        fields: list[PointField] = ...,
+        is_bigendian: bool = ...,
+        point_step: int = ...,
+        row_step: int = ...,
+        data: NDArray[np.uint8] = ...,
+        is_dense: bool = ...,
+    ) -> PointCloud2: ...
+
+
+class PointField(Message, Protocol):
     """sensor_msgs/PointField."""
 
     INT8: ClassVar[int]
@@ -249,8 +594,18 @@ class PointField(Protocol):
     datatype: int
     count: int
 
+    def __init__(self, *, name: str, offset: int, datatype: int, count: int) -> None: ...
 
-class RegionOfInterest(Protocol):
+
+class PointFieldType(TypedMessageType[PointField], Protocol):
+    """The MessageType of sensor_msgs/PointField."""
+
+    def new(
+        self, *, name: str = ..., offset: int = ..., datatype: int = ..., count: int = ...
+    ) -> PointField: ...
+
+
+class RegionOfInterest(Message, Protocol):
     """sensor_msgs/RegionOfInterest."""
 
     x_offset: int
@@ -259,8 +614,26 @@ class RegionOfInterest(Protocol):
     width: int
     do_rectify: bool
 
+    def __init__(
+        self, *, x_offset: int, y_offset: int, height: int, width: int, do_rectify: bool
+    ) -> None: ...
 
-class ColorRGBA(Protocol):
+
+class RegionOfInterestType(TypedMessageType[RegionOfInterest], Protocol):
+    """The MessageType of sensor_msgs/RegionOfInterest."""
+
+    def new(
+        self,
+        *,
+        x_offset: int = ...,
+        y_offset: int = ...,
+        height: int = ...,
+        width: int = ...,
+        do_rectify: bool = ...,
+    ) -> RegionOfInterest: ...
+
+
+class ColorRGBA(Message, Protocol):
     """std_msgs/ColorRGBA."""
 
     r: float
@@ -268,28 +641,62 @@ class ColorRGBA(Protocol):
     b: float
     a: float
 
+    def __init__(self, *, r: float, g: float, b: float, a: float) -> None: ...
 
-class Header(Protocol):
+
+class ColorRGBAType(TypedMessageType[ColorRGBA], Protocol):
+    """The MessageType of std_msgs/ColorRGBA."""
+
+    def new(
+        self, *, r: float = ..., g: float = ..., b: float = ..., a: float = ...
+    ) -> ColorRGBA: ...
+
+
+class Header(Message, Protocol):
     """std_msgs/Header."""
 
     seq: int
     stamp: Time
     frame_id: str
 
+    def __init__(self, *, seq: int, stamp: Time, frame_id: str) -> None: ...
 
-class String(Protocol):
+
+class HeaderType(TypedMessageType[Header], Protocol):
+    """The MessageType of std_msgs/Header."""
+
+    def new(self, *, seq: int = ..., stamp: Time = ..., frame_id: str = ...) -> Header: ...
+
+
+class String(Message, Protocol):
     """std_msgs/String."""
 
     data: str
 
+    def __init__(self, *, data: str) -> None: ...
 
-class TFMessage(Protocol):
+
+class StringType(TypedMessageType[String], Protocol):
+    """The MessageType of std_msgs/String."""
+
+    def new(self, *, data: str = ...) -> String: ...
+
+
+class TFMessage(Message, Protocol):
     """tf2_msgs/TFMessage."""
 
     transforms: list[TransformStamped]
 
+    def __init__(self, *, transforms: list[TransformStamped]) -> None: ...
 
-class Marker(Protocol):
+
+class TFMessageType(TypedMessageType[TFMessage], Protocol):
+    """The MessageType of tf2_msgs/TFMessage."""
+
+    def new(self, *, transforms: list[TransformStamped] = ...) -> TFMessage: ...
+
+
+class Marker(Message, Protocol):
     """visualization_msgs/Marker."""
 
     ARROW: ClassVar[int]
@@ -324,8 +731,60 @@ class Marker(Protocol):
     mesh_resource: str
     mesh_use_embedded_materials: bool
 
+    def __init__(
+        self,
+        *,
+        header: Header,
+        ns: str,
+        id: int,
+        type: int,
+        action: int,
+        pose: Pose,
+        scale: Vector3,
+        color: ColorRGBA,
+        lifetime: Duration,
+        frame_locked: bool,
+        points: list[Point],
+        colors: list[ColorRGBA],
+        text: str,
+        mesh_resource: str,
+        mesh_use_embedded_materials: bool,
+    ) -> None: ...
 
-class MarkerArray(Protocol):
+
+class MarkerType(TypedMessageType[Marker], Protocol):
+    """The MessageType of visualization_msgs/Marker."""
+
+    def new(
+        self,
+        *,
+        header: Header = ...,
+        ns: str = ...,
+        id: int = ...,
+        type: int = ...,
+        action: int = ...,
+        pose: Pose = ...,
+        scale: Vector3 = ...,
+        color: ColorRGBA = ...,
+        lifetime: Duration = ...,
+        frame_locked: bool = ...,
+        points: list[Point] = ...,
+        colors: list[ColorRGBA] = ...,
+        text: str = ...,
+        mesh_resource: str = ...,
+        mesh_use_embedded_materials: bool = ...,
+    ) -> Marker: ...
+
+
+class MarkerArray(Message, Protocol):
     """visualization_msgs/MarkerArray."""
 
     markers: list[Marker]
+
+    def __init__(self, *, markers: list[Marker]) -> None: ...
+
+
+class MarkerArrayType(TypedMessageType[MarkerArray], Protocol):
+    """The MessageType of visualization_msgs/MarkerArray."""
+
+    def new(self, *, markers: list[Marker] = ...) -> MarkerArray: ...
