@@ -5,20 +5,28 @@ subprocess, subscribes to every published row (so every builder runs, the LiDAR
 included) or to the `--topics` named, starts sync mode and times WaitForTick calls of
 `--ticks-per-call` ticks each; with `--ctrl-cmd`, each call is preceded by a
 SyncModeCtrlCmd for its first frame, as a driving client's loop does. Real-time factor =
-simulated seconds / wall seconds.
+simulated seconds / wall seconds. Beside each figure, the CPU time per tick (Linux's
+/proc): the simulator's loop thread, its other threads (TCPROS writers, XML-RPC, the
+embedded master) and the client's process, so where a tick's wall time goes shows.
+
+With `--rounds N`, each setting is timed N times in turn on the same simulator, then the
+best round of each is printed again (the figure that a busy machine disturbs least).
 
 Usage: .venv/bin/python benchmarks/sync_mode.py [--ticks 2000] [--ticks-per-call 1 100]
-       [--topics /Ego_topic /Object_topic ...] [--ctrl-cmd]
+       [--rounds 1] [--topics /Ego_topic /Object_topic ...] [--ctrl-cmd]
 """
 
 from __future__ import annotations
 
 import argparse
+import os
+import resource
 import subprocess
 import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 
 from loopback import free_port, start_simulator
 
@@ -54,6 +62,27 @@ def simulator_client(name: str) -> Iterator[tuple[Node, subprocess.Popen[str]]]:
         simulator.wait(10)
 
 
+def process_cpu(pid: int) -> tuple[float, float]:
+    """CPU seconds (user + system) of process `pid`'s main thread and of its other
+    threads, from /proc (threads that ended are counted with the process's own total)."""
+    ticks = os.sysconf("SC_CLK_TCK")
+
+    def cpu(stat_path: str) -> float:
+        with open(stat_path) as stat:
+            fields = stat.read().rpartition(")")[2].split()
+        return (int(fields[11]) + int(fields[12])) / ticks  # utime, stime
+
+    whole = cpu(f"/proc/{pid}/stat")
+    main = cpu(f"/proc/{pid}/task/{pid}/stat")
+    return main, whole - main
+
+
+def own_cpu() -> float:
+    """CPU seconds (user + system) of this process, every thread."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
 def start_sync_mode(node: Node, profile: Profile) -> int:
     """Start sync mode as USER with TICK_MS ticks; the current frame."""
     command = profile.service("morai_msgs/MoraiSyncModeCmdSrv")
@@ -73,10 +102,35 @@ def control_request(profile: Profile, control: ServiceType, frame: int) -> bytes
     return control.request.serialize(control.request.new(request=request))
 
 
+@dataclass(frozen=True)
+class Round:
+    """One timed run of WaitForTick calls: ticks, wall seconds and CPU seconds."""
+
+    per_call: int
+    ticks: int
+    wall: float
+    loop_cpu: float
+    others_cpu: float
+    client_cpu: float
+
+    def __str__(self) -> str:
+        per_tick = 1e6 / self.ticks
+        return (
+            f"{self.per_call:4d} ticks per WaitForTick: {self.ticks / self.wall:7.0f} ticks/s, "
+            f"{self.ticks * TICK_MS / 1000 / self.wall:5.1f}x real time; per tick "
+            f"{self.wall * per_tick:.0f} us wall, CPU: simulator loop thread "
+            f"{self.loop_cpu * per_tick:.0f} us, its other threads "
+            f"{self.others_cpu * per_tick:.0f} us, client {self.client_cpu * per_tick:.0f} us"
+        )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--ticks", type=int, default=2000)
     parser.add_argument("--ticks-per-call", type=int, nargs="+", default=[1, 100])
+    parser.add_argument(
+        "--rounds", type=int, default=1, help="time each setting this many times, then the best"
+    )
     parser.add_argument(
         "--topics", nargs="*", help="subscribe to these rows only (default: every one)"
     )
@@ -86,7 +140,7 @@ def main() -> None:
     args = parser.parse_args()
 
     profile = get_profile("26.r1")
-    with simulator_client("sync_benchmark") as (node, _):
+    with simulator_client("sync_benchmark") as (node, simulator):
         counters = {}
         for row in default_network_settings().enabled_rows():
             wanted = args.topics is None or row.name in args.topics
@@ -101,23 +155,40 @@ def main() -> None:
         control_proxy = node.service_proxy("/SyncModeCtrlCmd", control, persistent=True)
         subscribed = "every published row" if args.topics is None else " ".join(counters)
         print(f"town + default scenario, {TICK_MS} ms ticks, subscribed: {subscribed}")
-        for per_call in args.ticks_per_call:
-            calls = max(args.ticks // per_call, 1)
-            began = time.perf_counter()
-            for _ in range(calls):
-                if args.ctrl_cmd:
-                    control_proxy.call(control_request(profile, control, frame + 1))
-                frame += per_call
-                request = tick.request.new(
-                    request=profile.message("morai_msgs/WaitForTick").new(user_id=USER, frame=frame)
+        best: dict[int, Round] = {}
+        for _ in range(args.rounds):
+            for per_call in args.ticks_per_call:
+                calls = max(args.ticks // per_call, 1)
+                began = time.perf_counter()
+                loop_began, others_began = process_cpu(simulator.pid)
+                client_began = own_cpu()
+                for _ in range(calls):
+                    if args.ctrl_cmd:
+                        control_proxy.call(control_request(profile, control, frame + 1))
+                    frame += per_call
+                    request = tick.request.new(
+                        request=profile.message("morai_msgs/WaitForTick").new(
+                            user_id=USER, frame=frame
+                        )
+                    )
+                    tick.response.deserialize(proxy.call(tick.request.serialize(request)))
+                wall = time.perf_counter() - began
+                loop_cpu, others_cpu = process_cpu(simulator.pid)
+                timed = Round(
+                    per_call,
+                    calls * per_call,
+                    wall,
+                    loop_cpu - loop_began,
+                    others_cpu - others_began,
+                    own_cpu() - client_began,
                 )
-                tick.response.deserialize(proxy.call(tick.request.serialize(request)))
-            wall = time.perf_counter() - began
-            ticks = calls * per_call
-            print(
-                f"{per_call:4d} ticks per WaitForTick: {ticks / wall:7.0f} ticks/s, "
-                f"{ticks * TICK_MS / 1000 / wall:5.1f}x real time"
-            )
+                print(timed)
+                if per_call not in best or timed.wall < best[per_call].wall:
+                    best[per_call] = timed
+        if args.rounds > 1:
+            print(f"best of {args.rounds} rounds:")
+            for timed in best.values():
+                print(timed)
         received = ", ".join(f"{name} {c.count}" for name, c in sorted(counters.items()))
         print(f"messages received: {received}")
 

@@ -240,3 +240,22 @@ def test_output_held_in_a_block_arrives_whole_and_in_order_after_it(embedded_mas
         # Released: later messages go out on their own again.
         pub.publish(string_bytes("after"))
         assert string_text(read_frame(clock_sock)) == "after"
+
+
+def test_held_output_keeps_its_order_around_large_messages(embedded_master, make_node):
+    # Small messages kept during a hold go out before a large one published after them,
+    # and what follows the large one after it, with the hold ended or not.
+    node = make_node("pub", master_uri=embedded_master.uri)
+    pub = node.advertise("/cloud_like", STRING)
+    sock, _ = raw_subscribe(node, "/cloud_like", STRING.md5sum, STRING.name)
+    with sock:
+        wait_until(lambda: pub.num_subscribers == 1)
+        texts = ["small 0", "x" * 100_000, "small 1", "small 2", "y" * 70_000, "small 3"]
+        with node.holding_output():
+            for text in texts:
+                pub.publish(string_bytes(text))
+        pub.publish(string_bytes("after"))
+        assert [string_text(read_frame(sock)) for _ in range(len(texts) + 1)] == [
+            *texts,
+            "after",
+        ]

@@ -9,8 +9,8 @@ Build one with `egosim.bridge.simulation_context`.
 from __future__ import annotations
 
 import logging
-from collections.abc import Callable
-from contextlib import AbstractContextManager, nullcontext
+from collections.abc import Callable, Iterator
+from contextlib import AbstractContextManager, contextmanager, nullcontext
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol, TypeVar
@@ -20,6 +20,7 @@ from ..msgs import TypedMessageType
 from ..msgs.typed import standard
 from ..replay import ReplaySession
 from ..world import World
+from ..world.traffic import ObjectTable
 from .clock import HeaderClock
 from .ego_session import EgoSession, EgoSessions
 from .egos.angle_rates import AngleRates
@@ -81,6 +82,36 @@ class SessionState:
     """The last reading of each angle whose rate a row reports (extended status rows)."""
 
 
+class TickReadings:
+    """What several rows due in one tick read of the world, worked out once for all of
+    them while the tick publishes (nothing moves the world then); outside that, each
+    reading is taken afresh."""
+
+    def __init__(self) -> None:
+        self._publishing = False
+        self._objects: ObjectTable | None = None
+
+    @contextmanager
+    def publishing(self) -> Iterator[None]:
+        """The block in which readings are shared (a tick's publish stage)."""
+        self._publishing = True
+        try:
+            yield
+        finally:
+            self._publishing = False
+            self._objects = None
+
+    def objects(self, world: World) -> ObjectTable:
+        """Every object of `world` (World.objects): the LiDAR's, the radar's and the
+        markers' scene."""
+        if self._objects is not None:
+            return self._objects
+        objects = world.objects()
+        if self._publishing:
+            self._objects = objects
+        return objects
+
+
 @dataclass
 class BridgeContext:
     profile: CanonicalProfile
@@ -108,10 +139,17 @@ class BridgeContext:
     """A block whose topic output reaches subscribers as one burst when it ends
     (Node.holding_output); sync mode ticks a WaitForTick's frames inside one."""
     session: SessionState = field(default_factory=SessionState)
+    readings: TickReadings = field(default_factory=TickReadings)
+    """World readings the rows due in one tick share (`objects`)."""
 
     def tick(self, dt: float) -> Tick:
         """Advance the simulation one tick of `dt` s through the pipeline."""
         return self.pipeline.run(self, dt)
+
+    def objects(self) -> ObjectTable:
+        """Every object of the world (World.objects), worked out once per tick for the
+        rows that publish in it."""
+        return self.readings.objects(self.world)
 
     def row(self, key: str) -> Row:
         """The effective row `key` of the protocol table (its name and rate in use)."""

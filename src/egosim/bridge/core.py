@@ -255,9 +255,10 @@ class Bridge:
 
     def publish_due(self, now: float) -> None:
         """Build and publish every outlet whose period has elapsed at loop time `now` (s)."""
-        for outlet in self.outlets:
-            if outlet.schedule.take(now):
-                self.publish(outlet)
+        with self.context.readings.publishing():
+            for outlet in self.outlets:
+                if outlet.schedule.take(now):
+                    self.publish(outlet)
 
     def publish(self, outlet: Outlet) -> None:
         if outlet.publisher.num_subscribers == 0 and not self.taps:
@@ -288,24 +289,40 @@ class Bridge:
                 outlet.seq += 1
             data = outlet.message_type.serialize(message)
             if header is not None and outlet.leads_with_header:
-                data = self._stamped(outlet, header, data)
-            variants.append(_serialized(outlet, message, data))
+                # Serialising first and stamping the bytes keeps the build and the
+                # serialisation out of the time between a tick's stamp (the first one
+                # read, in real time) and its first send.
+                stamp_ns = self.context.stamp_ns()
+                data = _stamped(data, outlet.seq, stamp_ns)
+                header.seq = outlet.seq
+                outlet.seq += 1
+                variants.append(self._serialized(outlet, message, data, header, stamp_ns))
+            else:
+                variants.append(self._serialized(outlet, message, data))
             self._tap(outlet.row.name, outlet.message_type, data)
         return variants
 
-    def _stamped(self, outlet: Outlet, header: standard.Header, data: bytes) -> bytes:
-        """`data` with the row's next seq and the tick's stamp written into its header,
-        and the message's header set to match (for other releases). Serialising first
-        and stamping the bytes keeps the build and the serialisation out of the time
-        between a tick's stamp (the first one read, in real time) and its first send."""
-        stamp_ns = self.context.stamp_ns()
-        sec, nanosec = divmod(stamp_ns, 1_000_000_000)
-        stamped = bytearray(data)
-        _HEADER_START.pack_into(stamped, 0, outlet.seq, sec, nanosec)
-        header.seq = outlet.seq
-        header.stamp = time_msg(self.context.profile, stamp_ns)
-        outlet.seq += 1
-        return bytes(stamped)
+    def _serialized(
+        self,
+        outlet: Outlet,
+        message: object,
+        data: bytes,
+        stamped_header: standard.Header | None = None,
+        stamp_ns: int = 0,
+    ) -> Callable[[str], bytes]:
+        """`message` in the release a subscriber's md5sum names: `data` for the canonical
+        one, converted and serialised on demand for another. A header whose stamp went
+        into `data`'s bytes only (`stamped_header`) is given it first."""
+        profile = self.context.profile
+
+        def serialize(md5sum: str) -> bytes:
+            if md5sum == outlet.message_type.md5sum:
+                return data
+            if stamped_header is not None:
+                stamped_header.stamp = time_msg(profile, stamp_ns)
+            return outlet.variant(message, md5sum)
+
+        return serialize
 
     def _tap(self, topic: str, message_type: MessageType[object], data: bytes) -> None:
         for tap in self.taps:
@@ -415,14 +432,10 @@ class Bridge:
         )
 
 
-def _serialized(outlet: Outlet, message: object, data: bytes) -> Callable[[str], bytes]:
-    """`message` in the release a subscriber's md5sum names: `data` for the canonical one,
-    converted and serialised on demand for another."""
-
-    def serialize(md5sum: str) -> bytes:
-        return data if md5sum == outlet.message_type.md5sum else outlet.variant(message, md5sum)
-
-    return serialize
+def _stamped(data: bytes, seq: int, stamp_ns: int) -> bytes:
+    """`data` with `seq` and the stamp written into its header (its first 12 bytes)."""
+    sec, nanosec = divmod(stamp_ns, 1_000_000_000)
+    return b"".join((_HEADER_START.pack(seq, sec, nanosec), memoryview(data)[_HEADER_START.size :]))
 
 
 def negotiator(

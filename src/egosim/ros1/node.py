@@ -20,7 +20,7 @@ from .master_client import MasterClient
 from .master_watch import MasterWatch
 from .names import NameResolver, canonicalize, join, parse_argv, validate_name
 from .network import NetworkConfig, http_uri, rosrpc_uri
-from .publication import Negotiator, Publisher
+from .publication import Negotiator, OutputHold, Publisher
 from .rosout import ROSOUT_TOPIC, RosoutHandler, log_type
 from .rpc import XmlRpcServer
 from .service import ServiceHandler, ServiceNegotiator, ServiceProxy, ServiceServer
@@ -82,6 +82,7 @@ class Node:
         self.embedded_master = self._join_or_start_master(embedded_master)
 
         self._lock = threading.RLock()
+        self._output_hold = OutputHold()
         self._publishers: dict[str, Publisher] = {}
         self._subscribers: dict[str, Subscriber] = {}
         self._services: dict[str, ServiceServer] = {}
@@ -174,6 +175,7 @@ class Node:
             queue_size=queue_size,
             negotiate=negotiate,
             on_close=self._release_publisher,
+            output_hold=self._output_hold,
         )
         with self._lock:
             self._check_running()
@@ -214,18 +216,16 @@ class Node:
 
     @contextlib.contextmanager
     def holding_output(self) -> Iterator[None]:
-        """Topic data written inside the block goes out in as few packets as it fills,
-        the rest when the block ends (TCP_CORK on Linux; elsewhere no effect): a burst of
-        small messages then wakes each subscriber once instead of once per message.
-        Subscribers get the block's messages, in order, by the time it has ended."""
-        publishers = self.publishers
-        for publisher in publishers:
-            publisher.hold_output(True)
+        """Topic data written inside the block is kept by each connection and written 64
+        KiB at a time, the rest when the block ends (a message that large goes out as it
+        comes, after what was kept): a burst of small messages then costs one system call
+        and wakes each subscriber once instead of once per message. Subscribers get the
+        block's messages, in order, by the time it has ended."""
+        self._output_hold.begin()
         try:
             yield
         finally:
-            for publisher in publishers:
-                publisher.hold_output(False)
+            self._output_hold.end()
 
     @property
     def publishers(self) -> list[Publisher]:

@@ -2,8 +2,9 @@
 
 publish() is called from the simulation loop, so per subscriber connection it only appends to
 a bounded queue drained by that connection's writer thread (or, when the connection is idle
-and the message small, offers it to the socket without blocking). A subscriber that stops
-reading loses its oldest messages (counted) and delays nobody else.
+and the message small, offers it to the socket without blocking; while output is held, keeps
+it to go out with the next ones in one write). A subscriber that stops reading loses its
+oldest messages (counted) and delays nobody else.
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from dataclasses import dataclass
 
 from .connection_header import error_header, write_header
 from .errors import ConnectionRefusedByPeerError, NodeShutdownError
-from .tcpros import close_quietly, encode_frame, send_frame, set_cork, set_nodelay
+from .tcpros import close_quietly, encode_frames, send_frames, set_nodelay
 from .types import MessageTypeInfo
 
 log = logging.getLogger(__name__)
@@ -50,6 +51,41 @@ class ConnectionStats:
     connected: bool = True
 
 
+class OutputHold:
+    """A node's hold on its topic output (Node.holding_output): while it is on, each
+    connection keeps the small messages it is sent and writes them 64 KiB at a time; when
+    it ends, every connection that kept some writes the rest."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._depth = 0
+        self._keeping: list[_Outbox] = []
+
+    def begin(self) -> None:
+        with self._lock:
+            self._depth += 1
+
+    def end(self) -> None:
+        with self._lock:
+            self._depth -= 1
+            if self._depth:
+                return
+            keeping, self._keeping = self._keeping, []
+        for outbox in keeping:
+            outbox.send_kept()
+
+    def keeps(self, outbox: _Outbox, first: bool) -> bool:
+        """Whether `outbox` is to keep what it is sent now (called under its lock); if so,
+        and it keeps nothing yet (`first`), it is told to send what it kept when the hold
+        ends."""
+        if not self._depth:  # the common case, without the lock: no hold began
+            return False
+        with self._lock:
+            if self._depth and first:
+                self._keeping.append(outbox)
+            return self._depth > 0
+
+
 class _Outbox:
     """One subscriber connection: a bounded queue drained by its own writer thread."""
 
@@ -59,6 +95,7 @@ class _Outbox:
         stats: ConnectionStats,
         queue_size: int,
         on_closed: Callable[[_Outbox], None],
+        output_hold: OutputHold,
     ) -> None:
         self.sock = sock
         self.stats = stats
@@ -73,6 +110,13 @@ class _Outbox:
         self._on_closed = on_closed
         # Until open(), messages only queue: the connection header must go out first.
         self._open = False
+        # While the node holds its output, small messages to an idle connection wait here
+        # (in order, before anything queued after them) and go out in one write when they
+        # fill _DIRECT_SEND_MAX or the hold ends: a burst of many messages then costs one
+        # system call instead of one per message.
+        self._output_hold = output_hold
+        self._held: list[bytes] = []
+        self._held_size = 0
         self._thread = threading.Thread(
             target=self._write, name=f"tcpros out {stats.peer}", daemon=True
         )
@@ -86,28 +130,59 @@ class _Outbox:
             self._open = True
         self._thread.start()
 
+    def send_kept(self) -> None:
+        """The output hold has ended: send what was kept."""
+        with self._ready:
+            if self._held and not self._closed:
+                self._offer(*self._take_held())
+
     def put(self, payloads: Sequence[bytes]) -> None:
         """Queue messages to go out in this order (one write when the socket takes them)."""
         with self._ready:
             if self._closed:
                 return
-            idle = self._open and not self._queue and self._tail is None and not self._writing
             size = sum(len(data) for data in payloads)
-            if idle and size <= _DIRECT_SEND_MAX and self._send_now(payloads):
-                if self._tail is not None:
-                    self._ready.notify()
+            keep = (
+                size <= _DIRECT_SEND_MAX
+                and self._idle()
+                and self._output_hold.keeps(self, first=not self._held)
+            )
+            if self._held and (not keep or self._held_size + size > _DIRECT_SEND_MAX):
+                self._offer(*self._take_held())  # what was kept goes first
+                keep = keep and self._idle()
+            if keep:
+                self._held.extend(payloads)
+                self._held_size += size
                 return
-            for data in payloads:
-                if len(self._queue) >= self._queue_size:
-                    self._queue.popleft()
-                    self.stats.dropped += 1
-                self._queue.append(data)
-            self._ready.notify()
+            self._offer(payloads, size)
+
+    def _idle(self) -> bool:
+        """Open, and nothing of its output left to the writer (lock held)."""
+        return self._open and not self._queue and self._tail is None and not self._writing
+
+    def _take_held(self) -> tuple[list[bytes], int]:
+        held, size = self._held, self._held_size
+        self._held, self._held_size = [], 0
+        return held, size
+
+    def _offer(self, payloads: Sequence[bytes], size: int) -> None:
+        """Send `payloads` now if the connection is idle and the socket takes them, else
+        queue them for the writer (lock held)."""
+        if size <= _DIRECT_SEND_MAX and self._idle() and self._send_now(payloads):
+            if self._tail is not None:
+                self._ready.notify()
+            return
+        for data in payloads:
+            if len(self._queue) >= self._queue_size:
+                self._queue.popleft()
+                self.stats.dropped += 1
+            self._queue.append(data)
+        self._ready.notify()
 
     def _send_now(self, payloads: Sequence[bytes]) -> bool:
         """Offer frames to the socket without blocking (lock held, writer idle); False if the
         socket took none of them. What it did not take is left in ``_tail`` for the writer."""
-        frames = b"".join(encode_frame(data) for data in payloads)
+        frames = encode_frames(payloads)
         try:
             sent = self.sock.send(frames, socket.MSG_DONTWAIT)
         except OSError:
@@ -125,6 +200,7 @@ class _Outbox:
             if self._closed:
                 return
             self._closed = True
+            self._held, self._held_size = [], 0
             self._ready.notify()
         self.stats.connected = False
         close_quietly(self.sock)
@@ -158,10 +234,9 @@ class _Outbox:
                     self._writing = True
                 if tail is not None:
                     self.sock.sendall(tail)
-                for data in batch:
-                    send_frame(self.sock, data)
-                    self.stats.bytes_sent += len(data) + 4
-                    self.stats.messages_sent += 1
+                send_frames(self.sock, batch)
+                self.stats.bytes_sent += sum(len(data) + 4 for data in batch)
+                self.stats.messages_sent += len(batch)
                 with self._ready:
                     self._writing = False
         except OSError as exc:
@@ -190,6 +265,7 @@ class Publisher:
         queue_size: int = 100,
         negotiate: Negotiator | None = None,
         on_close: Callable[[Publisher], None] | None = None,
+        output_hold: OutputHold | None = None,
     ) -> None:
         if queue_size < 1:
             raise ValueError("queue_size must be at least 1")
@@ -206,7 +282,7 @@ class Publisher:
         self._latched: bytes | Variants | None = None
         self._latch_fixed = False
         self._closed = False
-        self._held = False
+        self._output_hold = output_hold or OutputHold()
         self.messages_published = 0
 
     @property
@@ -250,15 +326,6 @@ class Publisher:
             self._latched = message
             self._latch_fixed = True
 
-    def hold_output(self, held: bool) -> None:
-        """While held, every connection packs what it is sent into full packets and sends
-        the rest when released (see Node.holding_output)."""
-        with self._lock:
-            self._held = held
-            outboxes = self._outboxes
-        for outbox in outboxes:
-            set_cork(outbox.sock, held)
-
     def _begin_publish(self, messages: Sequence[bytes | Variants]) -> tuple[_Outbox, ...]:
         """Count ``messages`` and latch the last; the connections they go to. A connection
         accepted after this point gets the last as its latched message instead."""
@@ -298,15 +365,13 @@ class Publisher:
         if header.get("tcp_nodelay") == "1":
             set_nodelay(sock)
         stats = ConnectionStats(connection_id, header.get("callerid", peer), served.md5sum)
-        outbox = _Outbox(sock, stats, self.queue_size, self._forget)
+        outbox = _Outbox(sock, stats, self.queue_size, self._forget, self._output_hold)
         # The outbox joins before the reply goes out, so a subscriber that has read the reply
         # gets every message published after it.
         with self._lock:
             if self._closed:
                 outbox.close()
                 return
-            if self._held:
-                set_cork(sock, True)
             if self._latched is not None:
                 outbox.put((_variant(self._latched, served.md5sum),))
             self._outboxes = (*self._outboxes, outbox)

@@ -5,11 +5,15 @@ from __future__ import annotations
 import contextlib
 import socket
 import struct
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 from .errors import ConnectionClosedError, FrameTooLargeError
 
 _U32 = struct.Struct("<I")
+#: Payloads below this size are copied into one buffer with their length prefixes; larger
+#: ones are written from where they are.
+_JOINED_MAX = 64 * 1024
 
 
 @dataclass(frozen=True)
@@ -54,9 +58,18 @@ def encode_frame(data: bytes | memoryview) -> bytes:
     return _U32.pack(len(data)) + bytes(data)
 
 
+def encode_frames(payloads: Sequence[bytes]) -> bytes:
+    """`payloads` as consecutive frames in one buffer, each payload copied once."""
+    parts: list[bytes] = []
+    for data in payloads:
+        parts.append(_U32.pack(len(data)))
+        parts.append(data)
+    return b"".join(parts)
+
+
 def send_frame(sock: socket.socket, data: bytes | memoryview) -> None:
     """Send a length prefix and ``data`` without concatenating them (large payloads)."""
-    if len(data) < 65536:
+    if len(data) < _JOINED_MAX:
         sock.sendall(encode_frame(data))
         return
     chunks = [memoryview(_U32.pack(len(data))), memoryview(data)]
@@ -69,16 +82,29 @@ def send_frame(sock: socket.socket, data: bytes | memoryview) -> None:
             chunks[0] = chunks[0][sent:]
 
 
+def send_frames(sock: socket.socket, payloads: Sequence[bytes]) -> None:
+    """Send `payloads` as frames, in order: runs of small ones joined into one write, large
+    ones as send_frame sends them."""
+    run: list[bytes] = []
+    run_size = 0
+    for data in payloads:
+        if len(data) >= _JOINED_MAX:
+            if run:
+                sock.sendall(encode_frames(run))
+                run, run_size = [], 0
+            send_frame(sock, data)
+            continue
+        run.append(data)
+        run_size += len(data)
+        if run_size >= _JOINED_MAX:
+            sock.sendall(encode_frames(run))
+            run, run_size = [], 0
+    if run:
+        sock.sendall(encode_frames(run))
+
+
 def set_nodelay(sock: socket.socket, enabled: bool = True) -> None:
     sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1 if enabled else 0)
-
-
-def set_cork(sock: socket.socket, enabled: bool) -> None:
-    """Hold partial packets until uncorked (Linux's TCP_CORK; elsewhere nothing happens)."""
-    cork = getattr(socket, "TCP_CORK", None)
-    if cork is not None:
-        with contextlib.suppress(OSError):  # a connection closing meanwhile has nothing to hold
-            sock.setsockopt(socket.IPPROTO_TCP, cork, 1 if enabled else 0)
 
 
 def close_quietly(sock: socket.socket) -> None:

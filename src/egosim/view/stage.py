@@ -98,7 +98,7 @@ class ViewStage:
         if now - self._lidar_at >= 1.0 / LIDAR_RATE_HZ:
             self._lidar_at = now
             world = self.context.world
-            points = rig.scan(world)[:, :3].astype(np.float64)
+            points = rig.scan(world, self.context.objects())[:, :3].astype(np.float64)
             if len(points) > MAX_LIDAR_POINTS:
                 points = points[:: -(-len(points) // MAX_LIDAR_POINTS)]
             pose: Pose = world.ego_status(0).pose

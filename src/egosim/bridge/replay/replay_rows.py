@@ -23,7 +23,7 @@ from ..protocol.network import NetworkSettings
 from ..protocol.table import Row
 from ..protocol.units import deg
 from ..scene.objects import object_status
-from .replayed_scene import recorded_scene, world_objects
+from .replayed_scene import recorded_scene, shows_nothing_recorded, world_objects
 
 # The yaw rate ReplayInfo reports is the slope of the recorded heading over this span (s).
 YAW_RATE_SPAN_S = 0.002
@@ -52,7 +52,10 @@ def replay_topics(settings: NetworkSettings) -> ReplayTopics:
 def show_replay(context: BridgeContext) -> None:
     """Make the world show the session's frame (nothing, in simulation mode)."""
     session = context.replay
-    context.world.show_recorded(recorded_scene(session.frame(), session.targets))
+    frame = session.frame()
+    if frame is None and shows_nothing_recorded(context.world.recorded):
+        return  # simulating, as before: the world shows its own agents already
+    context.world.show_recorded(recorded_scene(frame, session.targets))
 
 
 def advance_replay(context: BridgeContext, dt: float) -> None:

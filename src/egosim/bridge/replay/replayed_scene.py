@@ -69,6 +69,16 @@ def recorded_ego(ego: EgoState) -> RecordedEgo:
     )
 
 
+def shows_nothing_recorded(scene: RecordedScene) -> bool:
+    """`scene` is full simulation (RecordedScene()): no recording stands in for anything."""
+    return (
+        scene.ego is None
+        and scene.npcs is None
+        and scene.pedestrians is None
+        and scene.obstacles is None
+    )
+
+
 def recorded_scene(frame: ReplayFrame | None, targets: ReplayTargets) -> RecordedScene:
     """What the world shows of `frame` (None: nothing, full simulation) for these targets.
 

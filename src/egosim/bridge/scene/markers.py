@@ -230,7 +230,7 @@ def build_scene_markers(context: BridgeContext, row: Row) -> standard.MarkerArra
     make = _Builder(context)
     lifetime = LIFETIME_PERIODS / row.rate_hz if row.rate_hz else UNTIMED_LIFETIME_S
     world = context.world
-    objects = world.objects()
+    objects = context.objects()
     markers = []
     for uid, kind, (x, y, z), heading, (length, width, height) in zip(
         objects.unique_ids.tolist(),

@@ -91,7 +91,7 @@ def save_sensor_data(
         for path, data in camera_files(context, directory, stem).items()
     }
     try:
-        cloud_path.write_bytes(encode_pcd(rig.scan(world)))
+        cloud_path.write_bytes(encode_pcd(rig.scan(world, context.objects())))
         readings_path.write_text(json.dumps(snapshot, indent=2), encoding="utf-8")
         for path, data in images.items():
             path.write_bytes(data)

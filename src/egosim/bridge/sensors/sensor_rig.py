@@ -34,6 +34,7 @@ from ...sensors.radar import RadarDetections, RadarModel
 from ...sensors.rotation import quaternion_from_matrix
 from ...world import World
 from ...world.map import GeoReference
+from ...world.traffic import ObjectTable
 from ...world.vehicle import VehicleStatus, sensor_mount_origin
 from ..protocol.network import NetworkSettings
 from ..protocol.sensor_settings import SENSOR_KINDS, CameraSettings, SensorSettings, camera_topic
@@ -72,9 +73,8 @@ def sensor_rig_of(settings: NetworkSettings, georeference: GeoReference) -> Sens
     return SensorRig(settings.sensors, georeference, camera_row_topic=settings.row("camera").name)
 
 
-def obstacle_boxes(world: World) -> ObstacleBoxes:
-    """Every object of the world as an upright box standing on its footprint."""
-    table = world.objects()
+def obstacle_boxes(table: ObjectTable) -> ObstacleBoxes:
+    """Every object of `table` as an upright box standing on its footprint."""
     centres = table.positions.copy()
     centres[:, 2] += table.sizes[:, 2] / 2.0
     return ObstacleBoxes(centres, table.sizes, table.headings)
@@ -171,14 +171,15 @@ class SensorRig:
         self._follow(world)
         return self.imu.measure(ego_kinematics(world.ego_status(MAIN_EGO)), self._imu_rng)
 
-    def scan(self, world: World) -> np.ndarray:
-        """LiDAR points (M, 4) in the sensor frame; the main ego (object 0) is not seen."""
+    def scan(self, world: World, objects: ObjectTable) -> np.ndarray:
+        """LiDAR points (M, 4) in the sensor frame among `objects` (the world's); the main
+        ego (object 0) is not seen."""
         self._follow(world)
         pose = world.ego_status(MAIN_EGO).pose
-        return self.lidar.scan(pose, obstacle_boxes(world), exclude_index=MAIN_EGO)
+        return self.lidar.scan(pose, obstacle_boxes(objects), exclude_index=MAIN_EGO)
 
-    def radar_detections(self, world: World) -> RadarDetections:
-        """Radar detections of every object but the main ego."""
+    def radar_detections(self, world: World, objects: ObjectTable) -> RadarDetections:
+        """Radar detections of every one of `objects` (the world's) but the main ego."""
         self._follow(world)
         status = world.ego_status(MAIN_EGO)
         yaw = status.pose.yaw
@@ -189,7 +190,7 @@ class SensorRig:
             status.pose,
             velocity,
             status.yaw_rate,
-            world.objects(),
+            objects,
             (world.egos[MAIN_EGO].unique_id,),
             self._radar_rng,
         )

@@ -37,13 +37,14 @@ def publish_imu(context: BridgeContext, row: Row) -> standard.Imu:
 def publish_lidar(context: BridgeContext, row: Row) -> standard.PointCloud2:
     rig = context.sensors
     header = context.header(rig.frame_ids[LIDAR_INDEX])
-    return point_cloud(context.profile, header, rig.scan(context.world))
+    return point_cloud(context.profile, header, rig.scan(context.world, context.objects()))
 
 
 def publish_radar(context: BridgeContext, row: Row) -> morai_26_r1.RadarDetections:
     rig = context.sensors
     header = context.header(rig.frame_ids[rig.radar_index])
-    return radar_message(context.profile, header, rig.radar_detections(context.world))
+    detections = rig.radar_detections(context.world, context.objects())
+    return radar_message(context.profile, header, detections)
 
 
 def publish_tf(context: BridgeContext, row: Row) -> standard.TFMessage:

@@ -124,8 +124,10 @@ def serve_wait_for_tick(
         elif (ticks := max(target - session.frame, 1)) > MAX_TICKS_PER_REQUEST:
             log.error("%s: %d ticks at once (max %d)", row.name, ticks, MAX_TICKS_PER_REQUEST)
         else:
-            # Every frame's outputs are out before the reply, so several frames' may go
-            # out together (one frame's gain nothing from it).
+            # Every frame's outputs are out before the reply, so several frames' go out
+            # together. One frame's rows go out as they are built: the subscribers' side
+            # reads them while the tick goes on (held to the end, it reads them after,
+            # and its next request comes later).
             with context.hold_output() if ticks > 1 else nullcontext():
                 for _ in range(ticks):
                     _tick(context, session)
