@@ -12,7 +12,6 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from tests.compiled_paths import busy_town, drive
 
 from egosim.bridge import HANDLERS, default_network_settings, simulation_context
 from egosim.bridge.protocol.network import NetworkSettings
@@ -29,6 +28,7 @@ from egosim.world import World, kernels
 from egosim.world.map import build_builtin_map
 from egosim.world.scenario import parse_scenario
 from egosim.world.vehicle import ControlCommand, LongitudinalMode
+from tests.compiled_paths import busy_town, drive
 
 REFERENCE = Path(__file__).parents[1] / "data" / "bridge" / "sensor_row_bytes.json"
 ROWS = {
@@ -85,8 +85,9 @@ SETTINGS = {"default": None, "noisy and tilted": NOISY_TILTED}
 
 
 def scenario(town: Any) -> dict[str, Any]:
-    """tests/compiled_paths.py's busy town, the ego standing, with a box taller than the LiDAR beside the
-    ego's lane (rising beams meet it) and one straddling its bearing of +-180 degrees."""
+    """tests/compiled_paths.py's busy town, the ego standing, with a box taller than the
+    LiDAR beside the ego's lane (rising beams meet it) and one straddling its bearing of
+    +-180 degrees."""
     scene = busy_town(town)
     scene["ego"]["speed_mps"] = 0.0
     behind = town.pose_at("R5_E_1", 1.0)
