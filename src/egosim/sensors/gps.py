@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from egosim.sensors.frames import MountFrame, MountPose
+from egosim.sensors.last_reading import LastReading
 from egosim.sensors.noise import gaussian, require_non_negative
 from egosim.world.map.georef import GeoReference
 from egosim.world.vehicle import Pose
@@ -82,6 +83,14 @@ class GpsModel:
         else:  # gaussian's zeros, added on plain floats (-0.0 + 0.0 is 0.0 there too)
             east, north, up = antenna.tolist()
             x, y, z = east + 0.0, north + 0.0, up + 0.0
+        return self._last_fix.of((x, y, z), lambda: self._fix_at(x, y, z))
+
+    @functools.cached_property
+    def _last_fix(self) -> LastReading[GpsFix]:
+        return LastReading(3)
+
+    def _fix_at(self, x: float, y: float, z: float) -> GpsFix:
+        """The fix of an antenna at (x, y, z) in the map frame, m."""
         latitude, longitude, altitude = self.georeference.local_to_geodetic(x, y, z)
         return GpsFix(
             latitude=latitude,

@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from egosim.sensors.frames import MountPose, rotation_of
+from egosim.sensors.last_reading import LastReading
 from egosim.sensors.noise import gaussian, require_non_negative
 from egosim.sensors.rotation import Matrix3, Quaternion, quaternion_from_matrix, rotation_matrix
 from egosim.sensors.vectors import Vector3Tuple, add3, cross3, floats3
@@ -140,10 +141,35 @@ class ImuModel:
             linear_acceleration_covariance=_diagonal_covariance(noise.linear_acceleration_std_m_s2),
         )
 
+    @functools.cached_property
+    def _noiseless(self) -> bool:
+        """Its readings draw no noise (biases are no draw)."""
+        noise = self.noise
+        return (
+            noise.orientation_std_rad
+            == noise.angular_velocity_std_rad_s
+            == noise.linear_acceleration_std_m_s2
+            == 0.0
+        )
+
+    @functools.cached_property
+    def _last_reading(self) -> LastReading[ImuReading]:
+        return LastReading(15)
+
     def measure(
         self, kinematics: EgoKinematics, rng: np.random.Generator | None = None
     ) -> ImuReading:
         """One reading; `rng` is required only when noise std is configured."""
+        if not self._noiseless:
+            return self._measure(kinematics, rng)
+        k = kinematics
+        inputs = (
+            k.roll, k.pitch, k.yaw, *k.velocity, *k.velocity_rate,
+            *k.angular_velocity, *k.angular_acceleration,
+        )  # fmt: skip
+        return self._last_reading.of(inputs, lambda: self._measure(kinematics, None))
+
+    def _measure(self, kinematics: EgoKinematics, rng: np.random.Generator | None) -> ImuReading:
         body_to_map = rotation_matrix(kinematics.roll, kinematics.pitch, kinematics.yaw)
         constants, noise = self._constants, self.noise
         omega = floats3(kinematics.angular_velocity)
