@@ -21,7 +21,7 @@ from egosim.sensors.frames import MountFrame, MountPose
 from egosim.sensors.raycast import ObstacleBoxes, RayFan, Surface, cast_fan, cast_rays
 from egosim.world import kernels
 from egosim.world.arrays import FloatArray
-from egosim.world.kernels.lidar_returns import lidar_returns
+from egosim.world.kernels.lidar_returns import lidar_intensities, lidar_returns
 from egosim.world.vehicle import Pose
 
 DEFAULT_LIDAR_MOUNT = MountPose(x=0.0, y=0.0, z=1.8)
@@ -195,6 +195,7 @@ class LidarModel:
             -2.0 * intensity.extinction_per_m,
             points, lit, exponent,
         )  # fmt: skip
-        returned = points[:count]
-        returned[:, 3] = lit[:count] * np.exp(exponent[:count])
-        return returned
+        extinction = exponent[:count]
+        np.exp(extinction, out=extinction)
+        lidar_intensities(points, lit, extinction)
+        return points[:count]
