@@ -24,7 +24,7 @@ FLOAT32 = 7  # sensor_msgs/PointField datatype code
 def gps_message(
     profile: CanonicalProfile, header: standard.Header, fix: GpsFix
 ) -> morai_26_r1.GPSMessage:
-    return profile.message("morai_msgs/GPSMessage").new(
+    return profile.message("morai_msgs/GPSMessage").make(
         header=header,
         latitude=fix.latitude,
         longitude=fix.longitude,
@@ -65,10 +65,10 @@ def point_cloud(
     cloud = np.ascontiguousarray(points, dtype="<f4")
     field_type = profile.message("sensor_msgs/PointField")
     fields = [
-        field_type.new(name=name, offset=4 * index, datatype=FLOAT32, count=1)
+        field_type.make(name=name, offset=4 * index, datatype=FLOAT32, count=1)
         for index, name in enumerate(POINT_FIELDS)
     ]
-    return profile.message("sensor_msgs/PointCloud2").new(
+    return profile.message("sensor_msgs/PointCloud2").make(
         header=header,
         height=1,
         width=len(cloud),
@@ -106,7 +106,7 @@ def radar_message(
 ) -> morai_26_r1.RadarDetections:
     """morai_msgs/RadarDetections: azimuth in degrees, detection_id the object's id (16 bit)."""
     detection = profile.message("morai_msgs/RadarDetection").make
-    return profile.message("morai_msgs/RadarDetections").new(
+    return profile.message("morai_msgs/RadarDetections").make(
         header=header,
         detections=[
             detection(
