@@ -1,4 +1,4 @@
-"""How `egosim run` stops, as a process among real ROS peers (issue 29): the sequence that
+"""How `egosim run` stops, as a process among real ROS peers: the sequence that
 once ignored Ctrl-C (autopilot, a replay, back to ctrl_mode 3, recording, a page on the
 view) stopped by SIGINT, SIGTERM or Debian's `rosnode kill`; a second signal, or a clean
 stop that cannot finish, ends the process within the bound with the bag indexed."""
@@ -73,7 +73,7 @@ def timed_exit(process: RosProcess, since: float) -> tuple[int, float]:
 
 
 def the_issue_sequence(client: RospyDriver) -> None:
-    """Autopilot, a replay, then back to the external controller (issue 29's stop)."""
+    """Autopilot, a replay, then back to the external controller (a stop that once hung)."""
     event = {"option": 1, "ctrl_mode": 4}
     assert client.call(*EVENT, {"request": event})["response"]["ctrl_mode"] == 4
     assert sim_proc(
