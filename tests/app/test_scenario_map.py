@@ -15,8 +15,8 @@ from egosim.maps import SHIPPED_MAPS_DIR, load_map
 from egosim.world import World
 from egosim.world.scenario import parse_scenario
 from tests import morai_scenarios as morai
-from tests.world.openscenario import stories
 from tests.conftest import free_port
+from tests.world.openscenario import stories
 
 JUNCTION_XODR = Path(__file__).parents[1] / "data" / "maps" / "junction.xodr"
 

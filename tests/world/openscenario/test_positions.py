@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from tests.world.openscenario.stories import (
     event,
+    init_speed,
     lane,
     pedestrian,
     scenario,
@@ -178,10 +179,7 @@ def test_on_an_mgeo_map_a_lane_position_names_a_link_and_runs_along_it() -> None
         vehicle("Ego") + vehicle("Car"),
         teleport("Ego", f'<LanePosition roadId="{link}" laneId="-1" s="5"/>')
         + teleport("Car", f'<LanePosition roadId="{link}" laneId="-1" s="20" offset="0.5"/>')
-        + '<Private entityRef="Car">'
-        + '<PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step"'
-        ' value="0" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="5"/>'
-        "</SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Private>",
+        + init_speed("Car", 5.0),
     ).replace('filepath="highway.xodr"', 'filepath="mgeo_sample"')
     world, run = start_world(text, lane_map=mgeo)
     car = run.rt.entity("Car")
