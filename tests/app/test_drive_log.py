@@ -66,6 +66,32 @@ def test_a_red_light_run_is_logged_where_and_when_it_happened(
     assert speed_in(red, "ego at") == pytest.approx(10.0, abs=0.15)  # one step's coasting
 
 
+@pytest.mark.parametrize("tick_s", [0.2, 0.5, 1.0])
+def test_a_red_light_run_between_coarse_sync_ticks_is_logged(
+    caplog: pytest.LogCaptureFixture, tick_s: float
+) -> None:
+    # At 30 m/s a sync tick carries the ego 6 to 30 m on: farther than a placed ego jumps.
+    context = town_context()
+    assert LANE.traffic_light_ids and LANE.stop_line_s is not None
+    context.world.signals.set_light(LANE.traffic_light_ids[0], RED)
+    caplog.set_level(logging.DEBUG, LOGGER)
+    speed, run_up = 30.0, 40.0
+    vehicle = context.world.egos[0].vehicle
+    x, y, _, heading = TOWN.pose_at(LANE.id, LANE.stop_line_s - run_up)
+    vehicle.teleport(Pose(x=x, y=y, yaw=heading), speed)
+    vehicle.hold_speed(speed)
+    for _ in range(round(3.0 / tick_s)):
+        context.tick(tick_s)
+    (red,) = messages(caplog, logging.INFO)
+    assert red.startswith(
+        f"ego 1: red light run: light {LANE.traffic_light_ids[0]} red at the stop line of lane "
+        f"R1_E_1 at "
+    ), red
+    when = float(red.rpartition(", t ")[2].partition(" s")[0])
+    assert when == pytest.approx(run_up / speed, abs=0.02)
+    assert speed_in(red, "ego at") == pytest.approx(speed, abs=0.5)
+
+
 def test_a_lane_departure_is_only_a_debug_line(caplog: pytest.LogCaptureFixture) -> None:
     context = town_context()
     caplog.set_level(logging.DEBUG, LOGGER)

@@ -25,8 +25,9 @@ from ..evaluation.rules import Sample
 log = logging.getLogger("egosim.drive")
 
 JUMP_M = 5.0
-"""An ego that moved farther in one step was placed (a scenario load, a teleport, a
-replay's seek): its rules start afresh there rather than see it cross what it skipped."""
+"""An ego that moved this much farther in one step than its speed carries it was placed (a
+scenario load, a teleport, a replay's seek): its rules start afresh there rather than see
+it cross what it skipped. (A step may be a sync tick of up to 1 s: at 30 m/s, 30 m.)"""
 
 _LABELS = {
     InfractionKind.COLLISION_PEDESTRIAN: "collision (pedestrian)",
@@ -82,7 +83,11 @@ def drive_log_stage() -> Stage[BridgeContext] | None:
 
 
 def _jumped(last: Sample | None, sample: Sample) -> bool:
-    return last is not None and math.hypot(sample.x - last.x, sample.y - last.y) > JUMP_M
+    if last is None:
+        return False
+    speed = max(abs(last.speed_mps), abs(sample.speed_mps))
+    reach = speed * max(sample.time_s - last.time_s, 0.0)
+    return math.hypot(sample.x - last.x, sample.y - last.y) > reach + JUMP_M
 
 
 def _log(ego_id: int, infraction: Infraction, sample: Sample) -> None:
