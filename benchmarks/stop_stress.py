@@ -1,4 +1,4 @@
-"""Hundreds of `egosim run` processes stopped at random moments, timed (issue 29).
+"""Hundreds of `egosim run` processes stopped at random moments, timed.
 
 Each run records (`--record`), on the town with its camera, in a random clock mode, with
 the view watched by a page in some; a client switches control modes, replays a bag,

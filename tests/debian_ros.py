@@ -24,10 +24,11 @@ def missing_ros_reason() -> str | None:
         check=False,
     )
     if probe.returncode != 0:
+        error = probe.stderr.strip().splitlines()[-1:] or [f"status {probe.returncode}"]
         return (
             "Debian's ROS 1 peers are not installed (apt-get install python3-rospy "
             "python3-rosmaster python3-rostopic python3-rosservice python3-rosbag "
-            "python3-genpy ros-core-dev)"
+            f"python3-genpy ros-core-dev): {error[0]}"
         )
     return None
 

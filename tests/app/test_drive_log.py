@@ -6,7 +6,7 @@ import logging
 
 import pytest
 
-from egosim.app.drive_log import DriveLog, drive_log_stage
+from egosim.app.drive_log import DriveLog, drive_log
 from egosim.bridge import BridgeContext, simulation_context
 from egosim.world import World
 from egosim.world.map import build_builtin_map
@@ -34,7 +34,7 @@ def town_context(**scenario: object) -> BridgeContext:
     """The town (with `scenario`'s egos and obstacles, if any), its drive log a stage."""
     world = World(TOWN, parse_scenario({"map": "town", **scenario}) if scenario else None)
     context = simulation_context(world)
-    context.pipeline = context.pipeline.with_stage(DriveLog().stage(), after="world")
+    context.pipeline = DriveLog().on(context.pipeline)
     return context
 
 
@@ -64,6 +64,53 @@ def test_a_red_light_run_is_logged_where_and_when_it_happened(
         f"R1_E_1 at ({x:.1f}, {y:.1f}) m, t 2.0"
     ), red
     assert speed_in(red, "ego at") == pytest.approx(10.0, abs=0.15)  # one step's coasting
+
+
+@pytest.mark.parametrize("tick_s", [0.2, 0.5, 1.0])
+def test_a_red_light_run_between_coarse_sync_ticks_is_logged(
+    caplog: pytest.LogCaptureFixture, tick_s: float
+) -> None:
+    # At 30 m/s a sync tick carries the ego 6 to 30 m on: farther than a placed ego jumps.
+    context = town_context()
+    assert LANE.traffic_light_ids and LANE.stop_line_s is not None
+    context.world.signals.set_light(LANE.traffic_light_ids[0], RED)
+    caplog.set_level(logging.DEBUG, LOGGER)
+    speed, run_up = 30.0, 40.0
+    vehicle = context.world.egos[0].vehicle
+    x, y, _, heading = TOWN.pose_at(LANE.id, LANE.stop_line_s - run_up)
+    vehicle.teleport(Pose(x=x, y=y, yaw=heading), speed)
+    vehicle.hold_speed(speed)
+    for _ in range(round(3.0 / tick_s)):
+        context.tick(tick_s)
+    (red,) = messages(caplog, logging.INFO)
+    assert red.startswith(
+        f"ego 1: red light run: light {LANE.traffic_light_ids[0]} red at the stop line of lane "
+        f"R1_E_1 at "
+    ), red
+    when = float(red.rpartition(", t ")[2].partition(" s")[0])
+    assert when == pytest.approx(run_up / speed, abs=0.02)
+    assert speed_in(red, "ego at") == pytest.approx(speed, abs=0.5)
+
+
+def test_a_red_light_run_in_the_very_first_sync_tick_is_logged(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    # The ego's first sample is the world before the first step, so a crossing inside
+    # that step has a before and an after.
+    context = town_context()
+    assert LANE.traffic_light_ids and LANE.stop_line_s is not None
+    context.world.signals.set_light(LANE.traffic_light_ids[0], RED)
+    caplog.set_level(logging.DEBUG, LOGGER)
+    speed, run_up, tick_s = 30.0, 20.0, 1.0
+    vehicle = context.world.egos[0].vehicle
+    x, y, _, heading = TOWN.pose_at(LANE.id, LANE.stop_line_s - run_up)
+    vehicle.teleport(Pose(x=x, y=y, yaw=heading), speed)
+    vehicle.hold_speed(speed)
+    context.tick(tick_s)
+    (red,) = messages(caplog, logging.INFO)
+    assert red.startswith(f"ego 1: red light run: light {LANE.traffic_light_ids[0]} red"), red
+    when = float(red.rpartition(", t ")[2].partition(" s")[0])
+    assert when == pytest.approx(run_up / speed, abs=0.02)
 
 
 def test_a_lane_departure_is_only_a_debug_line(caplog: pytest.LogCaptureFixture) -> None:
@@ -115,9 +162,12 @@ def test_no_stage_when_its_lines_would_not_be_shown() -> None:
     before = logger.level
     try:
         logger.setLevel(logging.WARNING)
-        assert drive_log_stage() is None
+        assert drive_log() is None
         logger.setLevel(logging.INFO)
-        stage = drive_log_stage()
-        assert stage is not None and stage.name == "drive log"
+        console_log = drive_log()
+        assert console_log is not None
+        names = console_log.on(simulation_context(World(TOWN)).pipeline).names
+        assert names.index("drive log start") + 1 == names.index("world")
+        assert names.index("drive log") == names.index("world") + 1
     finally:
         logger.setLevel(before)

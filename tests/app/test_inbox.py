@@ -1,5 +1,5 @@
 """The inbox the loop waits on: a wait returns at its timeout however signals interrupt it,
-and no call waits on a loop that has stopped (issue 29: a Ctrl-C that stopped nothing)."""
+and no call waits on a loop that has stopped (a Ctrl-C that stopped nothing)."""
 
 from __future__ import annotations
 

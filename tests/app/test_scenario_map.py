@@ -16,6 +16,7 @@ from egosim.world import World
 from egosim.world.scenario import parse_scenario
 from tests import morai_scenarios as morai
 from tests.conftest import free_port
+from tests.world.openscenario import stories
 
 JUNCTION_XODR = Path(__file__).parents[1] / "data" / "maps" / "junction.xodr"
 
@@ -54,6 +55,22 @@ def test_a_morai_scenario_runs_the_mgeo_folder_its_map_info_names(tmp_path: Path
     assert str(caught.value).startswith(
         f"{path}: mapInfo.mapName: the scenario is for map 'R_KR_PG_Sample', --map gives 'town'"
     )
+
+
+def test_an_openscenario_file_runs_the_mgeo_folder_its_road_network_names(
+    tmp_path: Path,
+) -> None:
+    shutil.copytree(SHIPPED_MAPS_DIR / "mgeo_sample", tmp_path / "maps" / "sample")
+    text = stories.scenario(
+        stories.vehicle("Ego"),
+        stories.teleport("Ego", '<LanePosition roadId="R3_E_1" laneId="-1" s="30"/>'),
+    ).replace('filepath="highway.xodr"', 'filepath="maps/sample"')
+    path = tmp_path / "on_mgeo.xosc"
+    path.write_text(text, encoding="utf-8")
+    world = build_world(RunOptions(scenario=path))
+    assert world.map.name == "sample"
+    lane = world.ego_lane_state()
+    assert (lane.lane_id, lane.s) == ("R3_E_1", pytest.approx(30.0, abs=0.01))
 
 
 def test_scenario_alone_runs_the_shipped_mgeo_sample(tmp_path: Path) -> None:

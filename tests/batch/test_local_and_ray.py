@@ -1,6 +1,7 @@
 """One suite, locally and on Ray actors, gives the same results.json case by case: stacks in
 sync mode (so every drive is the same on every run) that drive, crash at once, crash
-while driving, hang, never connect; and a car that cannot stop for a red light. Ray's
+while driving, hang, never connect; and a car that cannot stop for a red light, stepped at
+the physics step and at coarse sync ticks (up to the 1 s a client may ask for). Ray's
 workers start their children with SIGINT blocked: a case still stops its simulator
 gracefully there, so a crashed or hung stack's drive is scored as it is locally."""
 
@@ -22,6 +23,7 @@ from tests.batch.suites import STRAIGHT_SCENARIO
 STEPPING = f"{sys.executable} {Path(__file__).parent / 'peers' / 'stepping_stack.py'}"
 FRAMES = 50
 """A crashing or hanging stack's drive: 50 ticks of 10 ms."""
+COARSE_TICKS_MS = [100, 1000]
 WALL_LIMIT_S = 6
 BATCH_TIMEOUT_S = 300
 pytestmark = pytest.mark.timeout(3 * BATCH_TIMEOUT_S)
@@ -43,7 +45,12 @@ def write_suite(folder: Path) -> Path:
     (folder / "straight.yaml").write_text(yaml.safe_dump(STRAIGHT_SCENARIO))
     (folder / "red_ahead.yaml").write_text(yaml.safe_dump(RED_AHEAD))
     suite = {
-        "stack": {"command": "{command}", "connect_timeout_s": 10},
+        "stack": {
+            "command": "{command}",
+            "env": {"STEPPING_TICK_MS": "{tick_ms}"},
+            "connect_timeout_s": 10,
+        },
+        "parameters": {"tick_ms": 0},  # the physics step, 10 ms
         "clock": "sync",
         "time_limit_s": 3,
         "wall_limit_s": WALL_LIMIT_S,
@@ -62,6 +69,14 @@ def write_suite(folder: Path) -> Path:
                 f"{STEPPING} --brake",
                 "red_ahead.yaml",
                 sweep={"speed_mps": [20, 30]},
+            ),
+            # The same in sync ticks of 100 ms and 1 s: the first tick carries the car
+            # 2.7 m and 27 m on, the second over the line.
+            case(
+                "coarse_red_light",
+                f"{STEPPING} --brake",
+                "red_ahead.yaml",
+                sweep={"speed_mps": [20, 30], "tick_ms": COARSE_TICKS_MS},
             ),
         ],
     }
@@ -135,23 +150,42 @@ def test_each_case_ends_as_its_stack_made_it(local) -> None:
             "no_red_light (red_light_count = 1)",
             "time_limit",
         ),
+        **{
+            f"coarse_red_light[speed_mps=20,tick_ms={tick}]": ("passed", "", "time_limit")
+            for tick in COARSE_TICKS_MS
+        },
+        **{
+            f"coarse_red_light[speed_mps=30,tick_ms={tick}]": (
+                "failed",
+                "no_red_light (red_light_count = 1)",
+                "time_limit",
+            )
+            for tick in COARSE_TICKS_MS
+        },
     }
     # A stack that crashed or hung leaves its drive up to then scored.
     for name in ("hangs", "crashes_while_driving"):
-        assert cases[name]["sim_time_s"] == pytest.approx((FRAMES - 1) * 0.01)  # from tick 1
+        assert cases[name]["sim_time_s"] == pytest.approx(FRAMES * 0.01)
         assert cases[name]["metrics"]["driving_score"] == 1.0
     assert cases["drives"]["sim_time_s"] == pytest.approx(3.0)
 
 
 def test_a_red_light_the_car_cannot_stop_for_is_run(local) -> None:
     cases = by_name(local)
-    (run,) = cases["red_light[speed_mps=30]"]["infractions"]
-    assert run["kind"] == "red_light"
-    assert (run["x"], run["y"]) == pytest.approx((-19.5, -1.75))  # R3_E_1's end
-    # Full braking (about 9 m/s²) from 30 m/s covers the 40 m in a little under 2 s.
-    assert 1.5 < run["time_s"] < 2.0
-    stopped = cases["red_light[speed_mps=20]"]
-    assert stopped["infractions"] == [] and stopped["metrics"]["distance_m"] < 40.0
+    coarse = [f"coarse_red_light[speed_mps={{}},tick_ms={tick}]" for tick in COARSE_TICKS_MS]
+    for name in ["red_light[speed_mps=30]", *(c.format(30) for c in coarse)]:
+        (run,) = cases[name]["infractions"]
+        assert run["kind"] == "red_light", name
+        assert (run["x"], run["y"]) == pytest.approx((-19.5, -1.75))  # R3_E_1's end
+        # Full braking (about 9 m/s²) from 30 m/s covers the 40 m in a little under 2 s.
+        assert 1.5 < run["time_s"] < 2.0, name
+    stops = ["red_light[speed_mps=20]", *(c.format(20) for c in coarse)]
+    for name in stops:
+        assert cases[name]["infractions"] == [], name
+        assert cases[name]["metrics"]["distance_m"] < 40.0, name
+    # However coarse the tick, the braking is the same drive: it stops at the same place.
+    distances = [cases[name]["metrics"]["distance_m"] for name in stops]
+    assert distances == pytest.approx([distances[0]] * len(stops), abs=0.01)
 
 
 @pytest.mark.parametrize("runner", ["local", "on_ray"])

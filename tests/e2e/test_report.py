@@ -145,7 +145,7 @@ def test_a_recording_begun_after_a_collision_holds_none_of_it(
     tmp_path: Path,
     capsys: pytest.CaptureFixture[str],
 ) -> None:
-    """Issue 29: `egosim record` started a while after the ego hit a barrier (nobody
+    """`egosim record` started a while after the ego hit a barrier (nobody
     listened to /CollisionData then) must not find that collision in its first message;
     and while the ego rests against the barrier, the report tells that contact apart."""
     scenario = write(tmp_path, "obstacle.yaml", OBSTACLE_AHEAD)

@@ -1,4 +1,4 @@
-"""How `egosim run` stops, as a process among real ROS peers (issue 29): the sequence that
+"""How `egosim run` stops, as a process among real ROS peers: the sequence that
 once ignored Ctrl-C (autopilot, a replay, back to ctrl_mode 3, recording, a page on the
 view) stopped by SIGINT, SIGTERM or Debian's `rosnode kill`; a second signal, or a clean
 stop that cannot finish, ends the process within the bound with the bag indexed."""
@@ -72,8 +72,9 @@ def timed_exit(process: RosProcess, since: float) -> tuple[int, float]:
     return status, time.monotonic() - since
 
 
-def the_issue_sequence(client: RospyDriver) -> None:
-    """Autopilot, a replay, then back to the external controller (issue 29's stop)."""
+def autopilot_replay_and_back(client: RospyDriver) -> None:
+    """Autopilot, a replay, then back to the external controller: the sequence after which a
+    stop once never came."""
     event = {"option": 1, "ctrl_mode": 4}
     assert client.call(*EVENT, {"request": event})["response"]["ctrl_mode"] == 4
     assert sim_proc(
@@ -99,7 +100,7 @@ def test_the_stop_that_never_came_is_prompt_clean_and_leaves_an_indexed_bag(
     simulator = egosim("--record", str(bag), "--view-port", "0")
     page = PageWatcher(view_socket(simulator), random.Random(29))
     try:
-        the_issue_sequence(rospy_client(simulator))
+        autopilot_replay_and_back(rospy_client(simulator))
         if how == "rosnode kill":
             rosnode_kill(simulator.master_uri, ros_env)  # returns once egosim has answered
             since = time.monotonic()

@@ -1,4 +1,4 @@
-"""Collisions as a report counts them from /CollisionData (issue 29): a contact is listed in
+"""Collisions as a report counts them from /CollisionData: a contact is listed in
 every message while it lasts and counts once; one already listed by the bag's first message
 was under way when the recording began and is told apart, not counted."""
 

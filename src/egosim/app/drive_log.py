@@ -3,8 +3,11 @@ whom, where) and every infraction the evaluation's rules find (red lights and st
 run, driving the wrong way, leaving the road), logged at INFO as each begins. Lane
 departures, which every lane change makes, go to DEBUG.
 
-It is the "drive log" stage of the tick pipeline, right after the world's step, and is
-left out when nothing would be shown (the log level is above INFO).
+It is the "drive log" stage of the tick pipeline, right after the world's step, with a
+"drive log start" stage right before it that takes an ego's first sample from the world
+before the step: a coarse sync tick (up to 1 s) may carry the ego over a stop line in its
+very first step. Both are left out when nothing would be shown (the log level is above
+INFO).
 """
 
 from __future__ import annotations
@@ -12,7 +15,7 @@ from __future__ import annotations
 import logging
 import math
 
-from ..bridge import BridgeContext, Stage, Tick
+from ..bridge import BridgeContext, Stage, Tick, TickPipeline
 from ..evaluation import (
     COLLISION_KINDS,
     Infraction,
@@ -21,12 +24,14 @@ from ..evaluation import (
     ego_sample,
 )
 from ..evaluation.rules import Sample
+from ..world import World
 
 log = logging.getLogger("egosim.drive")
 
 JUMP_M = 5.0
-"""An ego that moved farther in one step was placed (a scenario load, a teleport, a
-replay's seek): its rules start afresh there rather than see it cross what it skipped."""
+"""An ego that moved this much farther in one step than its speed carries it was placed (a
+scenario load, a teleport, a replay's seek): its rules start afresh there rather than see
+it cross what it skipped. (A step may be a sync tick of up to 1 s: at 30 m/s, 30 m.)"""
 
 _LABELS = {
     InfractionKind.COLLISION_PEDESTRIAN: "collision (pedestrian)",
@@ -42,15 +47,27 @@ _QUIET = frozenset({InfractionKind.LANE_DEPARTURE})
 
 
 class DriveLog:
-    """One InfractionWatch per ego, fed after every step; what they find is logged."""
+    """One InfractionWatch per ego, begun before the step it first takes part in and fed
+    after every step; what they find is logged."""
 
     def __init__(self) -> None:
         self._watches: dict[int, InfractionWatch] = {}
         self._last: dict[int, Sample] = {}
         self._time = -math.inf
 
-    def stage(self) -> Stage[BridgeContext]:
-        return Stage("drive log", self.run)
+    def on(self, pipeline: TickPipeline[BridgeContext]) -> TickPipeline[BridgeContext]:
+        """`pipeline` with this log's two stages around its world step."""
+        return pipeline.with_stage(Stage("drive log start", self.begin), before="world").with_stage(
+            Stage("drive log", self.run), after="world"
+        )
+
+    def begin(self, context: BridgeContext, tick: Tick) -> None:
+        """Begin the watch of every ego that has none, from its sample before the step."""
+        world = context.world
+        for index, ego in enumerate(world.egos):
+            watch = self._watches.get(ego.unique_id)
+            if watch is None or watch.ego_index != index:
+                self._watch(world, index, ego.unique_id, ego_sample(world, index))
 
     def run(self, context: BridgeContext, tick: Tick) -> None:
         world = context.world
@@ -65,9 +82,8 @@ class DriveLog:
             watch = self._watches.get(unique_id)
             last = self._last.get(unique_id)
             if watch is None or watch.ego_index != index or _jumped(last, sample):
-                watch = self._watches[unique_id] = InfractionWatch(
-                    world, index, blocked_after_s=math.inf
-                )
+                watch = self._watch(world, index, unique_id, sample)
+                continue
             self._last[unique_id] = sample
             for infraction in watch.observe(world, sample):
                 _log(unique_id, infraction, sample)
@@ -75,14 +91,26 @@ class DriveLog:
             del self._watches[gone]
             del self._last[gone]
 
+    def _watch(self, world: World, index: int, unique_id: int, sample: Sample) -> InfractionWatch:
+        """A new watch of ego `index`, its first sample `sample` (where its rules start)."""
+        watch = self._watches[unique_id] = InfractionWatch(world, index, blocked_after_s=math.inf)
+        self._last[unique_id] = sample
+        for infraction in watch.observe(world, sample):
+            _log(unique_id, infraction, sample)
+        return watch
 
-def drive_log_stage() -> Stage[BridgeContext] | None:
-    """The stage, or None when its lines would not be shown."""
-    return DriveLog().stage() if log.isEnabledFor(logging.INFO) else None
+
+def drive_log() -> DriveLog | None:
+    """The drive log, or None when its lines would not be shown."""
+    return DriveLog() if log.isEnabledFor(logging.INFO) else None
 
 
 def _jumped(last: Sample | None, sample: Sample) -> bool:
-    return last is not None and math.hypot(sample.x - last.x, sample.y - last.y) > JUMP_M
+    if last is None:
+        return False
+    speed = max(abs(last.speed_mps), abs(sample.speed_mps))
+    reach = speed * max(sample.time_s - last.time_s, 0.0)
+    return math.hypot(sample.x - last.x, sample.y - last.y) > reach + JUMP_M
 
 
 def _log(ego_id: int, infraction: Infraction, sample: Sample) -> None:

@@ -22,7 +22,7 @@ from ..world import World
 from ..world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, load_default_scenario
 from ..yamltext import YamlFileError
 from .attachments import Attach, Attachment, RunningSimulator
-from .drive_log import drive_log_stage
+from .drive_log import drive_log
 from .exit_codes import EXIT_BAD_INPUT, EXIT_OK, EXIT_ROS_FAILED
 from .inbox import Inbox
 from .loop import SimulationLoop
@@ -199,8 +199,8 @@ def _run(
         )
         if recorder is not None:
             bridge.taps.append(recorder.tap())
-        if (drive_log := drive_log_stage()) is not None:
-            context.pipeline = context.pipeline.with_stage(drive_log, after="world")
+        if (console_log := drive_log()) is not None:
+            context.pipeline = console_log.on(context.pipeline)
         try:
             bridge.open(context)
             if options.clock is not ClockMode.REAL:

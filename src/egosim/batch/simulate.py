@@ -83,7 +83,12 @@ def build_route(lane_map: LaneMap, spec: Mapping[str, object] | None) -> Route |
 class CaseDrive:
     """The drive stage of the tick pipeline (right after the world's step): holds the
     world until the stack is connected (sim clock), then evaluates every step and ends
-    the run (sets `stop`) when the drive is over."""
+    the run (sets `stop`) when the drive is over.
+
+    The drive's first sample is the world before its first step: in sync mode the first
+    tick the stack asks for is where the drive begins, and with a coarse tick (up to 1 s)
+    that tick alone may carry the ego over a stop line, which only a sample before it
+    can see."""
 
     def __init__(self, case: CaseSpec, master_uri: str, stop: threading.Event) -> None:
         self.case = case
@@ -101,6 +106,17 @@ class CaseDrive:
     def attach(self, running: RunningSimulator) -> CaseDrive:
         """Ride on the run: the drive stage right after the world's step."""
         context = running.context
+        world = self.world = context.world
+        if self._gate:  # the sim clock's world waits for the stack from its first step on
+            world.paused = True
+        self.start_sim_s = world.sim_time
+        try:
+            route = build_route(world.map, self.case.route)
+        except RouteError as error:
+            self.end = f"bad route: {error}"  # the run ends at its first tick
+        else:
+            self.evaluator = DriveEvaluator(world, route, evaluation_settings(self.case.scoring))
+            self.evaluator.observe(world)
         context.pipeline = context.pipeline.with_stage(Stage("drive", self.run), after="world")
         return self
 
@@ -117,10 +133,14 @@ class CaseDrive:
             self.stop.set()
 
     def _observe(self, world: World) -> bool:
-        if self.evaluator is None:
+        if self.evaluator is None:  # the case's route does not fit the map
+            return True
+        if self.started_wall is None:
             if self._gate and not self._stack_ready(world):
                 return False
-            return self._start(world)
+            self._start(world)
+            if self._gate:  # the world waited: it begins to move at the next step
+                return False
         self.evaluator.observe(world)
         storyboard = world.storyboard
         if storyboard is not None and storyboard.finished:
@@ -145,24 +165,16 @@ class CaseDrive:
         time.sleep(world.physics_step_s)
         return False
 
-    def _start(self, world: World) -> bool:
-        """Begin the drive; True (end the run) when the case's route does not fit the map."""
-        try:
-            route = build_route(world.map, self.case.route)
-        except RouteError as error:
-            self.end = f"bad route: {error}"
-            return True
+    def _start(self, world: World) -> None:
+        """The drive begins: the stack is there (sim clock) or stepped the world (sync)."""
         world.paused = False
-        self.start_sim_s = world.sim_time
         self.started_wall = time.monotonic()
-        self.evaluator = DriveEvaluator(world, route, evaluation_settings(self.case.scoring))
         print(f"{PREFIX}{RUNNING}", flush=True)
-        return False
 
     def result(self) -> Drive:
         wall = 0.0 if self.started_wall is None else time.monotonic() - self.started_wall
         score = None
-        if self.evaluator is not None:
+        if self.evaluator is not None and self.started_wall is not None:  # the drive began
             score = self.evaluator.score(timed_out=self.end == "time_limit").as_dict()
         sim_time = 0.0 if self.world is None else self.world.sim_time - self.start_sim_s
         result: Drive = {

@@ -48,9 +48,14 @@ class TickPipeline(Generic[Context]):
     def names(self) -> tuple[str, ...]:
         return tuple(stage.name for stage in self.stages)
 
-    def with_stage(self, stage: Stage[Context], *, after: str) -> TickPipeline[Context]:
-        """This pipeline with `stage` run right after the stage named `after`."""
-        index = self.names.index(after) + 1
+    def with_stage(
+        self, stage: Stage[Context], *, after: str | None = None, before: str | None = None
+    ) -> TickPipeline[Context]:
+        """This pipeline with `stage` run right after the stage named `after`, or right
+        before the one named `before` (one of the two)."""
+        if (after is None) == (before is None):
+            raise ValueError("give one of after= and before=")
+        index = self.names.index(after) + 1 if after is not None else self.names.index(before)
         return TickPipeline([*self.stages[:index], stage, *self.stages[index:]])
 
     def run(self, context: Context, dt: float) -> Tick:

@@ -1,6 +1,7 @@
-"""A stand-in stack in MORAI's synchronous mode: starts it with a tick of --tick-ms (0: the
-simulator's physics step) and steps the world frame by frame, pressing the brake fully in
-every frame with --brake (all a good stack can do with a red light too close to stop for).
+"""A stand-in stack in MORAI's synchronous mode: starts it with a tick of --tick-ms (default
+$STEPPING_TICK_MS, else 0: the simulator's physics step) and steps the world frame by
+frame, pressing the brake fully in every frame with --brake (all a good stack can do with
+a red light too close to stop for).
 
 Without --frames it steps until the simulator goes away. With --frames N it writes
 `stepped` in its case folder after N frames and then, as told by its last argument:
@@ -47,7 +48,7 @@ class Services:
 
 def arguments() -> argparse.Namespace:
     parser = argparse.ArgumentParser()
-    parser.add_argument("--tick-ms", type=int, default=0)
+    parser.add_argument("--tick-ms", type=int, default=int(os.environ.get("STEPPING_TICK_MS", "0")))
     parser.add_argument("--brake", action="store_true")
     parser.add_argument("--frames", type=int, default=None)
     parser.add_argument("then", nargs="*", default=[])

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from tests.world.openscenario.stories import (
     event,
+    init_speed,
     lane,
     pedestrian,
     scenario,
@@ -169,3 +170,25 @@ def test_add_delete_visibility_and_traffic_light_actions() -> None:
     assert world.signals.light("TL1").aspect == RED
     step(world, run, 0.5)
     assert not run.rt.entity("Car").in_world()
+
+
+def test_on_an_mgeo_map_a_lane_position_names_a_link_and_runs_along_it() -> None:
+    mgeo = load_map("mgeo_sample")
+    link = "R1_W_1"
+    text = scenario(
+        vehicle("Ego") + vehicle("Car"),
+        teleport("Ego", f'<LanePosition roadId="{link}" laneId="-1" s="5"/>')
+        + teleport("Car", f'<LanePosition roadId="{link}" laneId="-1" s="20" offset="0.5"/>')
+        + init_speed("Car", 5.0),
+    ).replace('filepath="highway.xodr"', 'filepath="mgeo_sample"')
+    world, run = start_world(text, lane_map=mgeo)
+    car = run.rt.entity("Car")
+    assert mgeo.lane_ids[car.lane] == link
+    assert (car.station, car.offset) == pytest.approx((20.0, 0.5))
+    step(world, run, 2.0)
+    assert mgeo.lane_ids[car.lane] == link and car.station == pytest.approx(30.0)
+    # 0.5 m left of the link's centreline, facing along it.
+    x, y, _, heading = mgeo.pose_at(link, 30.0)
+    left = (-math.sin(heading), math.cos(heading))
+    assert (car.x, car.y) == pytest.approx((x + 0.5 * left[0], y + 0.5 * left[1]), abs=1e-6)
+    assert math.remainder(car.heading - heading, math.tau) == pytest.approx(0.0, abs=1e-6)

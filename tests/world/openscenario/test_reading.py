@@ -178,6 +178,33 @@ def test_an_unsupported_element_is_one_line_naming_it_and_the_rest_still_runs() 
     assert run.rt.entity("Car").x == pytest.approx(300.0)
 
 
+def test_the_monitors_and_trailers_of_1_3_are_one_line_each_and_the_car_still_runs() -> None:
+    hitched = vehicle("Ego").replace(
+        "</Axles>",
+        '</Axles><TrailerHitch dx="-1"/><Trailer><EntityRef entityRef="Cart"/></Trailer>',
+    )
+    text = scenario(hitched, teleport("Ego", lane(10))).replace(
+        "<CatalogLocations>",
+        '<MonitorDeclarations><MonitorDeclaration name="m" value="true"/></MonitorDeclarations>'
+        "<CatalogLocations>",
+    )
+    rows = text.splitlines()
+
+    def line_of(tag: str) -> int:
+        return next(k for k, row in enumerate(rows, 1) if f"<{tag}" in row)
+
+    assert read_openscenario(text, "t.xosc").notes == (
+        f"t.xosc:{line_of('MonitorDeclarations')}: <MonitorDeclarations> is not evaluated: "
+        "egosim keeps no monitors",
+        f"t.xosc:{line_of('TrailerHitch')}: <TrailerHitch> is not simulated: egosim's "
+        "vehicles pull no trailers",
+        f"t.xosc:{line_of('Trailer>')}: <Trailer> is not simulated: egosim's vehicles pull "
+        "no trailers",
+    )
+    _, run = start_world(text)
+    assert run.rt.entity("Ego").x == pytest.approx(10.0)
+
+
 def test_mistakes_name_file_line_and_element() -> None:
     with pytest.raises(ScenarioError) as raised:
         read_openscenario(

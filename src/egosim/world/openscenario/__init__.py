@@ -10,6 +10,7 @@ Public API:
 """
 
 from egosim.world.openscenario.catalogs import catalog_directories
+from egosim.world.openscenario.distributions import Distribution, read_distribution
 from egosim.world.openscenario.engine import ScenarioRun
 from egosim.world.openscenario.program import (
     OpenScenario,
@@ -21,12 +22,14 @@ from egosim.world.openscenario.program import (
 from egosim.world.scenario.model import Outcome
 
 __all__ = [
+    "Distribution",
     "OpenScenario",
     "Outcome",
     "ScenarioRun",
     "catalog_directories",
     "choose_ego",
     "map_reference",
+    "read_distribution",
     "read_openscenario",
     "root_of",
 ]

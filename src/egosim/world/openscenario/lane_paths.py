@@ -49,8 +49,9 @@ def advance(
     route: Sequence[int] = (),
     route_position: int = 0,
 ) -> tuple[int, float, int, bool]:
-    """(lane, station, route position, stopped at a lane end) after moving `distance` m
-    along the lanes (negative: backwards, onto predecessors)."""
+    """(lane, station, route position, at a lane end) after moving `distance` m along
+    the lanes (negative: backwards, onto predecessors): stopped at one in this step, or
+    standing at the end of a lane with no successor."""
     station += distance
     lengths = lane_map.lane_lengths
     while station > lengths[lane]:
@@ -65,7 +66,13 @@ def advance(
             return lane, 0.0, route_position, True
         lane = before
         station += float(lengths[lane])
-    return lane, station, route_position, False
+    # An entity that stopped at a dead end in an earlier step is still at it.
+    at_dead_end = (
+        distance >= 0.0
+        and station >= lengths[lane]
+        and not lane_map.lanes[lane_map.lane_ids[lane]].successors
+    )
+    return lane, station, route_position, at_dead_end
 
 
 def distance_along(

@@ -497,6 +497,10 @@ def read_openscenario(
 
 _UNREAD = {
     "SceneGraphFile": "is not loaded: egosim draws the map from its lanes",
+    "MonitorDeclarations": "is not evaluated: egosim keeps no monitors",
+    "Trailer": "is not simulated: egosim's vehicles pull no trailers",
+    "TrailerHitch": "is not simulated: egosim's vehicles pull no trailers",
+    "TrailerCoupler": "is not simulated: egosim's vehicles pull no trailers",
 }
 
 
