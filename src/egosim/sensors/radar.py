@@ -200,10 +200,11 @@ class RadarModel:
             self._half_azimuth, self._half_elevation, config.max_detections, distance,
         )  # fmt: skip
         sight, relative_velocity = np.empty((len(order), 3)), np.empty((len(order), 3))
-        lines_of_sight(
+        if not lines_of_sight(
             order, shown, from_origin, distance, objects.velocities, sensor_velocity,
             sight, relative_velocity,
-        )  # fmt: skip
+        ):  # fmt: skip
+            return self._detections(origin, sensor_to_map, sensor_velocity, objects, hidden_ids)
         range_rate = np.einsum("ij,ij->i", relative_velocity, sight)
         detected = shown[order]
         area = np.empty(len(order))

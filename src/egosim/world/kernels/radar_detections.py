@@ -83,14 +83,20 @@ def lines_of_sight(
     sensor_velocity: FloatArray,
     sight: FloatArray,
     relative_velocity: FloatArray,
-) -> None:
+) -> bool:
     """Per detection (row order[k] of the shown objects): the unit line of sight into
-    sight[k] and the object's velocity relative to the sensor into relative_velocity[k]."""
+    sight[k] and the object's velocity relative to the sensor into relative_velocity[k].
+    False, and nothing written, if a detection lies at the sensor itself (distance 0,
+    a gate from 0 m): numpy divides by it without an error, this does not."""
+    for k in range(order.shape[0]):
+        if distance[order[k]] == 0.0:
+            return False
     for k in range(order.shape[0]):
         row = order[k]
         for axis in range(3):
             sight[k, axis] = from_origin[row, axis] / distance[row]
             relative_velocity[k, axis] = velocities[shown[row], axis] - sensor_velocity[axis]
+    return True
 
 
 @kernel
