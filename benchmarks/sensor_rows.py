@@ -7,7 +7,12 @@ their own, as the publish stage shares them between its rows. Also prints a
 digest of every message's bytes per row: the same world gives the same digests before
 and after a change to the builders.
 
+With --first-start, instead: what the LiDAR's and the radar's first readings cost in a
+fresh process, with an empty numba cache (the first start after an install compiles
+their kernels) and then with the cache that start filled.
+
 Usage: .venv/bin/python benchmarks/sensor_rows.py [--ticks 1000] [--warmup 200]
+       [--first-start]
 """
 
 from __future__ import annotations
@@ -15,7 +20,11 @@ from __future__ import annotations
 import argparse
 import hashlib
 import math
+import os
 import statistics
+import subprocess
+import sys
+import tempfile
 import time
 
 from egosim.app.options import RunOptions
@@ -76,11 +85,50 @@ def run(ticks: int, warmup: int, driving: bool) -> None:
     print(f"  ({READINGS}: {statistics.median(spent[READINGS]) * 1e6:.1f} us per tick)")
 
 
+FIRST_READINGS = """
+import time
+import numpy as np
+from egosim.sensors import LidarModel, ObstacleBoxes, Pose
+from egosim.sensors.radar import RadarModel
+from egosim.world.traffic.objects import ObjectTable
+began = time.perf_counter()
+car = ObstacleBoxes(np.array([[10.0, 0.0, 0.8]]), np.array([[4.5, 1.9, 1.6]]), np.array([0.3]))
+LidarModel().scan(Pose(), car)
+scanned = time.perf_counter()
+table = ObjectTable(
+    unique_ids=np.array([2]), object_types=np.array([1]), names=("",),
+    positions=np.array([[20.0, 0.0, 0.0]]), headings=np.zeros(1), velocities=np.zeros((1, 3)),
+    accelerations=np.zeros((1, 3)), sizes=np.array([[4.5, 1.8, 1.5]]),
+)
+RadarModel().detect(Pose(), (0.0, 0.0, 0.0), 0.0, table)
+print(f"first LiDAR scan {scanned - began:.2f} s, first radar detection "
+      f"{time.perf_counter() - scanned:.2f} s")
+"""
+
+
+def first_start() -> None:
+    with tempfile.TemporaryDirectory() as cache:
+        for case in ("empty numba cache", "cache filled"):
+            environment = {**os.environ, "NUMBA_CACHE_DIR": cache}
+            result = subprocess.run(
+                [sys.executable, "-c", FIRST_READINGS],
+                env=environment,
+                capture_output=True,
+                text=True,
+                check=True,
+            )
+            print(f"{case:18s} {result.stdout.strip()}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--ticks", type=int, default=1000)
     parser.add_argument("--warmup", type=int, default=200)
+    parser.add_argument("--first-start", action="store_true")
     args = parser.parse_args()
+    if args.first_start:
+        first_start()
+        return
     for driving in (False, True):
         run(args.ticks, args.warmup, driving)
 

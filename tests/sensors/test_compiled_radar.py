@@ -25,12 +25,14 @@ def traffic(rng: np.random.Generator, count: int) -> ObjectTable:
     """The carrier (id 1) at the origin, then cars and pedestrians within 160 m, some at
     equal distances (ties), some behind, above or below the field of view."""
     distance = rng.uniform(0.2, 160.0, count)
-    distance[: count // 4] = distance[0]
     bearing = rng.uniform(-np.pi, np.pi, count)
     sizes = rng.choice([(4.5, 1.9, 1.6), (0.6, 0.6, 1.8), (12.0, 2.5, 3.8)], count)
     positions = np.c_[
         distance * np.cos(bearing), distance * np.sin(bearing), rng.normal(0, 2, count)
     ]
+    # A quarter share one position and one height: equal distances, kept in table order.
+    positions[: count // 4] = positions[0]
+    sizes[: count // 4] = sizes[0]
     return ObjectTable(
         unique_ids=np.r_[1, np.arange(2, count + 2)].astype(np.int64),
         object_types=np.ones(count + 1, np.int64),

@@ -9,6 +9,7 @@ import numpy as np
 from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.kernels import kernel
 from egosim.world.kernels.numpy_scalars import maximum
+from egosim.world.kernels.sorting import lexsort_argsort
 
 
 @kernel
@@ -69,7 +70,8 @@ def nearest_in_view(
             inside[count] = k
             count += 1
     inside = inside[:count]
-    nearest = inside[np.argsort(distance[inside], kind="mergesort")]
+    # np.argsort(kind="stable")'s order: by distance, then row (no NaN is inside).
+    nearest: IntArray = inside[lexsort_argsort(np.zeros(count, dtype=np.int64), distance[inside])]
     return nearest[:max_detections]
 
 
