@@ -151,8 +151,10 @@ def test_sensor_rows_publish_the_bytes_they_published_before(name: str) -> None:
     expected = json.loads(REFERENCE.read_text())[name]
     got = digests(published_bytes(SETTINGS[name]))
     for key in ROWS:
-        assert got[key] == expected[key], f"{name} {key}: " + first_difference(
-            got[key], expected[key]
+        assert got[key] == expected[key], (
+            f"{name} {key}: {first_difference(got[key], expected[key])} (on another CPU than"
+            " the reference's, numpy's arctangents may differ: re-record with write_reference"
+            " from a commit whose bytes are trusted)"
         )
     scans = set(got["lidar"])
     assert len(scans) > TICKS // 2  # the scene moves under the LiDAR
