@@ -30,6 +30,7 @@ import time
 from egosim.app.options import RunOptions
 from egosim.app.runner import build_world
 from egosim.bridge import HANDLERS, ClockMode, simulation_context
+from egosim.world import World
 from egosim.world.vehicle import ControlCommand, LongitudinalMode
 
 TICK_S = 0.01
@@ -37,11 +38,11 @@ ROWS = ("gps", "imu", "lidar", "radar", "tf")
 READINGS = "the ego's status and the object table"
 
 
-def drive(world: object, tick: int, driving: bool) -> None:
+def drive(world: World, tick: int, driving: bool) -> None:
     """Parked: no command (the ego stands). Driving: 8 m/s, the wheel swinging slowly."""
     if driving:
         steer = 0.05 * math.sin(0.5 * tick * TICK_S)
-        world.egos[0].vehicle.command(  # type: ignore[attr-defined]
+        world.egos[0].vehicle.command(
             ControlCommand(mode=LongitudinalMode.VELOCITY, velocity=8.0, front_steer=steer)
         )
 
