@@ -68,6 +68,27 @@ def base_link_to_sensor(
 
 def sensor_in_map(vehicle_pose: Pose, mount: MountPose) -> tuple[Vector3, Matrix3]:
     """Origin (map, m) and rotation (sensor -> map) of a mounted sensor."""
-    vehicle_rotation = rotation_of(vehicle_pose)
-    origin = translation_of(vehicle_pose) + vehicle_rotation @ translation_of(mount)
-    return origin, vehicle_rotation @ rotation_of(mount)
+    return MountFrame(mount).in_map(vehicle_pose)
+
+
+class MountFrame:
+    """A mount's offset (base_link, m) and rotation, worked out once for a sensor that
+    reads many times; the same arithmetic as sensor_in_map."""
+
+    def __init__(self, mount: MountPose) -> None:
+        self.mount = mount
+        self.offset = translation_of(mount)
+        self.rotation = rotation_of(mount)
+
+    def in_map(self, vehicle_pose: Pose) -> tuple[Vector3, Matrix3]:
+        """Origin (map, m) and rotation (sensor -> map) of the sensor."""
+        vehicle_rotation = rotation_of(vehicle_pose)
+        return self._origin(vehicle_pose, vehicle_rotation), vehicle_rotation @ self.rotation
+
+    def origin_in_map(self, vehicle_pose: Pose) -> Vector3:
+        """The sensor's origin in the map, m: vehicle position + R_vehicle @ offset."""
+        return self._origin(vehicle_pose, rotation_of(vehicle_pose))
+
+    def _origin(self, vehicle_pose: Pose, vehicle_rotation: Matrix3) -> Vector3:
+        origin: Vector3 = translation_of(vehicle_pose) + vehicle_rotation @ self.offset
+        return origin

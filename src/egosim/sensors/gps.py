@@ -7,11 +7,13 @@ antenna's position in the map frame.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from egosim.sensors.frames import MountPose, sensor_in_map
+from egosim.sensors.frames import MountFrame, MountPose
+from egosim.sensors.last_reading import LastReading
 from egosim.sensors.noise import gaussian, require_non_negative
 from egosim.world.map.georef import GeoReference
 from egosim.world.vehicle import Pose
@@ -59,17 +61,37 @@ class GpsModel:
     mount: MountPose = field(default_factory=MountPose)
     noise: GpsNoise = field(default_factory=GpsNoise)
 
+    @functools.cached_property
+    def _mount_frame(self) -> MountFrame:
+        return MountFrame(self.mount)
+
+    @functools.cached_property
+    def _enu_std_m(self) -> np.ndarray | None:
+        """The noise's std, None for none."""
+        std = self.noise.enu_std_m
+        return std if np.any(std) else None
+
     def antenna_position(self, vehicle_pose: Pose) -> np.ndarray:
         """Antenna in the map frame: vehicle position + R_vehicle @ mount offset."""
-        origin, _ = sensor_in_map(vehicle_pose, self.mount)
-        return origin
+        return self._mount_frame.origin_in_map(vehicle_pose)
 
     def measure(self, vehicle_pose: Pose, rng: np.random.Generator | None = None) -> GpsFix:
         """A fix of the antenna; `rng` is required only when noise is configured."""
-        x, y, z = self.antenna_position(vehicle_pose) + gaussian(self.noise.enu_std_m, rng, "GPS")
-        latitude, longitude, altitude = self.georeference.local_to_geodetic(
-            float(x), float(y), float(z)
-        )
+        antenna = self.antenna_position(vehicle_pose)
+        if self._enu_std_m is not None:
+            x, y, z = (antenna + gaussian(self._enu_std_m, rng, "GPS")).tolist()
+        else:  # gaussian's zeros, added on plain floats (-0.0 + 0.0 is 0.0 there too)
+            east, north, up = antenna.tolist()
+            x, y, z = east + 0.0, north + 0.0, up + 0.0
+        return self._last_fix.of((x, y, z), lambda: self._fix_at(x, y, z))
+
+    @functools.cached_property
+    def _last_fix(self) -> LastReading[GpsFix]:
+        return LastReading(3)
+
+    def _fix_at(self, x: float, y: float, z: float) -> GpsFix:
+        """The fix of an antenna at (x, y, z) in the map frame, m."""
+        latitude, longitude, altitude = self.georeference.local_to_geodetic(x, y, z)
         return GpsFix(
             latitude=latitude,
             longitude=longitude,

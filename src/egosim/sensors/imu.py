@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from egosim.sensors.frames import MountPose, rotation_of
+from egosim.sensors.last_reading import LastReading
 from egosim.sensors.noise import gaussian, require_non_negative
 from egosim.sensors.rotation import Matrix3, Quaternion, quaternion_from_matrix, rotation_matrix
 from egosim.sensors.vectors import Vector3Tuple, add3, cross3, floats3
@@ -122,15 +123,57 @@ class ImuModel:
         """The mount's rotation, worked out once rather than for every reading."""
         return rotation_of(self.mount)
 
+    @functools.cached_property
+    def _body_to_sensor(self) -> Matrix3:
+        turned: Matrix3 = self._sensor_to_body.T
+        return turned
+
+    @functools.cached_property
+    def _constants(self) -> _ImuConstants:
+        """What every reading of this model shares: its lever arm, biases, covariances."""
+        mount, noise = self.mount, self.noise
+        return _ImuConstants(
+            lever=(float(mount.x), float(mount.y), float(mount.z)),
+            linear_acceleration_bias=floats3(noise.linear_acceleration_bias_m_s2),
+            angular_velocity_bias=floats3(noise.angular_velocity_bias_rad_s),
+            orientation_covariance=_diagonal_covariance(noise.orientation_std_rad),
+            angular_velocity_covariance=_diagonal_covariance(noise.angular_velocity_std_rad_s),
+            linear_acceleration_covariance=_diagonal_covariance(noise.linear_acceleration_std_m_s2),
+        )
+
+    @functools.cached_property
+    def _noiseless(self) -> bool:
+        """Its readings draw no noise (biases are no draw)."""
+        noise = self.noise
+        return (
+            noise.orientation_std_rad
+            == noise.angular_velocity_std_rad_s
+            == noise.linear_acceleration_std_m_s2
+            == 0.0
+        )
+
+    @functools.cached_property
+    def _last_reading(self) -> LastReading[ImuReading]:
+        return LastReading(15)
+
     def measure(
         self, kinematics: EgoKinematics, rng: np.random.Generator | None = None
     ) -> ImuReading:
         """One reading; `rng` is required only when noise std is configured."""
+        if not self._noiseless:
+            return self._measure(kinematics, rng)
+        k = kinematics
+        inputs = (
+            k.roll, k.pitch, k.yaw, *k.velocity, *k.velocity_rate,
+            *k.angular_velocity, *k.angular_acceleration,
+        )  # fmt: skip
+        return self._last_reading.of(inputs, lambda: self._measure(kinematics, None))
+
+    def _measure(self, kinematics: EgoKinematics, rng: np.random.Generator | None) -> ImuReading:
         body_to_map = rotation_matrix(kinematics.roll, kinematics.pitch, kinematics.yaw)
-        sensor_to_body = self._sensor_to_body
+        constants, noise = self._constants, self.noise
         omega = floats3(kinematics.angular_velocity)
-        mount = self.mount
-        lever = (float(mount.x), float(mount.y), float(mount.z))
+        lever = constants.lever
 
         mount_acceleration = add3(
             kinematics.inertial_acceleration,
@@ -144,28 +187,37 @@ class ImuModel:
             (STANDARD_GRAVITY * up_x, STANDARD_GRAVITY * up_y, STANDARD_GRAVITY * up_z),
         )
 
-        noise = self.noise
         linear_acceleration = add3(
-            _rotated(sensor_to_body.T, specific_force),
-            floats3(noise.linear_acceleration_bias_m_s2),
+            _rotated(self._body_to_sensor, specific_force),
+            constants.linear_acceleration_bias,
             _noise(noise.linear_acceleration_std_m_s2, rng),
         )
         angular_velocity = add3(
-            _rotated(sensor_to_body.T, omega),
-            floats3(noise.angular_velocity_bias_rad_s),
+            _rotated(self._body_to_sensor, omega),
+            constants.angular_velocity_bias,
             _noise(noise.angular_velocity_std_rad_s, rng),
         )
         if noise.orientation_std_rad == 0.0:  # the zero error _noise gives, turned once
             attitude_error = NO_ATTITUDE_ERROR
         else:
             attitude_error = rotation_matrix(*_noise(noise.orientation_std_rad, rng))
-        sensor_to_map = body_to_map @ sensor_to_body @ attitude_error
+        sensor_to_map = body_to_map @ self._sensor_to_body @ attitude_error
 
         return ImuReading(
             orientation=quaternion_from_matrix(sensor_to_map),
             angular_velocity=angular_velocity,
             linear_acceleration=linear_acceleration,
-            orientation_covariance=_diagonal_covariance(noise.orientation_std_rad),
-            angular_velocity_covariance=_diagonal_covariance(noise.angular_velocity_std_rad_s),
-            linear_acceleration_covariance=_diagonal_covariance(noise.linear_acceleration_std_m_s2),
+            orientation_covariance=constants.orientation_covariance,
+            angular_velocity_covariance=constants.angular_velocity_covariance,
+            linear_acceleration_covariance=constants.linear_acceleration_covariance,
         )
+
+
+@dataclass(frozen=True)
+class _ImuConstants:
+    lever: Vector3Tuple
+    linear_acceleration_bias: Vector3Tuple
+    angular_velocity_bias: Vector3Tuple
+    orientation_covariance: Covariance
+    angular_velocity_covariance: Covariance
+    linear_acceleration_covariance: Covariance

@@ -17,11 +17,11 @@ import numpy as np
 import numpy.typing as npt
 
 from egosim.sensors.errors import SensorConfigError
-from egosim.sensors.frames import MountPose, sensor_in_map
-from egosim.sensors.raycast import ObstacleBoxes, Surface, cast_boxes, cast_rays
+from egosim.sensors.frames import MountFrame, MountPose
+from egosim.sensors.raycast import ObstacleBoxes, RayFan, Surface, cast_fan, cast_rays
 from egosim.world import kernels
 from egosim.world.arrays import FloatArray
-from egosim.world.kernels.lidar_returns import lidar_returns
+from egosim.world.kernels.lidar_returns import lidar_intensities, lidar_returns
 from egosim.world.vehicle import Pose
 
 DEFAULT_LIDAR_MOUNT = MountPose(x=0.0, y=0.0, z=1.8)
@@ -122,9 +122,13 @@ class LidarModel:
     def __init__(self, config: LidarConfig | None = None) -> None:
         self.config = config or LidarConfig()
         self._directions = beam_directions(self.config)
+        self._mount_frame = MountFrame(self.config.mount)
         # The beams one axis per row: rotating them as (3, N) and gathering returned
         # components from contiguous rows are several times cheaper than on (N, 3).
         self._direction_axes = np.ascontiguousarray(self._directions.T)
+        # The beams in the map frame for the last rotation seen (its bytes), with their
+        # broad phase.
+        self._fan: tuple[bytes, RayFan] | None = None
 
     @property
     def beam_count(self) -> int:
@@ -141,11 +145,12 @@ class LidarModel:
         `exclude_index` names the box the sensor rides on, which it never sees.
         """
         config = self.config
-        origin, sensor_to_map = sensor_in_map(vehicle_pose, config.mount)
-        directions = sensor_to_map @ self._direction_axes
+        origin, sensor_to_map = self._mount_frame.in_map(vehicle_pose)
         boxes = boxes if boxes is not None else ObstacleBoxes.empty()
         if kernels.ACTIVE:
-            return self._compiled_returns(origin, directions, boxes, exclude_index)
+            fan = self._fan_for(sensor_to_map)
+            return self._compiled_returns(origin, fan, boxes, exclude_index)
+        directions = sensor_to_map @ self._direction_axes
         hits = cast_rays(origin, directions.T, boxes, config.max_range_m, exclude_index)
         returned = np.flatnonzero(
             (hits.distance >= config.min_range_m) & (hits.distance <= config.max_range_m)
@@ -159,19 +164,26 @@ class LidarModel:
         )
         return points
 
+    def _fan_for(self, sensor_to_map: FloatArray) -> RayFan:
+        """The beams turned by `sensor_to_map` into the map frame: kept, with what the
+        box cast works out of them, until the rotation changes by a bit."""
+        rotation = sensor_to_map.tobytes()
+        if self._fan is None or self._fan[0] != rotation:
+            self._fan = (rotation, RayFan(sensor_to_map @ self._direction_axes))
+        return self._fan[1]
+
     def _compiled_returns(
         self,
         origin: FloatArray,
-        directions: FloatArray,
+        fan: RayFan,
         boxes: ObstacleBoxes,
         exclude_index: int | None,
     ) -> npt.NDArray[np.float32]:
         """scan's points through the compiled pass (world/kernels/lidar_returns.py), bit
         for bit those of the numpy path."""
         config, intensity = self.config, self.config.intensity
-        box_distance, box_cos = cast_boxes(
-            origin, directions.T, boxes, config.max_range_m, exclude_index
-        )
+        box_distance, box_cos = cast_fan(origin, fan, boxes, config.max_range_m, exclude_index)
+        directions = fan.axes
         beams = self.beam_count
         points = np.empty((beams, 4), dtype=np.float32)
         lit, exponent = np.empty(beams), np.empty(beams)
@@ -183,6 +195,7 @@ class LidarModel:
             -2.0 * intensity.extinction_per_m,
             points, lit, exponent,
         )  # fmt: skip
-        returned = points[:count]
-        returned[:, 3] = lit[:count] * np.exp(exponent[:count])
-        return returned
+        extinction = exponent[:count]
+        np.exp(extinction, out=extinction)
+        lidar_intensities(points, lit, extinction)
+        return points[:count]

@@ -19,16 +19,24 @@ azimuth and range rate is optional (std 0 by default).
 
 from __future__ import annotations
 
+import functools
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import numpy.typing as npt
 
 from egosim.sensors.errors import MissingRandomGeneratorError, SensorConfigError
-from egosim.sensors.frames import MountPose, sensor_in_map
+from egosim.sensors.frames import MountFrame, MountPose
 from egosim.sensors.vectors import add3, cross3, floats3
+from egosim.world import kernels
 from egosim.world.arrays import FloatArray
+from egosim.world.kernels.radar_detections import (
+    lines_of_sight,
+    nearest_in_view,
+    seen_areas,
+    shown_centres,
+)
 from egosim.world.traffic.objects import ObjectTable
 from egosim.world.vehicle import Pose
 
@@ -103,7 +111,28 @@ class RadarModel:
         config = self.config
         if not config.noise.is_zero and rng is None:
             raise MissingRandomGeneratorError("a noisy radar needs a random generator")
-        origin, sensor_to_map = sensor_in_map(vehicle_pose, config.mount)
+        origin, sensor_to_map = self._mount_frame.in_map(vehicle_pose)
+        lever = origin - np.array([vehicle_pose.x, vehicle_pose.y, vehicle_pose.z])
+        sensor_velocity = np.array(
+            add3(floats3(vehicle_velocity), cross3((0.0, 0.0, yaw_rate), lever.tolist()))
+        )
+        measure = self._compiled_detections if kernels.ACTIVE else self._detections
+        detections, distance = measure(origin, sensor_to_map, sensor_velocity, objects, hidden_ids)
+        if config.noise.is_zero:
+            return detections
+        assert rng is not None
+        return self._noisy(detections, distance, rng)
+
+    def _detections(
+        self,
+        origin: FloatArray,
+        sensor_to_map: FloatArray,
+        sensor_velocity: FloatArray,
+        objects: ObjectTable,
+        hidden_ids: tuple[int, ...],
+    ) -> tuple[RadarDetections, FloatArray]:
+        """The noiseless detections, and their distances (m)."""
+        config = self.config
         # A comparison per hidden id (one, the carrier): np.isin costs ten times more.
         keep = np.ones(len(objects), dtype=bool)
         for hidden in hidden_ids:
@@ -118,16 +147,12 @@ class RadarModel:
         inside = (
             (distance >= config.min_range_m)
             & (distance <= config.max_range_m)
-            & (np.abs(azimuth) <= math.radians(config.horizontal_fov_deg) / 2.0)
-            & (np.abs(elevation) <= math.radians(config.vertical_fov_deg) / 2.0)
+            & (np.abs(azimuth) <= self._half_azimuth)
+            & (np.abs(elevation) <= self._half_elevation)
         )
         order = np.flatnonzero(inside)
         order = order[np.argsort(distance[order], kind="stable")][: config.max_detections]
 
-        lever = origin - np.array([vehicle_pose.x, vehicle_pose.y, vehicle_pose.z])
-        sensor_velocity = np.array(
-            add3(floats3(vehicle_velocity), cross3((0.0, 0.0, yaw_rate), lever.tolist()))
-        )
         line_of_sight = (centres[order] - origin) / distance[order, None]
         velocities = objects.velocities[keep][order]
         range_rate = np.einsum("ij,ij->i", velocities - sensor_velocity, line_of_sight)
@@ -138,25 +163,91 @@ class RadarModel:
         area = sizes[:, 2] * (
             sizes[:, 0] * np.abs(np.sin(angle)) + sizes[:, 1] * np.abs(np.cos(angle))
         )
-
-        positions = local[order]
-        azimuths = azimuth[order]
-        if not config.noise.is_zero:
-            assert rng is not None
-            noise = config.noise
-            count = len(order)
-            scale = 1.0 + rng.normal(0.0, noise.range_std_m, count) / distance[order]
-            turn = rng.normal(0.0, noise.azimuth_std_rad, count)
-            cos, sin = np.cos(turn), np.sin(turn)
-            x, y = positions[:, 0].copy(), positions[:, 1].copy()
-            positions = np.column_stack((cos * x - sin * y, sin * x + cos * y, positions[:, 2]))
-            positions = positions * scale[:, None]
-            azimuths = np.arctan2(positions[:, 1], positions[:, 0])
-            range_rate = range_rate + rng.normal(0.0, noise.range_rate_std_m_s, count)
-        return RadarDetections(
+        detections = RadarDetections(
             unique_ids=objects.unique_ids[keep][order],
-            positions=positions,
-            azimuths=azimuths,
+            positions=local[order],
+            azimuths=azimuth[order],
             range_rates=range_rate,
             amplitudes=10.0 * np.log10(np.maximum(area, 1e-6)),
+        )
+        return detections, distance[order]
+
+    def _compiled_detections(
+        self,
+        origin: FloatArray,
+        sensor_to_map: FloatArray,
+        sensor_velocity: FloatArray,
+        objects: ObjectTable,
+        hidden_ids: tuple[int, ...],
+    ) -> tuple[RadarDetections, FloatArray]:
+        """_detections through the compiled passes (world/kernels/radar_detections.py),
+        bit for bit: every call that stays numpy's is made on arrays of the same values
+        and layout."""
+        config = self.config
+        shown = np.empty(len(objects), dtype=np.intp)
+        from_origin = np.empty((len(objects), 3))
+        count = shown_centres(
+            objects.unique_ids, np.array(hidden_ids, dtype=np.int64), objects.positions,
+            objects.sizes, origin, shown, from_origin,
+        )  # fmt: skip
+        shown, from_origin = shown[:count], from_origin[:count]
+        local = from_origin @ sensor_to_map
+        azimuth = np.arctan2(local[:, 1], local[:, 0])
+        elevation = np.arctan2(local[:, 2], np.hypot(local[:, 0], local[:, 1]))
+        distance = np.empty(count)
+        order = nearest_in_view(
+            local, azimuth, elevation, config.min_range_m, config.max_range_m,
+            self._half_azimuth, self._half_elevation, config.max_detections, distance,
+        )  # fmt: skip
+        sight, relative_velocity = np.empty((len(order), 3)), np.empty((len(order), 3))
+        if not lines_of_sight(
+            order, shown, from_origin, distance, objects.velocities, sensor_velocity,
+            sight, relative_velocity,
+        ):  # fmt: skip
+            return self._detections(origin, sensor_to_map, sensor_velocity, objects, hidden_ids)
+        range_rate = np.einsum("ij,ij->i", relative_velocity, sight)
+        detected = shown[order]
+        area = np.empty(len(order))
+        sight_heading = np.arctan2(sight[:, 1], sight[:, 0])
+        seen_areas(detected, objects.headings, objects.sizes, sight_heading, area)
+        detections = RadarDetections(
+            unique_ids=objects.unique_ids[detected],
+            positions=local[order],
+            azimuths=azimuth[order],
+            range_rates=range_rate,
+            amplitudes=10.0 * np.log10(area),
+        )
+        return detections, distance[order]
+
+    @functools.cached_property
+    def _mount_frame(self) -> MountFrame:
+        return MountFrame(self.config.mount)
+
+    @functools.cached_property
+    def _half_azimuth(self) -> float:
+        return math.radians(self.config.horizontal_fov_deg) / 2.0
+
+    @functools.cached_property
+    def _half_elevation(self) -> float:
+        return math.radians(self.config.vertical_fov_deg) / 2.0
+
+    def _noisy(
+        self, detections: RadarDetections, distance: FloatArray, rng: np.random.Generator
+    ) -> RadarDetections:
+        """`detections` (at `distance`, m) with the configured range, azimuth and range
+        rate noise."""
+        noise = self.config.noise
+        count = len(detections)
+        positions = detections.positions
+        scale = 1.0 + rng.normal(0.0, noise.range_std_m, count) / distance
+        turn = rng.normal(0.0, noise.azimuth_std_rad, count)
+        cos, sin = np.cos(turn), np.sin(turn)
+        x, y = positions[:, 0].copy(), positions[:, 1].copy()
+        positions = np.column_stack((cos * x - sin * y, sin * x + cos * y, positions[:, 2]))
+        positions = positions * scale[:, None]
+        return replace(
+            detections,
+            positions=positions,
+            azimuths=np.arctan2(positions[:, 1], positions[:, 0]),
+            range_rates=detections.range_rates + rng.normal(0.0, noise.range_rate_std_m_s, count),
         )

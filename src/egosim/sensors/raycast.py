@@ -18,9 +18,19 @@ import numpy.typing as npt
 from egosim.sensors.errors import SensorConfigError
 from egosim.world import kernels
 from egosim.world.arrays import FloatArray
-from egosim.world.kernels.ray_boxes import nearest_box_hits
+from egosim.world.kernels.ray_boxes import (
+    BLOCKS_PER_SPAN,
+    RAYS_PER_BLOCK,
+    bearing_envelopes,
+    boxes_in_reach,
+    nearest_box_hits,
+    sector_intervals,
+    split_by_rise,
+)
 
 IndexArray = npt.NDArray[np.intp]
+RayGroup = tuple[IndexArray, FloatArray, FloatArray]
+"""Rays by index, and their x and y components."""
 
 
 class Surface(IntEnum):
@@ -74,6 +84,61 @@ class RayHits:
     cos_incidence: FloatArray
 
 
+@dataclass(frozen=True)
+class BearingBlocks:
+    """Rays with their horizontal bearings (rad) and the envelopes of those bearings over
+    blocks of consecutive rays and spans of blocks (kernels/ray_boxes.py's
+    bearing_envelopes): where the rays of a bearing interval can be."""
+
+    rays: IndexArray
+    bearing: FloatArray
+    block: FloatArray
+    span: FloatArray
+
+
+class RayFan:
+    """Unit rays from one origin, one axis per row (3, N), and what the compiled box cast
+    needs of them, worked out when first asked for and then kept: the rising and the
+    other rays, each group with its bearings and their envelopes. A LiDAR keeps its fan
+    while its beams keep their rotation (a vehicle standing, or holding its heading)."""
+
+    def __init__(self, axes: FloatArray) -> None:
+        self.axes = axes
+        self.count = axes.shape[1]
+        self._groups: tuple[RayGroup, RayGroup] | None = None
+        self._blocks: dict[bool, BearingBlocks] = {}
+
+    def blocks(self, rising: bool) -> BearingBlocks:
+        """The rising rays (z > 0) or the others, with their bearings' envelopes."""
+        blocks = self._blocks.get(rising)
+        if blocks is None:
+            rays, east, north = self._group(rising)
+            # raycast's numpy path takes the same arctangents of the same components.
+            bearing = np.arctan2(north, east)
+            block_count = -(-len(rays) // RAYS_PER_BLOCK)
+            blocks = BearingBlocks(
+                rays,
+                bearing,
+                np.empty((2, block_count)),
+                np.empty((2, -(-block_count // BLOCKS_PER_SPAN))),
+            )
+            bearing_envelopes(bearing, blocks.block, blocks.span)
+            self._blocks[rising] = blocks
+        return blocks
+
+    def _group(self, rising: bool) -> RayGroup:
+        """The rising rays or the others, and their x and y components (contiguous)."""
+        if self._groups is None:
+            rising_rays, other_rays = np.empty(self.count, np.intp), np.empty(self.count, np.intp)
+            horizontal = np.empty((4, self.count))
+            risen = split_by_rise(self.axes, rising_rays, other_rays, horizontal)
+            self._groups = (
+                (other_rays[: self.count - risen], *horizontal[2:, : self.count - risen]),
+                (rising_rays[:risen], *horizontal[:2, :risen]),
+            )
+        return self._groups[rising]
+
+
 def cast_ground(origin: FloatArray, directions: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Distance along unit `directions` to the plane z = 0 (inf if not reached), and |cos|."""
     rise = directions[:, 2]
@@ -117,27 +182,15 @@ def cast_boxes(
 
     A ray starting inside a box does not see that box.
     """
+    if kernels.ACTIVE:
+        # One row per axis: a LiDAR's rotated beams already are, so nothing is copied.
+        fan = RayFan(np.ascontiguousarray(directions.T))
+        return cast_fan(origin, fan, boxes, max_range, exclude_index)
     distance = np.full(len(directions), np.inf)
     cos_incidence = np.zeros(len(directions))
     candidates = _boxes_in_range(origin, boxes, max_range, exclude_index)
     if len(candidates) == 0 or len(directions) == 0:
         return distance, cos_incidence
-    if kernels.ACTIVE:
-        offset, tangent_length = _cone_tangents(origin, boxes)
-        frames = np.vstack(_box_frames(origin, boxes))
-        half_size = np.ascontiguousarray(0.5 * boxes.sizes.T)
-        # One row per axis: a LiDAR's rotated beams already are, so nothing is copied.
-        rays = np.ascontiguousarray(directions.T)
-        for group_rays, group_boxes in _ray_groups(origin, directions, boxes, candidates):
-            sorted_rays, interval_box, first, stop = _sector_intervals(
-                origin, directions, group_rays, boxes, group_boxes
-            )
-            nearest_box_hits(
-                rays, sorted_rays, interval_box, first, stop, offset, tangent_length,
-                frames, half_size, distance, cos_incidence,
-            )  # fmt: skip
-        return distance, cos_incidence
-
     ray_index, box_index = _pairs_in_sector(origin, directions, boxes, candidates)
     pair_direction = directions[ray_index]
     in_cone = _in_bounding_cone(origin, boxes, pair_direction, box_index)
@@ -152,6 +205,60 @@ def cast_boxes(
     np.minimum.at(distance, ray_index, pair_distance)
     nearest = pair_distance == distance[ray_index]
     cos_incidence[ray_index[nearest]] = pair_cos[nearest]
+    return distance, cos_incidence
+
+
+def cast_fan(
+    origin: FloatArray,
+    fan: RayFan,
+    boxes: ObstacleBoxes,
+    max_range: float,
+    exclude_index: int | None = None,
+) -> tuple[FloatArray, FloatArray]:
+    """cast_boxes for the rays of `fan`, through the compiled kernels (the broad phase's
+    bearing intervals, then one loop over their rays); `fan` keeps its rays' bearings."""
+    distance = np.full(fan.count, np.inf)
+    cos_incidence = np.zeros(fan.count)
+    count = len(boxes)
+    if count == 0 or fan.count == 0:
+        return distance, cos_incidence
+    candidates = np.empty(count, np.intp)
+    frames, half_size = np.empty((5, count)), np.empty((3, count))
+    towards, sine = np.empty((count, 2)), np.empty(count)
+    surrounds, top_above = np.empty(count, np.bool_), np.empty(count, np.bool_)
+    reached = boxes_in_reach(
+        origin, boxes.centres, boxes.sizes, boxes.yaws, max_range,
+        -1 if exclude_index is None else range(count)[exclude_index],
+        candidates, frames, half_size, towards, sine, surrounds, top_above,
+    )  # fmt: skip
+    if reached == 0:
+        return distance, cos_incidence
+    candidates, towards = candidates[:reached], towards[:reached]
+    # _sectors' arctangent and arcsine, numpy's on both paths.
+    centre_bearing = np.arctan2(towards[:, 1], towards[:, 0])
+    half_width = np.arcsin(sine[:reached])
+    offset, tangent_length = _cone_tangents(origin, boxes)
+    boxes_of, lows, highs = (
+        np.empty(3 * reached, np.intp),
+        np.empty(3 * reached),
+        np.empty(3 * reached),
+    )
+    everyone = np.ones(reached, np.bool_)
+    # _box_groups: the falling and level rays meet every candidate, the rising ones only
+    # those whose top is above the origin.
+    for rising, member in ((False, everyone), (True, top_above[:reached])):
+        if rising and not member.any():
+            break
+        blocks = fan.blocks(rising)
+        spans = sector_intervals(
+            candidates, member, surrounds[:reached], centre_bearing, half_width,
+            boxes_of, lows, highs,
+        )  # fmt: skip
+        nearest_box_hits(
+            fan.axes, blocks.rays, blocks.bearing, blocks.block, blocks.span,
+            boxes_of[:spans], lows[:spans], highs[:spans], offset, tangent_length,
+            frames, half_size, distance, cos_incidence,
+        )  # fmt: skip
     return distance, cos_incidence
 
 
@@ -195,11 +302,21 @@ def _ray_groups(
     """(rays, boxes they may meet): the falling and level rays with every candidate, then
     the rising rays with the boxes whose top is above the origin, if any."""
     rising = directions[:, 2] > 0.0
+    return [
+        (np.flatnonzero(rising if rises else ~rising), group)
+        for rises, group in _box_groups(origin, boxes, candidates)
+    ]
+
+
+def _box_groups(
+    origin: FloatArray, boxes: ObstacleBoxes, candidates: IndexArray
+) -> list[tuple[bool, IndexArray]]:
+    """(whether the rays rise, the candidates they may meet): _ray_groups' groups."""
     # The top face's offset exactly as _slab_entry computes it.
     top_above = 0.5 * boxes.sizes[candidates, 2] - (origin[2] - boxes.centres[candidates, 2]) > 0.0
-    groups = [(np.flatnonzero(~rising), candidates)]
+    groups = [(False, candidates)]
     if top_above.any():
-        groups.append((np.flatnonzero(rising), candidates[top_above]))
+        groups.append((True, candidates[top_above]))
     return groups
 
 
@@ -227,14 +344,28 @@ def _sector_intervals(
     boxes: ObstacleBoxes,
     candidates: IndexArray,
 ) -> tuple[IndexArray, IndexArray, IndexArray, IndexArray]:
-    """`rays` sorted by bearing, and per bearing interval of a box's sector (in the
-    order of `candidates`, then the second halves of sectors crossing +-pi): its box and
-    the range first:stop of the sorted rays inside it."""
-    # take() gathers from a column of the LiDAR's transposed beams twice as fast as [rays, k].
-    bearing = np.arctan2(directions[:, 1].take(rays), directions[:, 0].take(rays))
+    """`rays` sorted by bearing, and per bearing interval of a box's sector (_sectors): its
+    box and the range first:stop of the sorted rays inside it."""
+    bearing = _bearings(directions, rays)
     by_bearing = np.argsort(bearing, kind="stable")
     sorted_bearing = bearing[by_bearing]
+    interval_box, interval_low, interval_high = _sectors(origin, boxes, candidates)
+    first = np.searchsorted(sorted_bearing, interval_low, side="left")
+    stop = np.searchsorted(sorted_bearing, interval_high, side="right")
+    return rays[by_bearing], interval_box, first, stop
 
+
+def _bearings(directions: FloatArray, rays: IndexArray) -> FloatArray:
+    """The horizontal bearing (rad, -pi..pi) of each of `rays`."""
+    # take() gathers from a column of the LiDAR's transposed beams twice as fast as [rays, k].
+    return np.arctan2(directions[:, 1].take(rays), directions[:, 0].take(rays))
+
+
+def _sectors(
+    origin: FloatArray, boxes: ObstacleBoxes, candidates: IndexArray
+) -> tuple[IndexArray, FloatArray, FloatArray]:
+    """The bearing intervals of the boxes' sectors, in the order of `candidates`, then the
+    second halves of sectors crossing +-pi: each interval's box, low and high end (rad)."""
     offset = boxes.centres[candidates, :2] - origin[:2]
     horizontal_distance = np.hypot(offset[:, 0], offset[:, 1])
     footprint_radius = 0.5 * np.hypot(boxes.sizes[candidates, 0], boxes.sizes[candidates, 1])
@@ -256,9 +387,7 @@ def _sector_intervals(
     interval_high = np.concatenate(
         [np.minimum(high, np.pi), np.full(wraps_low.sum(), np.pi), high[wraps_high] - 2 * np.pi]
     )
-    first = np.searchsorted(sorted_bearing, interval_low, side="left")
-    stop = np.searchsorted(sorted_bearing, interval_high, side="right")
-    return rays[by_bearing], interval_box, first, stop
+    return interval_box, interval_low, interval_high
 
 
 def _in_bounding_cone(

@@ -18,18 +18,27 @@ Quaternion = tuple[float, float, float, float]
 
 def rotation_matrix(roll: float, pitch: float, yaw: float) -> Matrix3:
     """Rz(yaw) @ Ry(pitch) @ Rx(roll): child-frame vectors into the parent frame."""
-    # numpy's sines and cosines, then the products on plain floats: the same IEEE
-    # operations as on numpy scalars, without their per-operation overhead.
-    cr, sr = float(np.cos(roll)), float(np.sin(roll))
-    cp, sp = float(np.cos(pitch)), float(np.sin(pitch))
-    cy, sy = float(np.cos(yaw)), float(np.sin(yaw))
+    cr, sr = _cos_sin(roll)
+    cp, sp = _cos_sin(pitch)
+    cy, sy = _cos_sin(yaw)
+    # The products on plain floats: the same IEEE operations as on numpy scalars,
+    # without their per-operation overhead.
     return np.array(
-        [
-            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-            [-sp, cp * sr, cp * cr],
-        ]
-    )
+        (
+            cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
+            sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
+            -sp, cp * sr, cp * cr,
+        )
+    ).reshape(3, 3)  # fmt: skip
+
+
+def _cos_sin(angle: float) -> tuple[float, float]:
+    """libm's cosine and sine: numpy's own for float64 (the compiled kernels rely on the
+    same), without its per-call overhead."""
+    try:
+        return math.cos(angle), math.sin(angle)
+    except ValueError:  # an infinite angle: numpy's NaN (and warning), as before
+        return float(np.cos(angle)), float(np.sin(angle))
 
 
 def quaternion_from_matrix(rotation: Matrix3) -> Quaternion:

@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterable
 
 import numpy as np
+import numpy.typing as npt
 
 from ...msgs.typed import morai_26_r1, standard
 from ...sensors import GpsFix, ImuReading, Transform
+from ...sensors.imu import Covariance
 from ...sensors.radar import RadarDetections
 from ..protocol.messages import header as make_header
 from ..protocol.messages import point, quaternion, vector3
@@ -21,7 +24,7 @@ FLOAT32 = 7  # sensor_msgs/PointField datatype code
 def gps_message(
     profile: CanonicalProfile, header: standard.Header, fix: GpsFix
 ) -> morai_26_r1.GPSMessage:
-    return profile.message("morai_msgs/GPSMessage").new(
+    return profile.message("morai_msgs/GPSMessage").make(
         header=header,
         latitude=fix.latitude,
         longitude=fix.longitude,
@@ -38,14 +41,21 @@ def imu_message(
     return profile.message("sensor_msgs/Imu").make(
         header=header,
         orientation=quaternion(profile, reading.orientation),
-        orientation_covariance=np.array(reading.orientation_covariance, dtype=np.float64),
+        orientation_covariance=covariance_array(reading.orientation_covariance),
         angular_velocity=vector3(profile, reading.angular_velocity),
-        angular_velocity_covariance=np.array(reading.angular_velocity_covariance, np.float64),
+        angular_velocity_covariance=covariance_array(reading.angular_velocity_covariance),
         linear_acceleration=vector3(profile, reading.linear_acceleration),
-        linear_acceleration_covariance=np.array(
-            reading.linear_acceleration_covariance, dtype=np.float64
-        ),
+        linear_acceleration_covariance=covariance_array(reading.linear_acceleration_covariance),
     )
+
+
+@functools.lru_cache(maxsize=16)
+def covariance_array(covariance: Covariance) -> npt.NDArray[np.float64]:
+    """A covariance as a message field, made once per value (a model's covariances do not
+    change between readings) and read-only, as messages share it."""
+    array = np.array(covariance, dtype=np.float64)
+    array.flags.writeable = False
+    return array
 
 
 def point_cloud(
@@ -55,10 +65,10 @@ def point_cloud(
     cloud = np.ascontiguousarray(points, dtype="<f4")
     field_type = profile.message("sensor_msgs/PointField")
     fields = [
-        field_type.new(name=name, offset=4 * index, datatype=FLOAT32, count=1)
+        field_type.make(name=name, offset=4 * index, datatype=FLOAT32, count=1)
         for index, name in enumerate(POINT_FIELDS)
     ]
-    return profile.message("sensor_msgs/PointCloud2").new(
+    return profile.message("sensor_msgs/PointCloud2").make(
         header=header,
         height=1,
         width=len(cloud),
@@ -96,7 +106,7 @@ def radar_message(
 ) -> morai_26_r1.RadarDetections:
     """morai_msgs/RadarDetections: azimuth in degrees, detection_id the object's id (16 bit)."""
     detection = profile.message("morai_msgs/RadarDetection").make
-    return profile.message("morai_msgs/RadarDetections").new(
+    return profile.message("morai_msgs/RadarDetections").make(
         header=header,
         detections=[
             detection(

@@ -1,7 +1,7 @@
 """A LiDAR scan's returns (sensors/lidar.py) in one compiled pass over the beams: the
 ground hit (raycast.cast_ground), the nearer of it and the box hit (raycast.cast_rays),
 the range gate, the points in the sensor frame and the intensity's factors but the
-atmospheric one, whose exp stays numpy's on both paths."""
+atmospheric one, whose exp stays numpy's on both paths; then the intensities."""
 
 from __future__ import annotations
 
@@ -55,3 +55,11 @@ def lidar_returns(
         exponent[count] = extinction_factor * distance
         count += 1
     return count
+
+
+@kernel
+def lidar_intensities(points: np.ndarray, lit: FloatArray, extinction: FloatArray) -> None:
+    """points[k, 3] (float32) = lit[k] * extinction[k], for each of the points
+    (extinction: numpy's exp of lidar_returns' exponents)."""
+    for k in range(extinction.shape[0]):
+        points[k, 3] = np.float32(lit[k] * extinction[k])
