@@ -68,9 +68,9 @@ def published_digests(ticks: int = TICKS) -> dict[str, str]:
         bridge.taps.append(lambda *_: None)  # every row is built as if it had a subscriber
         bridge.outlets[:] = [o for o in bridge.outlets if o.row.key not in SENSOR_ROWS]
         for outlet in bridge.outlets:
-            outlet.publisher.publish_many = _recorder(  # type: ignore[method-assign]
-                outlet.row.name, [(r.profile_name, r.message_type.md5sum) for r in outlet.releases], digests
-            )
+            releases = [(r.profile_name, r.message_type.md5sum) for r in outlet.releases]
+            recorder = _recorder(outlet.row.name, releases, digests)
+            outlet.publisher.publish_many = recorder  # type: ignore[method-assign]
         for k in range(ticks):
             if k == SECOND_EGO_FROM_TICK:
                 context.session.camera_index = world.egos.index(second)

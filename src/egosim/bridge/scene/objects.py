@@ -12,10 +12,13 @@ import math
 from collections.abc import Sequence
 from typing import TypedDict
 
+import numpy as np
+
 from ...msgs.typed import morai_26_r1, standard
+from ...world.arrays import IntArray
 from ...world.collision import VehicleCollision
-from ...world.traffic import ObjectState
-from ..context import BridgeContext
+from ...world.traffic import ObjectState, ObjectTable
+from ..context import MAP_FRAME, BridgeContext
 from ..protocol.messages import vector3
 from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
@@ -33,6 +36,27 @@ def _turned(vector: Sequence[float], c: float, s: float) -> tuple[float, float, 
     return (c * x + s * y, -s * x + c * y, z)
 
 
+def _status_numbers(
+    heading: float,
+    velocity: Sequence[float],
+    acceleration: Sequence[float],
+    size: Sequence[float],
+    position: Sequence[float],
+) -> tuple[float, ...]:
+    """ObjectStatus's numbers after its name, in protocol units and in wire order:
+    heading (deg), velocity (km/h) and acceleration in the object's frame, size (width,
+    length, height), position."""
+    c, s = math.cos(heading), math.sin(heading)
+    vx, vy, vz = _turned(velocity, c, s)
+    return (
+        heading_deg(heading),
+        *(kmh(vx), kmh(vy), kmh(vz)),
+        *_turned(acceleration, c, s),
+        *swap_length_width(size),
+        *position,
+    )
+
+
 class ObjectStatusFields(TypedDict):
     """The fields ObjectStatus and ObjectStatusExtended share."""
 
@@ -48,17 +72,18 @@ class ObjectStatusFields(TypedDict):
 
 def object_status_fields(profile: CanonicalProfile, state: ObjectState) -> ObjectStatusFields:
     """The fields ObjectStatus and ObjectStatusExtended share, in protocol units."""
-    c, s = math.cos(state.heading), math.sin(state.heading)
-    vx, vy, vz = _turned(state.velocity, c, s)
+    heading, *numbers = _status_numbers(
+        state.heading, state.velocity, state.acceleration, state.size, state.position
+    )
     return {
         "unique_id": state.unique_id,
         "type": int(state.object_type),
         "name": state.name,
-        "heading": heading_deg(state.heading),
-        "velocity": vector3(profile, (kmh(vx), kmh(vy), kmh(vz))),
-        "acceleration": vector3(profile, _turned(state.acceleration, c, s)),
-        "size": vector3(profile, swap_length_width(state.size)),
-        "position": vector3(profile, state.position),
+        "heading": heading,
+        "velocity": vector3(profile, numbers[0:3]),
+        "acceleration": vector3(profile, numbers[3:6]),
+        "size": vector3(profile, numbers[6:9]),
+        "position": vector3(profile, numbers[9:12]),
     }
 
 
@@ -67,20 +92,47 @@ def object_status(profile: CanonicalProfile, state: ObjectState) -> morai_26_r1.
     return profile.message("morai_msgs/ObjectStatus").make(**object_status_fields(profile, state))
 
 
-def publish_object_list(context: BridgeContext, row: Row) -> morai_26_r1.ObjectStatusList:
+def _object_statuses(profile: CanonicalProfile, table: ObjectTable, rows: IntArray) -> list[bytes]:
+    """The ObjectStatus bytes of the objects at `rows` of `table` (each column read at
+    once, each object packed without building a message)."""
+    pack = profile.message("morai_msgs/ObjectStatus").flat().pack
+    names = table.names
+    return [
+        pack(
+            unique_id,
+            kind,
+            names[row],
+            *_status_numbers(heading, velocity, acceleration, size, position),
+        )
+        for unique_id, kind, row, heading, velocity, acceleration, size, position in zip(
+            table.unique_ids[rows].tolist(),
+            table.object_types[rows].tolist(),
+            rows.tolist(),
+            table.headings[rows].tolist(),
+            table.velocities[rows].tolist(),
+            table.accelerations[rows].tolist(),
+            table.sizes[rows].tolist(),
+            table.positions[rows].tolist(),
+            strict=True,
+        )
+    ]
+
+
+def publish_object_list(context: BridgeContext, row: Row) -> bytes:
     """/Object_topic: counts of everything spawned; the N closest objects, closest first
-    (from the position /Ego_topic reports to each reported position)."""
-    listing = context.world.object_list(context.session.camera_index)
-    profile = context.profile
-    return profile.message("morai_msgs/ObjectStatusList").new(
-        header=context.header(),
-        num_of_npcs=listing.num_npcs,
-        num_of_pedestrian=listing.num_pedestrians,
-        num_of_obstacle=listing.num_obstacles,
-        npc_list=[object_status(profile, s) for s in listing.npcs],
-        pedestrian_list=[object_status(profile, s) for s in listing.pedestrians],
-        obstacle_list=[object_status(profile, s) for s in listing.obstacles],
+    (from the position /Ego_topic reports to each reported position). Its bytes (the
+    outlet stamps them), from the tick's object table."""
+    nearest = context.world.nearest_objects(
+        context.session.camera_index, scene=context.scene_objects()
     )
+    lists = (nearest.npcs, nearest.pedestrians, nearest.obstacles)
+    statuses = _object_statuses(context.profile, nearest.table, np.concatenate(lists))
+    npcs, walkers = len(nearest.npcs), len(nearest.npcs) + len(nearest.pedestrians)
+    return context.profile.message("morai_msgs/ObjectStatusList").flat().pack(
+        0, 0, 0, MAP_FRAME,  # header: seq and stamp written by the outlet
+        nearest.num_npcs, nearest.num_pedestrians, nearest.num_obstacles,
+        statuses[:npcs], statuses[npcs:walkers], statuses[walkers:],
+    )  # fmt: skip
 
 
 EGO_COLLISIONS = "ego_collisions"
