@@ -14,7 +14,6 @@ from egosim.bridge.context import BridgeContext
 from egosim.bridge.replay.replay_rows import (
     advance_replay,
     publish_replay_info,
-    publish_sim_proc_status,
     serve_sim_proc,
 )
 from egosim.bridge.replay.replayed_scene import world_object
@@ -73,10 +72,7 @@ def run(context: BridgeContext, seconds: float) -> None:
 
 
 def status(context: BridgeContext) -> tuple[int, int, int]:
-    message = publish_sim_proc_status(
-        context,
-        context.row("sim_proc_status"),
-    )
+    message = built(context, "sim_proc_status")
     return message.command_result, message.current_mode, message.current_status
 
 
@@ -92,10 +88,7 @@ def test_status_before_any_command_is_initial_simulation_running(
     context: BridgeContext,
 ) -> None:
     assert status(context) == (0x00, 0x01, 0x01)
-    latest = publish_sim_proc_status(
-        context,
-        context.row("sim_proc_status"),
-    ).latest_command_time
+    latest = built(context, "sim_proc_status").latest_command_time
     assert (latest.sec, latest.nanosec) == (0, 0)
     assert (
         publish_replay_info(
@@ -222,10 +215,8 @@ def test_a_bag_that_cannot_load_fails_with_0x20_and_changes_nothing(
     before = listed(context)
     assert not command(context, sim_process_status=PLAY, replay_option=LOAD, rosbag_file_name=name)
     assert status(context) == (0x20, 0x01, 0x01)
-    assert publish_sim_proc_status(
-        context,
-        context.row("sim_proc_status"),
-    ).latest_command_time.nanosec == pytest.approx(0.2e9, abs=1e3)
+    latest = built(context, "sim_proc_status").latest_command_time
+    assert latest.nanosec == pytest.approx(0.2e9, abs=1e3)
     assert listed(context).keys() == before.keys()
     assert listed(context)["npc_list"].keys() == before["npc_list"].keys()
 

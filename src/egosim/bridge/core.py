@@ -279,25 +279,27 @@ class Bridge:
     def _variants(self, outlet: Outlet, built: object) -> list[Variants]:
         """The built message(s), stamped with the row's header sequence and the tick's
         stamp, serialised (other releases lazily), and tapped."""
-        variants: list[Variants] = []
-        context = self.context
+        messages = built if isinstance(built, (list, tuple)) else (built,)
         message_type = outlet.message_type
-        for message in built if isinstance(built, list | tuple) else (built,):
+        taps = self.taps
+        # The stamp is read after the build, as the first message is packed: the build
+        # stays out of the time between a tick's stamp (the first one read, in real
+        # time) and its first send. Every message of a tick has the same one.
+        stamp_ns = self.context.stamp_ns() if outlet.leads_with_header or taps else 0
+        sec, nanosec = divmod(stamp_ns, 1_000_000_000)
+        variants: list[Variants] = []
+        for message in messages:
             if outlet.leads_with_header:
-                # The stamp is read as the message is packed: the build stays out of the
-                # time between a tick's stamp (the first one read, in real time) and its
-                # first send.
-                stamp_ns = context.stamp_ns()
+                seq = outlet.seq
+                outlet.seq = seq + 1
                 if type(message) is bytes:
-                    sec, nanosec = divmod(stamp_ns, 1_000_000_000)
-                    data = restamped(message, outlet.seq, sec, nanosec)
+                    data = restamped(message, seq, sec, nanosec)
                     variants.append(self._serialized(outlet, None, data))
                 else:
-                    data = message_type.serialize_stamped(message, outlet.seq, stamp_ns)
+                    data = message_type.serialize_stamped(message, seq, stamp_ns)
                     header = message.header
-                    header.seq = outlet.seq
+                    header.seq = seq
                     variants.append(self._serialized(outlet, message, data, header, stamp_ns))
-                outlet.seq += 1
             elif type(message) is bytes:
                 data = message
                 variants.append(self._serialized(outlet, None, data))
@@ -308,8 +310,8 @@ class Bridge:
                     outlet.seq += 1
                 data = message_type.serialize(message)
                 variants.append(self._serialized(outlet, message, data))
-            if self.taps:
-                self._tap(outlet.row.name, message_type, data, context.stamp_ns())
+            for tap in taps:
+                tap(outlet.row.name, message_type, data, stamp_ns)
         return variants
 
     def _serialized(
@@ -336,12 +338,6 @@ class Bridge:
             return outlet.variant(read, md5sum)
 
         return serialize
-
-    def _tap(
-        self, topic: str, message_type: MessageType[object], data: bytes, stamp_ns: int
-    ) -> None:
-        for tap in self.taps:
-            tap(topic, message_type, data, stamp_ns)
 
     def _advertise(self, row: Row, build: Builder) -> Outlet:
         releases = releases_of(row.type_name, self.default_release)
@@ -396,7 +392,9 @@ class Bridge:
                 )
                 return
             # the clock itself: the tick's readings are the loop thread's
-            self._tap(row.name, sent_type, data, self.context.clock.now_ns())
+            stamp_ns = self.context.clock.now_ns()
+            for tap in self.taps:
+                tap(row.name, sent_type, data, stamp_ns)
             self.inbox.post(handle)
 
         any_release = TopicType(row.type_name, "*", releases[0].message_type.definition)

@@ -24,19 +24,15 @@ def tl_info_status(aspect: int) -> int:
     return aspect
 
 
-def publish_traffic_light_status(
-    context: BridgeContext, row: Row
-) -> morai_26_r1.GetTrafficLightStatus | None:
-    """/GetTrafficLightStatus: the light governing the lane ahead of the ego, else the nearest."""
+def publish_traffic_light_status(context: BridgeContext, row: Row) -> bytes | None:
+    """/GetTrafficLightStatus: the light governing the lane ahead of the ego, else the
+    nearest; its bytes (trafficLightIndex, trafficLightType, trafficLightStatus)."""
     light = context.world.ego_traffic_light(context.session.camera_index)
     if light is None:
         return None
-    return context.profile.message("morai_msgs/GetTrafficLightStatus").new(
-        header=context.header(),
-        trafficLightIndex=light.light_id,
-        trafficLightType=light.light_type,
-        trafficLightStatus=light.aspect,
-    )
+    pack = context.profile.message("morai_msgs/GetTrafficLightStatus").flat().pack
+    # header: seq and stamp written by the outlet
+    return pack(0, 0, 0, MAP_FRAME, light.light_id, light.light_type, light.aspect)
 
 
 def publish_intersection_status(context: BridgeContext, row: Row) -> list[bytes]:

@@ -9,7 +9,7 @@ map frame; size is (length, width, height) in m.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from typing import TypedDict
 
 import numpy as np
@@ -95,26 +95,57 @@ def object_status(profile: CanonicalProfile, state: ObjectState) -> morai_26_r1.
 def _object_statuses(profile: CanonicalProfile, table: ObjectTable, rows: IntArray) -> list[bytes]:
     """The ObjectStatus bytes of the objects at `rows` of `table` (each column read at
     once, each object packed without building a message)."""
-    pack = profile.message("morai_msgs/ObjectStatus").flat().pack
     names = table.names
-    return [
-        pack(
-            unique_id,
-            kind,
-            names[row],
-            *_status_numbers(heading, velocity, acceleration, size, position),
-        )
-        for unique_id, kind, row, heading, velocity, acceleration, size, position in zip(
+    return _status_bytes(
+        profile,
+        zip(
             table.unique_ids[rows].tolist(),
             table.object_types[rows].tolist(),
-            rows.tolist(),
+            [names[row] for row in rows.tolist()],
             table.headings[rows].tolist(),
             table.velocities[rows].tolist(),
             table.accelerations[rows].tolist(),
             table.sizes[rows].tolist(),
             table.positions[rows].tolist(),
             strict=True,
+        ),
+    )
+
+
+def _state_statuses(profile: CanonicalProfile, states: Iterable[ObjectState]) -> list[bytes]:
+    """The ObjectStatus bytes of `states`."""
+    return _status_bytes(
+        profile,
+        (
+            (
+                s.unique_id,
+                int(s.object_type),
+                s.name,
+                s.heading,
+                s.velocity,
+                s.acceleration,
+                s.size,
+                s.position,
+            )
+            for s in states
+        ),
+    )
+
+
+_StatusFields = tuple[
+    int, int, str, float, Sequence[float], Sequence[float], Sequence[float], Sequence[float]
+]
+"""An object's id, type code, name, heading, velocity, acceleration, size and position (SI)."""
+
+
+def _status_bytes(profile: CanonicalProfile, objects: Iterable[_StatusFields]) -> list[bytes]:
+    """Each object's ObjectStatus bytes, its numbers in protocol units."""
+    pack = profile.message("morai_msgs/ObjectStatus").flat().pack
+    return [
+        pack(
+            unique_id, kind, name, *_status_numbers(heading, velocity, acceleration, size, position)
         )
+        for unique_id, kind, name, heading, velocity, acceleration, size, position in objects
     ]
 
 
@@ -139,7 +170,7 @@ EGO_COLLISIONS = "ego_collisions"
 VEHICLE_COLLISIONS = "vehicle_collisions"
 
 
-def publish_collision(context: BridgeContext, row: Row) -> morai_26_r1.CollisionData | None:
+def publish_collision(context: BridgeContext, row: Row) -> bytes:
     """/CollisionData: the main ego's collisions that began since the row's previous
     message, then the objects it still touches (a contact is reported as long as it lasts).
 
@@ -160,32 +191,24 @@ def publish_collision(context: BridgeContext, row: Row) -> morai_26_r1.Collision
     lasting = [o for o in world.ego_contacts.get(ego_id, []) if o.unique_id not in listed]
     latest = world.ego_collision(0)
     offset = latest.other.position if latest is not None else (0.0, 0.0, 0.0)
-    return context.profile.message("morai_msgs/CollisionData").new(
-        header=context.header(),
-        global_offset_x=offset[0],
-        global_offset_y=offset[1],
-        global_offset_z=offset[2],
-        collision_object=[object_status(context.profile, o) for o in new + lasting],
-    )
+    pack = context.profile.message("morai_msgs/CollisionData").flat().pack
+    touched = _state_statuses(context.profile, new + lasting)
+    # header (seq and stamp written by the outlet), global_offset_*, collision_object,
+    # collision_objecta (unused)
+    return pack(0, 0, 0, MAP_FRAME, *(float(v) for v in offset), touched, [])
 
 
-def publish_vehicle_collisions(
-    context: BridgeContext, row: Row
-) -> morai_26_r1.VehicleCollisionData | None:
+def publish_vehicle_collisions(context: BridgeContext, row: Row) -> bytes:
     """/VehicleCollisionData: NPC-NPC collisions that began since the last message, then
     the NPC-NPC contacts that last."""
     profile = context.profile
-    collision_type = profile.message("morai_msgs/VehicleCollision")
+    collision = profile.message("morai_msgs/VehicleCollision").flat().pack
     new = context.unreported(VEHICLE_COLLISIONS, context.world.vehicle_collisions)
     listed = {_pair(c) for c in new}
     new += [c for c in context.world.vehicle_contacts if _pair(c) not in listed]
-    return profile.message("morai_msgs/VehicleCollisionData").new(
-        header=context.header(),
-        collisions=[
-            collision_type.new(crashed_vehicles=[object_status(profile, v) for v in c.vehicles])
-            for c in new
-        ],
-    )
+    collisions = [collision(_state_statuses(profile, c.vehicles)) for c in new]
+    pack = profile.message("morai_msgs/VehicleCollisionData").flat().pack
+    return pack(0, 0, 0, MAP_FRAME, collisions)  # header: seq and stamp by the outlet
 
 
 def pass_collisions(context: BridgeContext, row: Row) -> None:
