@@ -97,8 +97,8 @@ class _Writer:
     """Generates one packer's source: statements, struct runs and the names they use.
 
     `stamped`: the leading header's seq and stamp are arguments (_STAMP_LEAVES).
-    `flat`: every leaf of the message is an argument, those from `first` to `last`
-    (dotted paths; None: the first and the last leaf) packed, the others skipped."""
+    `flat`: the message's leaves from `first` to `last` (dotted paths; None: the first,
+    the last leaf) are the arguments, packed in order; the others are skipped."""
 
     def __init__(
         self,
