@@ -2,9 +2,12 @@
 
 Starts the simulator (town map, default scenario, 100 Hz physics: 10 ms ticks) as a
 subprocess, subscribes to every published row (so every builder runs, the LiDAR
-included) or to the `--topics` named, starts sync mode and times WaitForTick calls of
-`--ticks-per-call` ticks each; with `--ctrl-cmd`, each call is preceded by a
-SyncModeCtrlCmd for its first frame, as a driving client's loop does. Real-time factor =
+included), to the `--topics` named, or with `--driving-stack` to the rows a driving stack
+reads (DRIVING_STACK_ROWS: the ego, the objects around it, the traffic light, collisions
+and /clock, which a ROS node on simulation time reads), starts sync mode and times
+WaitForTick calls of `--ticks-per-call` ticks each; with `--ctrl-cmd`, each call is
+preceded by a SyncModeCtrlCmd for its first frame, as a driving client's loop does.
+Real-time factor =
 simulated seconds / wall seconds. Beside each figure, the CPU time per tick (Linux's
 /proc): the simulator's loop thread, its other threads (TCPROS writers, XML-RPC, the
 embedded master) and the client's process, so where a tick's wall time goes shows.
@@ -13,7 +16,7 @@ With `--rounds N`, each setting is timed N times in turn on the same simulator, 
 best round of each is printed again (the figure that a busy machine disturbs least).
 
 Usage: .venv/bin/python benchmarks/sync_mode.py [--ticks 2000] [--ticks-per-call 1 100]
-       [--rounds 1] [--topics /Ego_topic /Object_topic ...] [--ctrl-cmd]
+       [--rounds 1] [--topics /Ego_topic /Object_topic ... | --driving-stack] [--ctrl-cmd]
 """
 
 from __future__ import annotations
@@ -37,6 +40,13 @@ from egosim.ros1 import Node
 
 TICK_MS = 10
 USER = "benchmark"
+DRIVING_STACK_ROWS = (
+    "/Ego_topic",
+    "/Object_topic",
+    "/GetTrafficLightStatus",
+    "/CollisionData",
+    "/clock",
+)
 
 
 class Counter:
@@ -131,8 +141,16 @@ def main() -> None:
     parser.add_argument(
         "--rounds", type=int, default=1, help="time each setting this many times, then the best"
     )
-    parser.add_argument(
+    rows = parser.add_mutually_exclusive_group()
+    rows.add_argument(
         "--topics", nargs="*", help="subscribe to these rows only (default: every one)"
+    )
+    rows.add_argument(
+        "--driving-stack",
+        dest="topics",
+        action="store_const",
+        const=list(DRIVING_STACK_ROWS),
+        help=f"subscribe to a driving stack's rows only: {' '.join(DRIVING_STACK_ROWS)}",
     )
     parser.add_argument(
         "--ctrl-cmd", action="store_true", help="send a SyncModeCtrlCmd before each call"

@@ -27,6 +27,7 @@ from egosim.world import World
 from egosim.world.map import build_builtin_map
 from egosim.world.vehicle import DEFAULT_EGO_MODEL, sensor_mount_origin, vehicle_model
 from egosim.yamltext import YamlFileError
+from tests.bridge.built_rows import built
 from tests.sensors.camera_world import renderer
 
 PROFILE = get_profile("26.r1")
@@ -149,7 +150,7 @@ def test_sensor_pos_control_moves_a_camera_and_its_tf() -> None:
         },
     )
     sensor_rows.on_sensor_pos_control(context, context.row("sensor_pos_control"), command)
-    tf = sensor_rows.publish_tf(context, context.row("tf"))
+    tf = built(context, "tf")
     transforms = {t.child_frame_id: t.transform for t in tf.transforms}
     x, _, z = sensor_mount_origin(vehicle_model(DEFAULT_EGO_MODEL))
     camera = transforms["Camera"].translation

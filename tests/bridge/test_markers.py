@@ -9,13 +9,14 @@ import pytest
 
 from egosim.bridge import BridgeContext, simulation_context
 from egosim.bridge.protocol.network import parse_network_settings
-from egosim.bridge.scene.markers import build_map_markers, build_scene_markers, yaw_quaternion
+from egosim.bridge.scene.markers import build_map_markers, yaw_quaternion
 from egosim.msgs import get_profile
 from egosim.sensors.rotation import quaternion_from_euler
 from egosim.world import World
 from egosim.world.map import build_builtin_map
 from egosim.world.scenario import load_default_scenario, parse_scenario
 from egosim.world.signals import GREEN, RED, YELLOW
+from tests.bridge.built_rows import built
 
 PROFILE = get_profile("26.r1")
 
@@ -56,7 +57,7 @@ def test_the_map_message_of_the_straight_road() -> None:
 
 
 def test_scene_boxes_stand_where_the_objects_are(town_world: World) -> None:
-    message = build_scene_markers(*with_row(context_of(town_world)))
+    message = built(context_of(town_world), "markers")
     markers = by_ns(message)
     objects = town_world.objects()
     boxes = {(m.ns, m.id): m for ns in ("egos", "npcs", "pedestrians", "obstacles")
@@ -79,7 +80,7 @@ def test_scene_boxes_stand_where_the_objects_are(town_world: World) -> None:
 @pytest.mark.parametrize(("aspect", "rgb"), [(RED, "r"), (YELLOW, "rg"), (GREEN, "g")])
 def test_lights_show_their_colour(town_world: World, aspect: int, rgb: str) -> None:
     town_world.signals.set_light("TL6_N", aspect)
-    (lights,) = by_ns(build_scene_markers(*with_row(context_of(town_world))))["lights"]
+    (lights,) = by_ns(built(context_of(town_world), "markers"))["lights"]
     index = list(town_world.signals.light_ids).index("TL6_N")
     point, colour = lights.points[index], lights.colors[index]
     assert (point.x, point.y) == pytest.approx(town_world.map.traffic_lights["TL6_N"].position[:2])

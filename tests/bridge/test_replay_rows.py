@@ -11,21 +11,20 @@ import pytest
 
 from egosim.bridge import simulation_context
 from egosim.bridge.context import BridgeContext
-from egosim.bridge.egos.ego import publish_ego_status
 from egosim.bridge.replay.replay_rows import (
     advance_replay,
     publish_replay_info,
-    publish_sim_proc_status,
     serve_sim_proc,
 )
 from egosim.bridge.replay.replayed_scene import world_object
-from egosim.bridge.scene.objects import object_status, publish_object_list
+from egosim.bridge.scene.objects import object_status
 from egosim.msgs import get_profile
 from egosim.replay import ObjectState
 from egosim.world import World
 from egosim.world.map import build_builtin_map
 from egosim.world.scenario import load_default_scenario
 from egosim.world.traffic import ObjectType
+from tests.bridge.built_rows import built
 from tests.replay.drive import (
     DURATION_S,
     MOVING_OBJECTS,
@@ -73,18 +72,12 @@ def run(context: BridgeContext, seconds: float) -> None:
 
 
 def status(context: BridgeContext) -> tuple[int, int, int]:
-    message = publish_sim_proc_status(
-        context,
-        context.row("sim_proc_status"),
-    )
+    message = built(context, "sim_proc_status")
     return message.command_result, message.current_mode, message.current_status
 
 
 def listed(context: BridgeContext) -> dict[str, dict[int, Any]]:
-    message = publish_object_list(
-        context,
-        context.row("object_status"),
-    )
+    message = built(context, "object_status")
     return {
         name: {o.unique_id: o for o in getattr(message, name)}
         for name in ("npc_list", "pedestrian_list", "obstacle_list")
@@ -95,10 +88,7 @@ def test_status_before_any_command_is_initial_simulation_running(
     context: BridgeContext,
 ) -> None:
     assert status(context) == (0x00, 0x01, 0x01)
-    latest = publish_sim_proc_status(
-        context,
-        context.row("sim_proc_status"),
-    ).latest_command_time
+    latest = built(context, "sim_proc_status").latest_command_time
     assert (latest.sec, latest.nanosec) == (0, 0)
     assert (
         publish_replay_info(
@@ -122,7 +112,7 @@ def test_the_ego_and_objects_follow_the_recording(context: BridgeContext, speed:
     assert status(context) == (0x01, 0x10, 0x01)
     run(context, 1.0)
     t = 1.0 * speed
-    ego = publish_ego_status(context, context.row("ego_status"))
+    ego = built(context, "ego_status")
     assert math.dist((ego.position.x, ego.position.y), ego_position(t)[:2]) < 1e-3
     assert math.radians(ego.heading) == pytest.approx(ego_heading(t), abs=1e-4)
     assert ego.velocity.x == pytest.approx(SPEED_MS)
@@ -142,7 +132,7 @@ def test_unselected_targets_keep_being_simulated_and_stop_restores_the_agents(
 ) -> None:
     run(context, 0.5)
     simulated = listed(context)
-    start = publish_ego_status(context, context.row("ego_status")).position
+    start = built(context, "ego_status").position
     assert command(
         context,
         sim_process_status=PLAY,
@@ -151,7 +141,7 @@ def test_unselected_targets_keep_being_simulated_and_stop_restores_the_agents(
         replay_target_option=TARGET_NPC,
     )
     run(context, 1.0)
-    ego = publish_ego_status(context, context.row("ego_status")).position
+    ego = built(context, "ego_status").position
     assert (ego.x, ego.y) == pytest.approx((start.x, start.y), abs=0.05)  # undriven, in place
     lists = listed(context)
     assert lists["npc_list"].keys() == RECORDED_NPCS.keys()
@@ -211,10 +201,10 @@ def test_pause_holds_the_recorded_scene(context: BridgeContext) -> None:
     )
     run(context, 1.0)
     assert command(context, sim_process_status=PAUSE)
-    held = publish_ego_status(context, context.row("ego_status")).position
+    held = built(context, "ego_status").position
     run(context, 1.0)
     assert status(context) == (0x01, 0x10, 0x10)
-    assert publish_ego_status(context, context.row("ego_status")).position == held
+    assert built(context, "ego_status").position == held
 
 
 @pytest.mark.parametrize("name", ["missing.bag", "../drive.bag", "/etc/hostname"])
@@ -225,10 +215,8 @@ def test_a_bag_that_cannot_load_fails_with_0x20_and_changes_nothing(
     before = listed(context)
     assert not command(context, sim_process_status=PLAY, replay_option=LOAD, rosbag_file_name=name)
     assert status(context) == (0x20, 0x01, 0x01)
-    assert publish_sim_proc_status(
-        context,
-        context.row("sim_proc_status"),
-    ).latest_command_time.nanosec == pytest.approx(0.2e9, abs=1e3)
+    latest = built(context, "sim_proc_status").latest_command_time
+    assert latest.nanosec == pytest.approx(0.2e9, abs=1e3)
     assert listed(context).keys() == before.keys()
     assert listed(context)["npc_list"].keys() == before["npc_list"].keys()
 

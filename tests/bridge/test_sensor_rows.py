@@ -23,6 +23,7 @@ from egosim.world import World
 from egosim.world.map import build_builtin_map
 from egosim.world.scenario import parse_scenario
 from egosim.world.vehicle import DEFAULT_EGO_MODEL, sensor_mount_origin, vehicle_model
+from tests.bridge.built_rows import built
 
 PROFILE = get_profile("26.r1")
 # Mounts are MORAI's: from the rear-axle midpoint at wheel-centre height.
@@ -104,7 +105,7 @@ def test_imu_at_rest_reads_gravity_up_and_no_rotation() -> None:
 def test_tf_places_base_link_at_the_ego_and_sensors_at_their_mounts() -> None:
     world = empty_world()
     context = context_for(world)
-    message = sensor_rows.publish_tf(context, context.row("tf"))
+    message = built(context, "tf")
     frames = {(t.header.frame_id, t.child_frame_id): t.transform for t in message.transforms}
     assert set(frames) == {
         ("map", "base_link"),
@@ -139,7 +140,7 @@ def test_sensor_pos_control_moves_the_lidar_and_its_ground_ring() -> None:
         yaw=[math.pi / 2],
     )
     sensor_rows.on_sensor_pos_control(context, context.row("sensor_pos_control"), command)
-    transforms = sensor_rows.publish_tf(context, context.row("tf")).transforms
+    transforms = built(context, "tf").transforms
     lidar = next(t.transform for t in transforms if t.child_frame_id == "lidar")
     x, _, z = MOUNT_ORIGIN
     assert (lidar.translation.x, lidar.translation.z) == pytest.approx((1.0 + x, 1.0 + z))

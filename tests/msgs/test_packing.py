@@ -4,6 +4,7 @@ leave whatever they do not take as it is to the generic serialiser."""
 from __future__ import annotations
 
 import random
+import struct
 
 import numpy as np
 import pytest
@@ -77,3 +78,79 @@ def test_what_the_generic_serialiser_refuses_is_still_refused(
     assert message_type.pack(message) is None
     with pytest.raises(SerializationError, match=name.rpartition("/")[2]):
         message_type.serialize(message)
+
+
+def leaf_values(message: object, leaves: tuple[str, ...], release: str) -> list[object]:
+    """The values a flat packer takes for `message`: each leaf's, a sequence of messages
+    as its elements' bytes."""
+    values = []
+    for path in leaves:
+        value = message
+        for part in path.split("."):
+            value = getattr(value, part)
+        if isinstance(value, list) and value and hasattr(type(value[0]), "__msgtype__"):
+            element = get_profile(release).message(type(value[0]).__msgtype__)
+            value = [element.serialize(item) for item in value]
+        values.append(value)
+    return values
+
+
+@pytest.mark.parametrize(("release", "name"), every_type_of_every_release())
+def test_flat_and_stamped_packers_give_the_message_s_bytes(release: str, name: str) -> None:
+    message_type = get_profile(release).message(name)
+    flat = message_type.flat()
+    for seed in range(2):
+        message = populated(message_type, message_type.store_name, random.Random(f"{name}{seed}"))
+        if message_type.pack_stamped is not None:  # a stamp's nanosec is below 1 s
+            message.header.stamp.nanosec %= 1_000_000_000  # type: ignore[attr-defined]
+        data = generic_bytes(message_type, message)
+        assert flat.pack(*leaf_values(message, flat.leaves, release)) == data
+        if message_type.pack_stamped is not None:
+            header = message.header  # type: ignore[attr-defined]
+            stamp = header.stamp.sec * 1_000_000_000 + header.stamp.nanosec
+            seq = header.seq
+            header.seq, header.stamp.sec, header.stamp.nanosec = 0, 0, 0
+            assert message_type.serialize_stamped(message, seq, stamp) == data
+
+
+def test_a_range_of_leaves_packs_that_part_of_the_message() -> None:
+    marker = get_profile().message("visualization_msgs/Marker")
+    message = populated(marker, marker.store_name, random.Random(3))
+    whole = marker.flat()
+    values = dict(zip(whole.leaves, leaf_values(message, whole.leaves, "26.r1"), strict=True))
+    parts = [marker.flat(last="ns"), marker.flat("id", "scale.z"), marker.flat("color.r")]
+    assert [leaf for part in parts for leaf in part.leaves] == list(whole.leaves)
+    packed = b"".join(part.pack(*(values[leaf] for leaf in part.leaves)) for part in parts)
+    assert packed == generic_bytes(marker, message)
+    with pytest.raises(ValueError, match="no leaf"):
+        marker.flat("pose.position")
+
+
+def test_a_message_given_as_its_bytes_serialises_as_those_bytes() -> None:
+    header = get_profile().message("std_msgs/Header")
+    data = header.serialize(header.new(seq=3, frame_id="map"))
+    assert header.serialize(data) == data
+
+
+def test_a_flat_packer_refuses_what_the_layout_does_not_take() -> None:
+    header = get_profile().message("std_msgs/Header").flat()
+    with pytest.raises(struct.error):
+        header.pack(-1, 0, 0, "map")  # seq is a uint32
+    imu = get_profile().message("sensor_msgs/Imu").flat()
+    values = [0] * len(imu.leaves)
+    values[imu.leaves.index("header.frame_id")] = "imu"
+    with pytest.raises(ValueError):
+        imu.pack(*values)  # the covariances are no numpy arrays
+
+
+def test_a_stamped_message_its_layout_refuses_gets_the_generic_bytes_stamped() -> None:
+    imu = get_profile().message("sensor_msgs/Imu")
+    message = imu.new(orientation_covariance=np.arange(9, dtype=">f8"))
+    stamped = imu.new(
+        header=get_profile()
+        .message("std_msgs/Header")
+        .new(seq=4, stamp=get_profile().message("builtin_interfaces/Time").new(sec=2, nanosec=5)),
+        orientation_covariance=np.arange(9, dtype=">f8"),
+    )
+    assert imu.pack_stamped is not None and imu.pack_stamped(message, 4, 2, 5) is None
+    assert imu.serialize_stamped(message, 4, 2_000_000_005) == generic_bytes(imu, stamped)

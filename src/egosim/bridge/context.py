@@ -9,8 +9,8 @@ Build one with `egosim.bridge.simulation_context`.
 from __future__ import annotations
 
 import logging
-from collections.abc import Callable, Iterator
-from contextlib import AbstractContextManager, contextmanager, nullcontext
+from collections.abc import Callable
+from contextlib import AbstractContextManager, nullcontext
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol, TypeVar
@@ -20,7 +20,7 @@ from ..msgs import TypedMessageType
 from ..msgs.typed import standard
 from ..replay import ReplaySession
 from ..world import World
-from ..world.traffic import ObjectTable
+from ..world.traffic import ObjectTable, SceneObjects
 from .clock import HeaderClock
 from .ego_session import EgoSession, EgoSessions
 from .egos.angle_rates import AngleRates
@@ -85,31 +85,42 @@ class SessionState:
 class TickReadings:
     """What several rows due in one tick read of the world, worked out once for all of
     them while the tick publishes (nothing moves the world then); outside that, each
-    reading is taken afresh."""
+    reading is taken afresh. The block in which readings are shared (a tick's publish
+    stage) is a `with` block of this object. The loop thread's alone: the transport's
+    threads read the world's clock itself."""
 
     def __init__(self) -> None:
         self._publishing = False
-        self._objects: ObjectTable | None = None
+        self._scene: SceneObjects | None = None
+        self._stamp_ns: int | None = None
 
-    @contextmanager
-    def publishing(self) -> Iterator[None]:
-        """The block in which readings are shared (a tick's publish stage)."""
+    def __enter__(self) -> None:
         self._publishing = True
-        try:
-            yield
-        finally:
-            self._publishing = False
-            self._objects = None
 
-    def objects(self, world: World) -> ObjectTable:
-        """Every object of `world` (World.objects): the LiDAR's, the radar's and the
-        markers' scene."""
-        if self._objects is not None:
-            return self._objects
-        objects = world.objects()
+    def __exit__(self, *exc_info: object) -> None:
+        self._publishing = False
+        self._scene = None
+        self._stamp_ns = None
+
+    def stamp_ns(self, clock: HeaderClock) -> int:
+        """The tick's header stamp (ns): every row of a tick reads the same one (see
+        HeaderClock), so it is read once while the tick publishes."""
+        if self._stamp_ns is not None:
+            return self._stamp_ns
+        stamp_ns = clock.now_ns()
         if self._publishing:
-            self._objects = objects
-        return objects
+            self._stamp_ns = stamp_ns
+        return stamp_ns
+
+    def scene(self, world: World) -> SceneObjects:
+        """Every object of `world` (World.scene_objects): the object list's, the LiDAR's,
+        the radar's and the markers' scene."""
+        if self._scene is not None:
+            return self._scene
+        scene = world.scene_objects()
+        if self._publishing:
+            self._scene = scene
+        return scene
 
 
 @dataclass
@@ -149,7 +160,11 @@ class BridgeContext:
     def objects(self) -> ObjectTable:
         """Every object of the world (World.objects), worked out once per tick for the
         rows that publish in it."""
-        return self.readings.objects(self.world)
+        return self.readings.scene(self.world).table
+
+    def scene_objects(self) -> SceneObjects:
+        """`objects`, with how many of its rows are of each kind (World.scene_objects)."""
+        return self.readings.scene(self.world)
 
     def row(self, key: str) -> Row:
         """The effective row `key` of the protocol table (its name and rate in use)."""
@@ -161,14 +176,14 @@ class BridgeContext:
 
     def stamp_ns(self) -> int:
         """The header stamp of this tick, ns."""
-        return self.clock.now_ns()
+        return self.readings.stamp_ns(self.clock)
 
-    def header(self, frame_id: str = MAP_FRAME, *, stamped: bool = True) -> standard.Header:
+    def header(self, frame_id: str = MAP_FRAME) -> standard.Header:
         """A std_msgs/Header of this tick. A row's own header (its message's first field)
-        may be left unstamped (`stamped=False`): its outlet writes the seq and the stamp
-        as the message goes out, so building it does not read the tick's stamp early (the
-        first stamp asked for in a tick reads the wall clock in real time)."""
-        return header(self.profile, self.stamp_ns() if stamped else 0, frame_id)
+        gets its seq and stamp from its outlet as the message goes out, so a row that
+        writes its own bytes leaves them zero: building it does not read the tick's stamp
+        early (the first stamp asked for in a tick reads the wall clock in real time)."""
+        return header(self.profile, self.stamp_ns(), frame_id)
 
     def warn_throttled(self, key: str, text: str) -> None:
         """Log `text` when `key` comes up, at most once per window with a count of the

@@ -13,13 +13,13 @@ from __future__ import annotations
 
 import dataclasses
 import logging
-import struct
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 from typing import Protocol, TypeVar
 
 from ..logthrottle import LogThrottle
 from ..msgs import MessageType, MsgsError, TypedMessageType, get_profile
+from ..msgs.packing import restamped
 from ..msgs.typed import standard
 from ..ros1 import (
     BadRequestError,
@@ -57,7 +57,10 @@ T = TypeVar("T")
 M = TypeVar("M")
 
 # (context, row) -> a message, several (a list or tuple), or None when there is nothing to
-# say; each builder declares its row's message type (egosim.msgs.typed)
+# say; each builder declares its row's message type (egosim.msgs.typed). A message may be
+# given as its bytes in the canonical release (`bytes`), written by the row itself (the
+# busiest rows: their fields worked out in bulk and packed without building a message);
+# a message that leads with its header then has seq and stamp zero, for the outlet to set.
 Builder = Callable[[BridgeContext, Row], object]
 # (topic, message type, serialized bytes, stamp ns): sees every message sent or received
 Tap = Callable[[str, MessageType[object], bytes, int], None]
@@ -103,11 +106,6 @@ class Handlers:
             or key in self.services
             or key in self.openers
         )
-
-
-#: A std_msgs/Header's seq, stamp.sec and stamp.nanosec: the first 12 bytes of a message
-#: whose first field is its header.
-_HEADER_START = struct.Struct("<III")
 
 
 @dataclass
@@ -255,13 +253,13 @@ class Bridge:
 
     def publish_due(self, now: float) -> None:
         """Build and publish every outlet whose period has elapsed at loop time `now` (s)."""
-        with self.context.readings.publishing():
+        with self.context.readings:
             for outlet in self.outlets:
                 if outlet.schedule.take(now):
                     self.publish(outlet)
 
     def publish(self, outlet: Outlet) -> None:
-        if outlet.publisher.num_subscribers == 0 and not self.taps:
+        if not self.taps and outlet.publisher.num_subscribers == 0:
             unheard = self.handlers.unheard.get(outlet.row.key)
             if unheard is not None:
                 unheard(self.context, outlet.row)
@@ -280,26 +278,40 @@ class Bridge:
 
     def _variants(self, outlet: Outlet, built: object) -> list[Variants]:
         """The built message(s), stamped with the row's header sequence and the tick's
-        stamp, serialised lazily per release, and tapped."""
+        stamp, serialised (other releases lazily), and tapped."""
+        messages = built if isinstance(built, (list, tuple)) else (built,)
+        message_type = outlet.message_type
+        taps = self.taps
+        # The stamp is read after the build, as the first message is packed: the build
+        # stays out of the time between a tick's stamp (the first one read, in real
+        # time) and its first send. Every message of a tick has the same one.
+        stamp_ns = self.context.stamp_ns() if outlet.leads_with_header or taps else 0
+        sec, nanosec = divmod(stamp_ns, 1_000_000_000)
         variants: list[Variants] = []
-        for message in built if isinstance(built, list | tuple) else (built,):
-            header = getattr(message, "header", None)
-            if header is not None and not outlet.leads_with_header:
-                header.seq = outlet.seq
-                outlet.seq += 1
-            data = outlet.message_type.serialize(message)
-            if header is not None and outlet.leads_with_header:
-                # Serialising first and stamping the bytes keeps the build and the
-                # serialisation out of the time between a tick's stamp (the first one
-                # read, in real time) and its first send.
-                stamp_ns = self.context.stamp_ns()
-                data = _stamped(data, outlet.seq, stamp_ns)
-                header.seq = outlet.seq
-                outlet.seq += 1
-                variants.append(self._serialized(outlet, message, data, header, stamp_ns))
+        for message in messages:
+            if outlet.leads_with_header:
+                seq = outlet.seq
+                outlet.seq = seq + 1
+                if type(message) is bytes:
+                    data = restamped(message, seq, sec, nanosec)
+                    variants.append(self._serialized(outlet, None, data))
+                else:
+                    data = message_type.serialize_stamped(message, seq, stamp_ns)
+                    header = message.header
+                    header.seq = seq
+                    variants.append(self._serialized(outlet, message, data, header, stamp_ns))
+            elif type(message) is bytes:
+                data = message
+                variants.append(self._serialized(outlet, None, data))
             else:
+                header = getattr(message, "header", None)
+                if header is not None:
+                    header.seq = outlet.seq
+                    outlet.seq += 1
+                data = message_type.serialize(message)
                 variants.append(self._serialized(outlet, message, data))
-            self._tap(outlet.row.name, outlet.message_type, data)
+            for tap in taps:
+                tap(outlet.row.name, message_type, data, stamp_ns)
         return variants
 
     def _serialized(
@@ -310,23 +322,22 @@ class Bridge:
         stamped_header: standard.Header | None = None,
         stamp_ns: int = 0,
     ) -> Callable[[str], bytes]:
-        """`message` in the release a subscriber's md5sum names: `data` for the canonical
-        one, converted and serialised on demand for another. A header whose stamp went
-        into `data`'s bytes only (`stamped_header`) is given it first."""
+        """The message in the release a subscriber's md5sum names: `data` for the
+        canonical one, converted and serialised on demand for another, from `message`, or
+        from `data` itself for a row that wrote its bytes (`message` None). A header whose
+        stamp went into `data`'s bytes only (`stamped_header`) is given it first."""
         profile = self.context.profile
+        canonical_md5 = outlet.message_type.md5sum
 
         def serialize(md5sum: str) -> bytes:
-            if md5sum == outlet.message_type.md5sum:
+            if md5sum == canonical_md5:
                 return data
             if stamped_header is not None:
                 stamped_header.stamp = time_msg(profile, stamp_ns)
-            return outlet.variant(message, md5sum)
+            read = outlet.message_type.deserialize(data) if message is None else message
+            return outlet.variant(read, md5sum)
 
         return serialize
-
-    def _tap(self, topic: str, message_type: MessageType[object], data: bytes) -> None:
-        for tap in self.taps:
-            tap(topic, message_type, data, self.context.stamp_ns())
 
     def _advertise(self, row: Row, build: Builder) -> Outlet:
         releases = releases_of(row.type_name, self.default_release)
@@ -380,7 +391,10 @@ class Bridge:
                     exc,
                 )
                 return
-            self._tap(row.name, sent_type, data)
+            # the clock itself: the tick's readings are the loop thread's
+            stamp_ns = self.context.clock.now_ns()
+            for tap in self.taps:
+                tap(row.name, sent_type, data, stamp_ns)
             self.inbox.post(handle)
 
         any_release = TopicType(row.type_name, "*", releases[0].message_type.definition)
@@ -430,12 +444,6 @@ class Bridge:
             serve,
             negotiate=lambda header: release_of(header).service_type,
         )
-
-
-def _stamped(data: bytes, seq: int, stamp_ns: int) -> bytes:
-    """`data` with `seq` and the stamp written into its header (its first 12 bytes)."""
-    sec, nanosec = divmod(stamp_ns, 1_000_000_000)
-    return b"".join((_HEADER_START.pack(seq, sec, nanosec), memoryview(data)[_HEADER_START.size :]))
 
 
 def negotiator(

@@ -26,8 +26,11 @@ class RateSchedule:
         self._next_due = (self._next_due if on_grid else now) + self.period_s
 
     def take(self, now: float) -> bool:
-        """Whether it is due at `now`; if it is, it counts as gone out."""
-        if not self.is_due(now):
+        """Whether it is due at `now`; if it is, it counts as gone out (is_due, then
+        advance, in one call: every row asks at every tick)."""
+        next_due = self._next_due
+        if now + _SLACK_S < next_due:
             return False
-        self.advance(now)
+        on_grid = now - next_due < self.period_s
+        self._next_due = (next_due if on_grid else now) + self.period_s
         return True

@@ -7,14 +7,13 @@ in real time, where nodes use their wall clocks.
 
 from __future__ import annotations
 
-from ..msgs.typed import standard
 from .context import BridgeContext
-from .protocol.messages import time_msg
 from .protocol.table import Row
 
 
-def publish_clock(context: BridgeContext, row: Row) -> standard.Clock | None:
+def publish_clock(context: BridgeContext, row: Row) -> bytes | None:
+    """Its bytes: the stamp's sec and nanosec."""
     if not context.clock.publishes_clock:
         return None
-    profile = context.profile
-    return profile.message("rosgraph_msgs/Clock").new(clock=time_msg(profile, context.stamp_ns()))
+    pack = context.profile.message("rosgraph_msgs/Clock").flat().pack
+    return pack(*divmod(context.stamp_ns(), 1_000_000_000))

@@ -11,7 +11,15 @@ from rosbags.typesys.store import Typestore
 
 from .defaults import DefaultsPlan, defaults_plan
 from .errors import SerializationError
-from .packing import Packer, packer
+from .packing import (
+    FlatPacker,
+    Packer,
+    StampedPacker,
+    flat_packer,
+    packer,
+    restamped,
+    stamped_packer,
+)
 from .values import FieldValue
 
 M = TypeVar("M")
@@ -41,7 +49,11 @@ class TypedMessageType(Protocol[M]):
     @property
     def fields(self) -> list[tuple[str, FieldDesc]]: ...
 
-    def serialize(self, message: M) -> bytes: ...
+    def serialize(self, message: M | bytes) -> bytes: ...
+
+    def serialize_stamped(self, message: M, seq: int, stamp_ns: int) -> bytes: ...
+
+    def flat(self, first: str | None = None, last: str | None = None) -> FlatPacker: ...
 
     def deserialize(self, data: bytes | memoryview) -> M: ...
 
@@ -66,6 +78,8 @@ class MessageType(Generic[M]):
     defaults: DefaultsPlan = field(init=False, repr=False)
     pack: Packer = field(init=False, repr=False)
     """The type's precompiled serialiser, tried first (packing.py)."""
+    pack_stamped: StampedPacker | None = field(init=False, repr=False)
+    """Its stamped packer, for a type that leads with a std_msgs/Header (packing.py)."""
     new: MessageMaker[M] = field(init=False, repr=False)
     """A message with the fields given set and every other field at its ROS default."""
     make: type[M] = field(init=False, repr=False)
@@ -76,6 +90,7 @@ class MessageType(Generic[M]):
         self.store_name = normalize_msgtype(self.name)
         self.defaults = defaults_plan(self.store, self.store_name)
         self.pack = packer(self.store, self.store_name)
+        self.pack_stamped = stamped_packer(self.store, self.store_name)
         # the class registered for store_name, the one `M` describes
         self.new = cast("MessageMaker[M]", self.defaults.new)
         self.make = cast("type[M]", self.defaults.message_class)
@@ -85,7 +100,11 @@ class MessageType(Generic[M]):
         """(name, rosbags field description) pairs, in wire order."""
         return list(self.store.fielddefs[self.store_name][1])
 
-    def serialize(self, message: M) -> bytes:
+    def serialize(self, message: M | bytes) -> bytes:
+        """`message`'s ROS 1 bytes; a message given as its bytes already (a row that
+        writes its own) is those bytes."""
+        if type(message) is bytes:
+            return message
         data = self.pack(message)
         if data is not None:
             return data
@@ -93,6 +112,20 @@ class MessageType(Generic[M]):
             return bytes(self.store.serialize_ros1(message, self.store_name))
         except Exception as exc:
             raise SerializationError(f"cannot serialize {self.name}: {exc}") from exc
+
+    def serialize_stamped(self, message: M, seq: int, stamp_ns: int) -> bytes:
+        """`message`'s bytes with `seq` and the stamp `stamp_ns` (ns) in its header, which
+        is not read for them; for a type whose first field is its std_msgs/Header."""
+        sec, nanosec = divmod(stamp_ns, 1_000_000_000)
+        if self.pack_stamped is not None:
+            data = self.pack_stamped(message, seq, sec, nanosec)
+            if data is not None:
+                return data
+        return restamped(self.serialize(message), seq, sec, nanosec)
+
+    def flat(self, first: str | None = None, last: str | None = None) -> FlatPacker:
+        """The type's flat packer, of its leaves from `first` to `last` (packing.py)."""
+        return flat_packer(self.store, self.store_name, first, last)
 
     def deserialize(self, data: bytes | memoryview) -> M:
         try:

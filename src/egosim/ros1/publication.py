@@ -80,6 +80,9 @@ class OutputHold:
         ends."""
         if not self._depth:  # the common case, without the lock: no hold began
             return False
+        if not first:
+            # Told already: the hold's end sends what it keeps, under its lock, after this.
+            return True
         with self._lock:
             if self._depth and first:
                 self._keeping.append(outbox)
@@ -102,7 +105,9 @@ class _Outbox:
         self.md5sum = stats.md5sum
         self._queue: deque[bytes] = deque()
         self._queue_size = queue_size
-        self._ready = threading.Condition()
+        # The lock of the condition, entered as itself: put() takes it for every message.
+        self._lock = threading.RLock()
+        self._ready = threading.Condition(self._lock)
         # The unsent end of a frame publish() began sending; it goes out before the queue.
         self._tail: memoryview | None = None
         self._writing = False
@@ -138,10 +143,10 @@ class _Outbox:
 
     def put(self, payloads: Sequence[bytes]) -> None:
         """Queue messages to go out in this order (one write when the socket takes them)."""
-        with self._ready:
+        with self._lock:
             if self._closed:
                 return
-            size = sum(len(data) for data in payloads)
+            size = len(payloads[0]) if len(payloads) == 1 else sum(map(len, payloads))
             keep = (
                 size <= _DIRECT_SEND_MAX
                 and self._idle()

@@ -62,11 +62,14 @@ from egosim.world.traffic import (
     CrosswalkLights,
     LaneGraph,
     LightsView,
+    NearestObjects,
     NpcFleet,
+    ObjectList,
     ObjectState,
     ObjectTable,
     ObjectType,
     PedestrianCrowd,
+    SceneObjects,
     StaticObstacles,
     closest_objects,
     crossed_lights,
@@ -74,7 +77,6 @@ from egosim.world.traffic import (
 from egosim.world.traffic.catalogue import OBSTACLE_MODELS
 from egosim.world.traffic.ghosts import GhostPlacement, NpcGhosts
 from egosim.world.traffic.npc_vehicles import NpcSpawn
-from egosim.world.traffic.object_list import ObjectList
 from egosim.world.traffic.obstacles import ObstacleSpawn
 from egosim.world.traffic.pedestrians import PedestrianSpawn
 from egosim.world.traffic.scripted import ScriptedObjects
@@ -283,7 +285,15 @@ class World:
 
     def objects(self) -> ObjectTable:
         """Every object: egos, then NPCs, pedestrians and obstacles."""
-        return ObjectTable.concatenate([population.table() for population in self._populations])
+        return self.scene_objects().table
+
+    def scene_objects(self) -> SceneObjects:
+        """Every object (`objects`), with how many of its rows are of each kind."""
+        egos = self._egos.table()
+        kinds = [[population.table() for population in kind] for kind in self._kinds]
+        table = ObjectTable.concatenate([egos, *itertools.chain(*kinds)])
+        counts = tuple(sum(len(part) for part in kind) for kind in kinds)
+        return SceneObjects(table, len(egos), (counts[0], counts[1], counts[2]))
 
     def object_list(self, ego_index: int = 0, size: int | None = None) -> ObjectList:
         """ObjectStatusList: counts of all spawned objects; the `size` (default
@@ -294,16 +304,26 @@ class World:
         reported position (its reference point, /Ego_topic's position) to each object's
         reported position (its footprint centre, ObjectStatus.position), in the plane.
         """
-        npcs, pedestrians, obstacles = self.shown_tables()
-        egos = self._egos.table()
-        other_egos = egos.select(egos.unique_ids != self.egos[ego_index].unique_id)
-        others = ObjectTable.concatenate([other_egos, npcs, pedestrians, obstacles])
+        return self.nearest_objects(ego_index, size).object_list()
+
+    def nearest_objects(
+        self, ego_index: int = 0, size: int | None = None, scene: SceneObjects | None = None
+    ) -> NearestObjects:
+        """`object_list` as rows of the object table: of `scene`, the world's
+        scene_objects() as they are now when the caller has them already."""
+        scene = self.scene_objects() if scene is None else scene
+        table = scene.table
+        candidates = np.ones(len(table), dtype=bool)
+        candidates[: scene.egos] = table.unique_ids[: scene.egos] != self.egos[ego_index].unique_id
+        other_egos = int(np.count_nonzero(candidates[: scene.egos]))
         pose = self.ego_status(ego_index).pose
+        npcs, pedestrians, obstacles = scene.kinds
         return closest_objects(
-            others,
+            table,
+            np.flatnonzero(candidates),
             (pose.x, pose.y),
             self.object_list_size if size is None else size,
-            counts=(len(other_egos) + len(npcs), len(pedestrians), len(obstacles)),
+            counts=(other_egos + npcs, pedestrians, obstacles),
         )
 
     def place_npc_ghosts(self, placements: Sequence[GhostPlacement]) -> list[int]:

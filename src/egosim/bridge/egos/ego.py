@@ -10,7 +10,7 @@ from typing import TypedDict
 from ...msgs.typed import morai_26_r1, standard
 from ...world import EgoLaneState
 from ...world.vehicle import ControlCommand, Vehicle, VehicleStatus
-from ..context import BridgeContext
+from ..context import MAP_FRAME, BridgeContext
 from ..protocol.messages import vector3
 from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
@@ -53,33 +53,67 @@ class EgoVehicleStatusFields(EgoMotionFields):
     tire_cornering_stiffness_rr: float
 
 
+def ego_status_values(
+    unique_id: int, status: VehicleStatus, lane: EgoLaneState | None
+) -> tuple[float, ...]:
+    """Every morai_msgs/EgoVehicleStatus field of one ego after its header, in protocol
+    units and in wire order (its flat packer's leaves from unique_id on); lane fields
+    are 0 off the road network."""
+    pose = status.pose
+    wheels = status.wheels
+    tyres = (wheels.front_left, wheels.front_right, wheels.rear_left, wheels.rear_right)
+    return (
+        unique_id,
+        *(float(value) for value in status.acceleration),
+        *(float(pose.x), float(pose.y), float(pose.z)),
+        *(float(value) for value in status.velocity),
+        heading_deg(pose.yaw),
+        status.accel_pedal,
+        status.brake_pedal,
+        deg(status.front_steer),
+        deg(status.rear_steer),
+        lane.lateral_offset if lane is not None else 0.0,
+        *(tyre.lateral_force for tyre in tyres),
+        *(deg(tyre.slip_angle) for tyre in tyres),
+        *(tyre.cornering_stiffness for tyre in tyres),
+        lane.distance_left if lane is not None else 0.0,
+        lane.distance_right if lane is not None else 0.0,
+        lane.cross_track_error if lane is not None else 0.0,
+    )
+
+
 def ego_vehicle_status_fields(
     profile: CanonicalProfile, unique_id: int, status: VehicleStatus, lane: EgoLaneState | None
 ) -> EgoVehicleStatusFields:
     """Every morai_msgs/EgoVehicleStatus field of one ego but its header, in protocol
     units; lane fields are 0 off the road network."""
-    wheels = status.wheels
-    fl, fr, rl, rr = wheels.front_left, wheels.front_right, wheels.rear_left, wheels.rear_right
+    (
+        _, *_motion, front_steer, rear_steer, lateral_offset,
+        force_fl, force_fr, force_rl, force_rr,
+        slip_fl, slip_fr, slip_rl, slip_rr,
+        stiffness_fl, stiffness_fr, stiffness_rl, stiffness_rr,
+        distance_left, distance_right, cross_track_error,
+    ) = ego_status_values(unique_id, status, lane)  # fmt: skip
     return {
         **ego_motion_fields(profile, unique_id, status),
-        "front_steer_angle": deg(status.front_steer),
-        "rear_steer_angle": deg(status.rear_steer),
-        "lateral_offset": lane.lateral_offset if lane is not None else 0.0,
-        "distance_left_lane_boundary": lane.distance_left if lane is not None else 0.0,
-        "distance_right_lane_boundary": lane.distance_right if lane is not None else 0.0,
-        "cross_track_error": lane.cross_track_error if lane is not None else 0.0,
-        "tire_lateral_force_fl": fl.lateral_force,
-        "tire_lateral_force_fr": fr.lateral_force,
-        "tire_lateral_force_rl": rl.lateral_force,
-        "tire_lateral_force_rr": rr.lateral_force,
-        "side_slip_angle_fl": deg(fl.slip_angle),
-        "side_slip_angle_fr": deg(fr.slip_angle),
-        "side_slip_angle_rl": deg(rl.slip_angle),
-        "side_slip_angle_rr": deg(rr.slip_angle),
-        "tire_cornering_stiffness_fl": fl.cornering_stiffness,
-        "tire_cornering_stiffness_fr": fr.cornering_stiffness,
-        "tire_cornering_stiffness_rl": rl.cornering_stiffness,
-        "tire_cornering_stiffness_rr": rr.cornering_stiffness,
+        "front_steer_angle": front_steer,
+        "rear_steer_angle": rear_steer,
+        "lateral_offset": lateral_offset,
+        "distance_left_lane_boundary": distance_left,
+        "distance_right_lane_boundary": distance_right,
+        "cross_track_error": cross_track_error,
+        "tire_lateral_force_fl": force_fl,
+        "tire_lateral_force_fr": force_fr,
+        "tire_lateral_force_rl": force_rl,
+        "tire_lateral_force_rr": force_rr,
+        "side_slip_angle_fl": slip_fl,
+        "side_slip_angle_fr": slip_fr,
+        "side_slip_angle_rl": slip_rl,
+        "side_slip_angle_rr": slip_rr,
+        "tire_cornering_stiffness_fl": stiffness_fl,
+        "tire_cornering_stiffness_fr": stiffness_fr,
+        "tire_cornering_stiffness_rl": stiffness_rl,
+        "tire_cornering_stiffness_rr": stiffness_rr,
     }
 
 
@@ -88,15 +122,18 @@ def ego_motion_fields(
 ) -> EgoMotionFields:
     """The fields EgoVehicleStatus and EgoVehicleStatusExtended share but the header, in
     protocol units."""
-    pose = status.pose
+    _, *acceleration_position_velocity, heading, accel, brake = ego_status_values(
+        unique_id, status, None
+    )[:13]
+    values = acceleration_position_velocity
     return {
         "unique_id": unique_id,
-        "acceleration": vector3(profile, status.acceleration),
-        "position": vector3(profile, (pose.x, pose.y, pose.z)),
-        "velocity": vector3(profile, status.velocity),
-        "heading": heading_deg(pose.yaw),
-        "accel": status.accel_pedal,
-        "brake": status.brake_pedal,
+        "acceleration": vector3(profile, values[0:3]),
+        "position": vector3(profile, values[3:6]),
+        "velocity": vector3(profile, values[6:9]),
+        "heading": heading,
+        "accel": accel,
+        "brake": brake,
     }
 
 
@@ -113,19 +150,21 @@ def control_command(ctrl_cmd: morai_26_r1.CtrlCmd) -> ControlCommand:
     )
 
 
-def publish_ego_status(context: BridgeContext, row: Row) -> morai_26_r1.EgoVehicleStatus:
-    """/Ego_topic: the ego MultiEgoSetting's camera_index selects (the main ego by default)."""
+def publish_ego_status(context: BridgeContext, row: Row) -> bytes:
+    """/Ego_topic: the ego MultiEgoSetting's camera_index selects (the main ego by default).
+    Its bytes, for the outlet to stamp."""
     world = context.world
     camera_index = context.session.camera_index
     index = camera_index if camera_index < len(world.egos) else 0
-    return ego_status_of(context, index, stamped=False)
+    values = ego_status_values(
+        world.egos[index].unique_id, world.ego_status(index), world.ego_lane_state(index)
+    )
+    pack = context.profile.message("morai_msgs/EgoVehicleStatus").flat().pack
+    return pack(0, 0, 0, MAP_FRAME, *values)  # header: seq and stamp written by the outlet
 
 
-def ego_status_of(
-    context: BridgeContext, index: int, *, stamped: bool = True
-) -> morai_26_r1.EgoVehicleStatus:
-    """EgoVehicleStatus of the ego at `index` of the world's egos; unstamped for the row's
-    outlet to stamp (BridgeContext.header)."""
+def ego_status_of(context: BridgeContext, index: int) -> morai_26_r1.EgoVehicleStatus:
+    """EgoVehicleStatus of the ego at `index` of the world's egos."""
     world = context.world
     fields = ego_vehicle_status_fields(
         context.profile,
@@ -134,7 +173,7 @@ def ego_status_of(
         world.ego_lane_state(index),
     )
     message_type = context.profile.message("morai_msgs/EgoVehicleStatus")
-    return message_type.new(header=context.header(stamped=stamped), **fields)
+    return message_type.new(header=context.header(), **fields)
 
 
 def on_ctrl_cmd(context: BridgeContext, row: Row, ctrl_cmd: morai_26_r1.CtrlCmd) -> None:

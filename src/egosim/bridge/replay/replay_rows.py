@@ -17,8 +17,8 @@ from ...msgs.typed import morai_26_r1, standard
 from ...replay import BagTimeline, CommandResult, Mode, ObjectState, ReplayTopics
 from ...sensors.rotation import quaternion_from_euler
 from ...world.traffic import ObjectType
-from ..context import BridgeContext
-from ..protocol.messages import quaternion, time_msg, vector3
+from ..context import MAP_FRAME, BridgeContext
+from ..protocol.messages import quaternion, vector3
 from ..protocol.network import NetworkSettings
 from ..protocol.table import Row
 from ..protocol.units import deg
@@ -81,16 +81,16 @@ def serve_sim_proc(
     )
 
 
-def publish_sim_proc_status(context: BridgeContext, row: Row) -> morai_26_r1.MoraiSimProcStatus:
-    """/sim/process/state/msg/MoraiSimProcStatus: always, in simulation mode too."""
+def publish_sim_proc_status(context: BridgeContext, row: Row) -> bytes:
+    """/sim/process/state/msg/MoraiSimProcStatus: always, in simulation mode too; its
+    bytes (the header's seq and stamp written by the outlet)."""
     status = context.replay.status()
-    return context.profile.message("morai_msgs/MoraiSimProcStatus").new(
-        header=context.header(),
-        latest_command_time=time_msg(context.profile, status.latest_command_time_ns),
-        command_result=int(status.command_result),
-        current_mode=int(status.current_mode),
-        current_status=int(status.current_status),
-    )
+    pack = context.profile.message("morai_msgs/MoraiSimProcStatus").flat().pack
+    return pack(
+        0, 0, 0, MAP_FRAME,
+        *divmod(status.latest_command_time_ns, 1_000_000_000),
+        int(status.command_result), int(status.current_mode), int(status.current_status),
+    )  # fmt: skip
 
 
 def publish_replay_info(context: BridgeContext, row: Row) -> morai_26_r1.ReplayInfo | None:

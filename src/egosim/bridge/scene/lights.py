@@ -13,7 +13,7 @@ import logging
 
 from ...msgs.typed import morai_26_r1
 from ...world.signals import OFF, SignalError
-from ..context import BridgeContext
+from ..context import MAP_FRAME, BridgeContext
 from ..protocol.table import Row
 
 log = logging.getLogger(__name__)
@@ -24,33 +24,24 @@ def tl_info_status(aspect: int) -> int:
     return aspect
 
 
-def publish_traffic_light_status(
-    context: BridgeContext, row: Row
-) -> morai_26_r1.GetTrafficLightStatus | None:
-    """/GetTrafficLightStatus: the light governing the lane ahead of the ego, else the nearest."""
+def publish_traffic_light_status(context: BridgeContext, row: Row) -> bytes | None:
+    """/GetTrafficLightStatus: the light governing the lane ahead of the ego, else the
+    nearest; its bytes (trafficLightIndex, trafficLightType, trafficLightStatus)."""
     light = context.world.ego_traffic_light(context.session.camera_index)
     if light is None:
         return None
-    return context.profile.message("morai_msgs/GetTrafficLightStatus").new(
-        header=context.header(),
-        trafficLightIndex=light.light_id,
-        trafficLightType=light.light_type,
-        trafficLightStatus=light.aspect,
-    )
+    pack = context.profile.message("morai_msgs/GetTrafficLightStatus").flat().pack
+    # header: seq and stamp written by the outlet
+    return pack(0, 0, 0, MAP_FRAME, light.light_id, light.light_type, light.aspect)
 
 
-def publish_intersection_status(
-    context: BridgeContext, row: Row
-) -> list[morai_26_r1.IntersectionStatus]:
-    """/InsnStatus: one message per signalised intersection, in index order, each period."""
-    message = context.profile.message("morai_msgs/IntersectionStatus").make
+def publish_intersection_status(context: BridgeContext, row: Row) -> list[bytes]:
+    """/InsnStatus: one message per signalised intersection, in index order, each period;
+    their bytes, for the outlet to stamp."""
+    pack = context.profile.message("morai_msgs/IntersectionStatus").flat().pack
     return [
-        message(
-            header=context.header(),
-            intersection_index=status.intersection_id,
-            intersection_status=status.phase_index,
-            intersection_status_time=status.elapsed_s,
-        )
+        # header: seq and stamp written by the outlet
+        pack(0, 0, 0, MAP_FRAME, status.intersection_id, status.phase_index, status.elapsed_s)
         for status in sorted(
             context.world.signals.intersection_statuses(), key=lambda s: s.intersection_id
         )

@@ -24,7 +24,7 @@ from ...world.map import LaneMap
 from ...world.map.sections import lane_cross_section
 from ...world.signals.aspects import shown_colour
 from ...world.traffic import ObjectType
-from ..context import BridgeContext
+from ..context import MAP_FRAME, BridgeContext
 from ..protocol.messages import point, quaternion, vector3
 from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
@@ -140,7 +140,7 @@ class _Builder:
 
     def _duration(self, seconds: float) -> standard.Duration:
         if (shared := self._durations.get(seconds)) is None:
-            sec, nanosec = divmod(round(seconds * 1e9), 1_000_000_000)
+            sec, nanosec = _duration(seconds)
             shared = self._durations[seconds] = self.duration_type(sec=sec, nanosec=nanosec)
         return shared
 
@@ -225,59 +225,83 @@ def build_map_markers(context: BridgeContext, row: Row) -> standard.MarkerArray:
     return context.profile.message("visualization_msgs/MarkerArray").new(markers=markers)
 
 
-def build_scene_markers(context: BridgeContext, row: Row) -> standard.MarkerArray:
-    """What moves, at the row's rate: a box per object, a sphere per light."""
-    make = _Builder(context)
+def build_scene_markers(context: BridgeContext, row: Row) -> bytes:
+    """What moves, at the row's rate: a box per object, a sphere per light. Its bytes,
+    each marker from its parts: the header and namespace of its kind, then what the
+    object says (id, pose, size), then what every marker of its kind has after that."""
     lifetime = LIFETIME_PERIODS / row.rate_hz if row.rate_hz else UNTIMED_LIFETIME_S
-    world = context.world
+    profile = context.profile
+    marker = profile.message("visualization_msgs/Marker")
+    sec, nanosec = divmod(context.stamp_ns(), 1_000_000_000)
+    head = marker.flat(last="ns").pack
+    heads = {kind: head(0, sec, nanosec, MAP_FRAME, ns) for kind, ns in OBJECT_NAMESPACES.items()}
+    box = marker.flat("id", "scale.z").pack
     objects = context.objects()
-    markers = []
-    for uid, kind, (x, y, z), heading, (length, width, height) in zip(
-        objects.unique_ids.tolist(),
-        objects.object_types.tolist(),
-        objects.positions.tolist(),
-        objects.headings.tolist(),
-        objects.sizes.tolist(),
-        strict=True,
-    ):
-        markers.append(
-            make.new(
-                OBJECT_NAMESPACES[kind], uid, CUBE, OBJECT_COLOURS[kind], (length, width, height),
-                position=(x, y, z + height / 2.0), yaw=heading, lifetime_s=lifetime,
-            )
-        )  # fmt: skip
+    markers = [
+        b"".join((
+            heads[kind],
+            box(uid, CUBE, ADD, x, y, z + height / 2.0, *yaw_quaternion(heading),
+                length, width, height),
+            _unchanging_end(profile, OBJECT_COLOURS[kind], lifetime),  # type: ignore[arg-type]
+        ))
+        for uid, kind, (x, y, z), heading, (length, width, height) in zip(
+            objects.unique_ids.tolist(),
+            objects.object_types.tolist(),
+            objects.positions.tolist(),
+            objects.headings.tolist(),
+            objects.sizes.tolist(),
+            strict=True,
+        )
+    ]  # fmt: skip
+    world = context.world
     signals = world.signals
     if len(signals.light_ids):
+        lights_sec, lights_nanosec = _duration(lifetime)
         markers.append(
-            make.new(
-                "lights", 0, SPHERE_LIST, LIGHT_COLOURS[None], (LIGHT_SIZE_M,) * 3,
-                lifetime_s=lifetime,
+            marker.flat().pack(
+                0, sec, nanosec, MAP_FRAME, "lights", 0, SPHERE_LIST, ADD,
+                0.0, 0.0, 0.0, *yaw_quaternion(0.0), *(LIGHT_SIZE_M,) * 3,
+                *LIGHT_COLOURS[None], lights_sec, lights_nanosec, False,
                 # A profile hashes by identity; its typed view (a Protocol) does not say so.
-                points=list(light_sites(make.profile, world.map, signals.light_ids)),  # type: ignore[arg-type]
-                colors=list(light_colours(make.profile, tuple(signals.aspects().tolist()))),  # type: ignore[arg-type]
+                light_sites(profile, world.map, signals.light_ids),  # type: ignore[arg-type]
+                light_colours(profile, tuple(signals.aspects().tolist())),  # type: ignore[arg-type]
+                "", "", False,
             )
         )  # fmt: skip
-    return context.profile.message("visualization_msgs/MarkerArray").new(markers=markers)
+    return profile.message("visualization_msgs/MarkerArray").flat().pack(markers)
+
+
+@functools.lru_cache(maxsize=64)
+def _unchanging_end(profile: CanonicalProfile, rgba: RGBA, lifetime_s: float) -> bytes:
+    """A moving box's Marker bytes from its colour on: the same for every box of a kind."""
+    marker = profile.message("visualization_msgs/Marker")
+    end = marker.flat("color.r", "mesh_use_embedded_materials").pack
+    return end(*rgba, *_duration(lifetime_s), False, [], [], "", "", False)
+
+
+def _duration(seconds: float) -> tuple[int, int]:
+    """A builtin_interfaces/Duration's sec and nanosec."""
+    sec, nanosec = divmod(round(seconds * 1e9), 1_000_000_000)
+    return sec, nanosec
 
 
 @functools.lru_cache(maxsize=2)  # a map held here at most until the next run's
 def light_sites(
     profile: CanonicalProfile, lane_map: LaneMap, light_ids: tuple[str, ...]
-) -> tuple[standard.Point, ...]:
-    """The lights' points of the lights marker: the map's, so made once."""
+) -> tuple[bytes, ...]:
+    """The lights' points of the lights marker (geometry_msgs/Point bytes): the map's,
+    so made once."""
     sites = lane_map.traffic_lights
-    return tuple(point(profile, sites[i].position) for i in light_ids)
+    pack = profile.message("geometry_msgs/Point").flat().pack
+    return tuple(pack(*(float(v) for v in sites[i].position)) for i in light_ids)
 
 
 @functools.lru_cache(maxsize=64)
-def light_colours(
-    profile: CanonicalProfile, aspects: tuple[int, ...]
-) -> tuple[standard.ColorRGBA, ...]:
-    """The lights' colours of the lights marker, made again only when an aspect changes."""
-    colour = profile.message("std_msgs/ColorRGBA").make
-    made = {
-        rgba: colour(r=rgba[0], g=rgba[1], b=rgba[2], a=rgba[3]) for rgba in LIGHT_COLOURS.values()
-    }
+def light_colours(profile: CanonicalProfile, aspects: tuple[int, ...]) -> tuple[bytes, ...]:
+    """The lights' colours of the lights marker (std_msgs/ColorRGBA bytes), made again
+    only when an aspect changes."""
+    pack = profile.message("std_msgs/ColorRGBA").flat().pack
+    made = {rgba: pack(*rgba) for rgba in LIGHT_COLOURS.values()}
     return tuple(made[LIGHT_COLOURS[shown_colour(aspect)]] for aspect in aspects)
 
 

@@ -9,13 +9,16 @@ map frame; size is (length, width, height) in m.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from typing import TypedDict
 
+import numpy as np
+
 from ...msgs.typed import morai_26_r1, standard
+from ...world.arrays import IntArray
 from ...world.collision import VehicleCollision
-from ...world.traffic import ObjectState
-from ..context import BridgeContext
+from ...world.traffic import ObjectState, ObjectTable
+from ..context import MAP_FRAME, BridgeContext
 from ..protocol.messages import vector3
 from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
@@ -33,6 +36,27 @@ def _turned(vector: Sequence[float], c: float, s: float) -> tuple[float, float, 
     return (c * x + s * y, -s * x + c * y, z)
 
 
+def _status_numbers(
+    heading: float,
+    velocity: Sequence[float],
+    acceleration: Sequence[float],
+    size: Sequence[float],
+    position: Sequence[float],
+) -> tuple[float, ...]:
+    """ObjectStatus's numbers after its name, in protocol units and in wire order:
+    heading (deg), velocity (km/h) and acceleration in the object's frame, size (width,
+    length, height), position."""
+    c, s = math.cos(heading), math.sin(heading)
+    vx, vy, vz = _turned(velocity, c, s)
+    return (
+        heading_deg(heading),
+        *(kmh(vx), kmh(vy), kmh(vz)),
+        *_turned(acceleration, c, s),
+        *swap_length_width(size),
+        *position,
+    )
+
+
 class ObjectStatusFields(TypedDict):
     """The fields ObjectStatus and ObjectStatusExtended share."""
 
@@ -48,17 +72,18 @@ class ObjectStatusFields(TypedDict):
 
 def object_status_fields(profile: CanonicalProfile, state: ObjectState) -> ObjectStatusFields:
     """The fields ObjectStatus and ObjectStatusExtended share, in protocol units."""
-    c, s = math.cos(state.heading), math.sin(state.heading)
-    vx, vy, vz = _turned(state.velocity, c, s)
+    heading, *numbers = _status_numbers(
+        state.heading, state.velocity, state.acceleration, state.size, state.position
+    )
     return {
         "unique_id": state.unique_id,
         "type": int(state.object_type),
         "name": state.name,
-        "heading": heading_deg(state.heading),
-        "velocity": vector3(profile, (kmh(vx), kmh(vy), kmh(vz))),
-        "acceleration": vector3(profile, _turned(state.acceleration, c, s)),
-        "size": vector3(profile, swap_length_width(state.size)),
-        "position": vector3(profile, state.position),
+        "heading": heading,
+        "velocity": vector3(profile, numbers[0:3]),
+        "acceleration": vector3(profile, numbers[3:6]),
+        "size": vector3(profile, numbers[6:9]),
+        "position": vector3(profile, numbers[9:12]),
     }
 
 
@@ -67,27 +92,85 @@ def object_status(profile: CanonicalProfile, state: ObjectState) -> morai_26_r1.
     return profile.message("morai_msgs/ObjectStatus").make(**object_status_fields(profile, state))
 
 
-def publish_object_list(context: BridgeContext, row: Row) -> morai_26_r1.ObjectStatusList:
-    """/Object_topic: counts of everything spawned; the N closest objects, closest first
-    (from the position /Ego_topic reports to each reported position)."""
-    listing = context.world.object_list(context.session.camera_index)
-    profile = context.profile
-    return profile.message("morai_msgs/ObjectStatusList").new(
-        header=context.header(),
-        num_of_npcs=listing.num_npcs,
-        num_of_pedestrian=listing.num_pedestrians,
-        num_of_obstacle=listing.num_obstacles,
-        npc_list=[object_status(profile, s) for s in listing.npcs],
-        pedestrian_list=[object_status(profile, s) for s in listing.pedestrians],
-        obstacle_list=[object_status(profile, s) for s in listing.obstacles],
+def _object_statuses(profile: CanonicalProfile, table: ObjectTable, rows: IntArray) -> list[bytes]:
+    """The ObjectStatus bytes of the objects at `rows` of `table` (each column read at
+    once, each object packed without building a message)."""
+    names = table.names
+    return _status_bytes(
+        profile,
+        zip(
+            table.unique_ids[rows].tolist(),
+            table.object_types[rows].tolist(),
+            [names[row] for row in rows.tolist()],
+            table.headings[rows].tolist(),
+            table.velocities[rows].tolist(),
+            table.accelerations[rows].tolist(),
+            table.sizes[rows].tolist(),
+            table.positions[rows].tolist(),
+            strict=True,
+        ),
     )
+
+
+def _state_statuses(profile: CanonicalProfile, states: Iterable[ObjectState]) -> list[bytes]:
+    """The ObjectStatus bytes of `states`."""
+    return _status_bytes(
+        profile,
+        (
+            (
+                s.unique_id,
+                int(s.object_type),
+                s.name,
+                s.heading,
+                s.velocity,
+                s.acceleration,
+                s.size,
+                s.position,
+            )
+            for s in states
+        ),
+    )
+
+
+_StatusFields = tuple[
+    int, int, str, float, Sequence[float], Sequence[float], Sequence[float], Sequence[float]
+]
+"""An object's id, type code, name, heading, velocity, acceleration, size and position (SI)."""
+
+
+def _status_bytes(profile: CanonicalProfile, objects: Iterable[_StatusFields]) -> list[bytes]:
+    """Each object's ObjectStatus bytes, its numbers in protocol units."""
+    pack = profile.message("morai_msgs/ObjectStatus").flat().pack
+    return [
+        pack(
+            unique_id, kind, name, *_status_numbers(heading, velocity, acceleration, size, position)
+        )
+        for unique_id, kind, name, heading, velocity, acceleration, size, position in objects
+    ]
+
+
+def publish_object_list(context: BridgeContext, row: Row) -> bytes:
+    """/Object_topic: counts of everything spawned; the N closest objects, closest first
+    (from the position /Ego_topic reports to each reported position). Its bytes (the
+    outlet stamps them), from the tick's object table."""
+    nearest = context.world.nearest_objects(
+        context.session.camera_index, scene=context.scene_objects()
+    )
+    lists = (nearest.npcs, nearest.pedestrians, nearest.obstacles)
+    statuses = _object_statuses(context.profile, nearest.table, np.concatenate(lists))
+    npcs, walkers = len(nearest.npcs), len(nearest.npcs) + len(nearest.pedestrians)
+    return context.profile.message("morai_msgs/ObjectStatusList").flat().pack(
+        0, 0, 0, MAP_FRAME,  # header: seq and stamp written by the outlet
+        nearest.num_npcs, nearest.num_pedestrians, nearest.num_obstacles,
+        statuses[:npcs], statuses[npcs:walkers], statuses[walkers:],
+    )  # fmt: skip
 
 
 EGO_COLLISIONS = "ego_collisions"
 VEHICLE_COLLISIONS = "vehicle_collisions"
 
 
-def publish_collision(context: BridgeContext, row: Row) -> morai_26_r1.CollisionData | None:
+def publish_collision(context: BridgeContext, row: Row) -> bytes:
     """/CollisionData: the main ego's collisions that began since the row's previous
     message, then the objects it still touches (a contact is reported as long as it lasts).
 
@@ -108,32 +191,24 @@ def publish_collision(context: BridgeContext, row: Row) -> morai_26_r1.Collision
     lasting = [o for o in world.ego_contacts.get(ego_id, []) if o.unique_id not in listed]
     latest = world.ego_collision(0)
     offset = latest.other.position if latest is not None else (0.0, 0.0, 0.0)
-    return context.profile.message("morai_msgs/CollisionData").new(
-        header=context.header(),
-        global_offset_x=offset[0],
-        global_offset_y=offset[1],
-        global_offset_z=offset[2],
-        collision_object=[object_status(context.profile, o) for o in new + lasting],
-    )
+    pack = context.profile.message("morai_msgs/CollisionData").flat().pack
+    touched = _state_statuses(context.profile, new + lasting)
+    # header (seq and stamp written by the outlet), global_offset_*, collision_object,
+    # collision_objecta (unused)
+    return pack(0, 0, 0, MAP_FRAME, *(float(v) for v in offset), touched, [])
 
 
-def publish_vehicle_collisions(
-    context: BridgeContext, row: Row
-) -> morai_26_r1.VehicleCollisionData | None:
+def publish_vehicle_collisions(context: BridgeContext, row: Row) -> bytes:
     """/VehicleCollisionData: NPC-NPC collisions that began since the last message, then
     the NPC-NPC contacts that last."""
     profile = context.profile
-    collision_type = profile.message("morai_msgs/VehicleCollision")
+    collision = profile.message("morai_msgs/VehicleCollision").flat().pack
     new = context.unreported(VEHICLE_COLLISIONS, context.world.vehicle_collisions)
     listed = {_pair(c) for c in new}
     new += [c for c in context.world.vehicle_contacts if _pair(c) not in listed]
-    return profile.message("morai_msgs/VehicleCollisionData").new(
-        header=context.header(),
-        collisions=[
-            collision_type.new(crashed_vehicles=[object_status(profile, v) for v in c.vehicles])
-            for c in new
-        ],
-    )
+    collisions = [collision(_state_statuses(profile, c.vehicles)) for c in new]
+    pack = profile.message("morai_msgs/VehicleCollisionData").flat().pack
+    return pack(0, 0, 0, MAP_FRAME, collisions)  # header: seq and stamp by the outlet
 
 
 def pass_collisions(context: BridgeContext, row: Row) -> None:

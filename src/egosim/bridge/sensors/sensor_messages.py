@@ -12,7 +12,6 @@ from ...msgs.typed import morai_26_r1, standard
 from ...sensors import GpsFix, ImuReading, Transform
 from ...sensors.imu import Covariance
 from ...sensors.radar import RadarDetections
-from ..protocol.messages import header as make_header
 from ..protocol.messages import point, quaternion, vector3
 from ..protocol.releases import CanonicalProfile
 from ..protocol.units import deg
@@ -81,23 +80,19 @@ def point_cloud(
     )
 
 
-def tf_message(
-    profile: CanonicalProfile, stamp_ns: int, transforms: Iterable[Transform]
-) -> standard.TFMessage:
-    stamped = profile.message("geometry_msgs/TransformStamped").make
-    transform_type = profile.message("geometry_msgs/Transform").make
-    return profile.message("tf2_msgs/TFMessage").new(
-        transforms=[
-            stamped(
-                header=make_header(profile, stamp_ns, transform.parent_frame),
-                child_frame_id=transform.child_frame,
-                transform=transform_type(
-                    translation=vector3(profile, transform.translation),
-                    rotation=quaternion(profile, transform.rotation),
-                ),
-            )
-            for transform in transforms
-        ]
+def tf_bytes(profile: CanonicalProfile, stamp_ns: int, transforms: Iterable[Transform]) -> bytes:
+    """tf2_msgs/TFMessage's bytes: each transform stamped `stamp_ns`."""
+    sec, nanosec = divmod(stamp_ns, 1_000_000_000)
+    stamped = profile.message("geometry_msgs/TransformStamped").flat().pack
+    return (
+        profile.message("tf2_msgs/TFMessage")
+        .flat()
+        .pack(
+            [
+                stamped(0, sec, nanosec, t.parent_frame, t.child_frame, *t.translation, *t.rotation)
+                for t in transforms
+            ]
+        )
     )
 
 

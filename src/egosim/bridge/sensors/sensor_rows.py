@@ -14,7 +14,7 @@ import logging
 from ...msgs.typed import morai_26_r1, standard
 from ..context import BridgeContext
 from ..protocol.table import Row
-from .sensor_messages import gps_message, imu_message, point_cloud, radar_message, tf_message
+from .sensor_messages import gps_message, imu_message, point_cloud, radar_message, tf_bytes
 from .sensor_rig import GPS_INDEX, IMU_INDEX, LIDAR_INDEX, finite_mount
 
 log = logging.getLogger(__name__)
@@ -47,9 +47,10 @@ def publish_radar(context: BridgeContext, row: Row) -> morai_26_r1.RadarDetectio
     return radar_message(context.profile, header, detections)
 
 
-def publish_tf(context: BridgeContext, row: Row) -> standard.TFMessage:
+def publish_tf(context: BridgeContext, row: Row) -> bytes:
+    """/tf: its bytes."""
     rig = context.sensors
-    return tf_message(context.profile, context.stamp_ns(), rig.transforms(context.world))
+    return tf_bytes(context.profile, context.stamp_ns(), rig.transforms(context.world))
 
 
 def on_sensor_pos_control(

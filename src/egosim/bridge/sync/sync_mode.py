@@ -249,12 +249,9 @@ def serve_scenario_load(
     return service_response(context, "MoraiSyncModeSLSrv", result_message(context, ok))
 
 
-def publish_sync_mode_info(context: BridgeContext, row: Row) -> morai_26_r1.SyncModeInfo:
-    """/SyncModeInfo: who runs sync mode, whether it is on, and the current frame."""
+def publish_sync_mode_info(context: BridgeContext, row: Row) -> bytes:
+    """/SyncModeInfo: who runs sync mode, whether it is on, and the current frame; its
+    bytes (master_id, status, frame, can_send_tick)."""
     session = context.sync
-    return context.profile.message("morai_msgs/SyncModeInfo").new(
-        master_id=session.user_id,
-        status=session.active,
-        frame=session.frame,
-        can_send_tick=session.active,
-    )
+    pack = context.profile.message("morai_msgs/SyncModeInfo").flat().pack
+    return pack(session.user_id, session.active, session.frame, session.active)

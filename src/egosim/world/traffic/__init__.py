@@ -5,7 +5,8 @@ Public API:
     PedestrianCrowd, PedestrianSpawn, WalkPath     walkers on sidewalks / crosswalks / waypoints
     StaticObstacles, ObstacleSpawn                 boxes standing still
     ObjectType, ObjectState, ObjectTable           ObjectStatus semantics (SI units)
-    ObjectList, closest_objects                    ObjectStatusList semantics
+    ObjectList, NearestObjects, closest_objects    ObjectStatusList semantics
+    SceneObjects                                   every object, with its rows per kind
     LaneGraph, LaneOccupants, LightsView           the arrays the agents run on
     BoxModel, PEDESTRIAN_MODELS, OBSTACLE_MODELS   sizes of non-vehicle models
     MORAI_OBSTACLE_DATA_IDS, obstacle_for_data_id  MORAI's obstacle DataIDs -> models
@@ -24,7 +25,12 @@ from egosim.world.traffic.idm import IntelligentDriverModel
 from egosim.world.traffic.lane_graph import LaneGraph
 from egosim.world.traffic.leaders import LaneOccupants, leaders_ahead
 from egosim.world.traffic.npc_vehicles import NpcFleet, NpcSpawn
-from egosim.world.traffic.object_list import ObjectList, closest_objects
+from egosim.world.traffic.object_list import (
+    NearestObjects,
+    ObjectList,
+    SceneObjects,
+    closest_objects,
+)
 from egosim.world.traffic.objects import ObjectState, ObjectTable, ObjectType
 from egosim.world.traffic.obstacles import ObstacleSpawn, StaticObstacles
 from egosim.world.traffic.pedestrians import (
@@ -50,6 +56,7 @@ __all__ = [
     "LaneGraph",
     "LaneOccupants",
     "LightsView",
+    "NearestObjects",
     "NpcFleet",
     "NpcSpawn",
     "ObjectList",
@@ -59,6 +66,7 @@ __all__ = [
     "ObstacleSpawn",
     "PedestrianCrowd",
     "PedestrianSpawn",
+    "SceneObjects",
     "StaticObstacles",
     "WalkPath",
     "closest_objects",

@@ -123,15 +123,15 @@ class ObjectTable:
         filled = [t for t in tables if len(t.unique_ids)]
         if len(filled) == 1:
             return filled[0]
-        if not tables:
+        if not filled:
             return cls.empty()
         return cls(
-            np.concatenate([t.unique_ids for t in tables]),
-            np.concatenate([t.object_types for t in tables]),
-            tuple(chain.from_iterable(t.names for t in tables)),
-            np.concatenate([t.positions for t in tables]),
-            np.concatenate([t.headings for t in tables]),
-            np.concatenate([t.velocities for t in tables]),
-            np.concatenate([t.accelerations for t in tables]),
-            np.concatenate([t.sizes for t in tables]),
+            np.concatenate([t.unique_ids for t in filled]),
+            np.concatenate([t.object_types for t in filled]),
+            tuple(chain.from_iterable(t.names for t in filled)),
+            np.concatenate([t.positions for t in filled]),
+            np.concatenate([t.headings for t in filled]),
+            np.concatenate([t.velocities for t in filled]),
+            np.concatenate([t.accelerations for t in filled]),
+            np.concatenate([t.sizes for t in filled]),
         )
