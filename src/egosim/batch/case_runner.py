@@ -12,11 +12,13 @@ import signal
 import time
 from pathlib import Path
 from typing import Final, NamedTuple
+from urllib.parse import urlsplit
 
 from egosim.batch.case import CaseSpec
 from egosim.batch.documents import CaseResult, CaseStatus, ScoreFile, read_score_file
 from egosim.batch.files import BAG_FILE, CASE_FILE, SIMULATOR_LOG, STACK_LOG
 from egosim.batch.interrupt import Interrupt
+from egosim.batch.live_masters import LiveMasters
 from egosim.batch.logs import log_tail
 from egosim.batch.processes import GRACE_S, GroupProcess
 from egosim.batch.warm_simulator import WarmSimulator
@@ -63,43 +65,81 @@ def run_case(
     simulator: WarmSimulator,
     interrupt: Interrupt | None = None,
 ) -> CaseResult:
-    """Run `case` with its folder under `out_dir` on `simulator`; its result."""
+    """Run `case` with its folder under `out_dir` on `simulator`; its result once its
+    stack has ended too."""
+    return drive_case(case, out_dir, simulator, interrupt).finish()
+
+
+def drive_case(
+    case: CaseSpec,
+    out_dir: str,
+    simulator: WarmSimulator,
+    interrupt: Interrupt | None = None,
+    masters: LiveMasters | None = None,
+) -> EndingCase:
+    """Run `case` with its folder under `out_dir` on `simulator` until the simulator is
+    done with it: `simulator` may take the next case while this one's stack ends (told
+    to stop, it usually takes a fraction of a second: rospy's shutdown alone waits half
+    a second for its threads). `masters` holds the ports of the masters that stacks of
+    this batch may still reach; this case's master takes none of them."""
     started = time.monotonic()
     folder = Path(out_dir) / case_folder_name(case.name)
     if folder.exists():
         shutil.rmtree(folder)
     folder.mkdir(parents=True)
     (folder / CASE_FILE).write_text(json.dumps(case.as_dict(), indent=1), encoding="utf-8")
-    supervisor = _Supervisor(case, folder, simulator, interrupt or Interrupt())
+    supervisor = _Supervisor(case, folder, simulator, interrupt or Interrupt(), masters)
     try:
         problem = supervisor.run()
     except _BatchStoppingError:
         problem = INTERRUPTED
     finally:
-        supervisor.stop_all()
-    drive = read_score_file(folder)
-    result = _result(case, folder, problem, drive)
-    if case.bags == "failed" and result["status"] == PASSED and result.get("bag") is not None:
-        (folder / BAG_FILE).unlink()
-        result["bag"] = None
-    stack_cpu_s = None if supervisor.stack is None else supervisor.stack.cpu_s
-    result["timings"] = {
-        "case_wall_s": round(time.monotonic() - started, 3),
-        "drive_wall_s": None if drive is None else round(drive["drive_wall_s"], 3),
-        "simulator_cpu_s": None if drive is None else round(drive["cpu_s"], 3),
-        "stack_cpu_s": None if stack_cpu_s is None else round(stack_cpu_s, 3),
-    }
-    return result
+        supervisor.end_simulation()
+    return EndingCase(supervisor, problem, started)
+
+
+class EndingCase:
+    """A case its simulator is done with, its stack perhaps still ending."""
+
+    def __init__(self, supervisor: _Supervisor, problem: Problem | None, started: float) -> None:
+        self._supervisor = supervisor
+        self._problem = problem
+        self._started = started
+
+    def finish(self) -> CaseResult:
+        """The case's result, once its stack has ended (SIGKILL after its grace)."""
+        supervisor, case, folder = self._supervisor, self._supervisor.case, self._supervisor.folder
+        supervisor.stop_stack()
+        drive = read_score_file(folder)
+        result = _result(case, folder, self._problem, drive)
+        if case.bags == "failed" and result["status"] == PASSED and result.get("bag") is not None:
+            (folder / BAG_FILE).unlink()
+            result["bag"] = None
+        stack_cpu_s = None if supervisor.stack is None else supervisor.stack.cpu_s
+        result["timings"] = {
+            "case_wall_s": round(time.monotonic() - self._started, 3),
+            "drive_wall_s": None if drive is None else round(drive["drive_wall_s"], 3),
+            "simulator_cpu_s": None if drive is None else round(drive["cpu_s"], 3),
+            "stack_cpu_s": None if stack_cpu_s is None else round(stack_cpu_s, 3),
+        }
+        return result
 
 
 class _Supervisor:
     def __init__(
-        self, case: CaseSpec, folder: Path, simulator: WarmSimulator, interrupt: Interrupt
+        self,
+        case: CaseSpec,
+        folder: Path,
+        simulator: WarmSimulator,
+        interrupt: Interrupt,
+        masters: LiveMasters | None,
     ) -> None:
         self.case = case
         self.folder = folder
         self.simulator = simulator
         self.interrupt = interrupt
+        self.masters = masters or LiveMasters()
+        self.master_port: int | None = None
         self.stack: GroupProcess | None = None
         self.stack_status: int | None = None
         self.drive_ended = False
@@ -108,11 +148,14 @@ class _Supervisor:
         """Drive the case to its end; why it could not be scored, if it could not."""
         case = self.case
         self._check_interrupt()
-        self.simulator.begin(self.folder)
+        self.simulator.begin(self.folder, self.masters.ports())
         master = self._wait_for(MASTER, SIMULATOR_START_S)
         if master is None:
             return self._simulator_failure("did not start its ROS master")
         uri = MASTER_LINE.match(master).group(1)  # type: ignore[union-attr]
+        self.master_port = urlsplit(uri).port
+        if self.master_port is not None:
+            self.masters.add(self.master_port)
         self.stack = self._start_stack(uri)
         running = self._wait_for(RUNNING, case.stack.connect_timeout_s, watch_stack=True)
         if running is None:
@@ -199,15 +242,27 @@ class _Supervisor:
     def _simulator_failure(self, what: str) -> Problem:
         return Problem(f"simulator {what}", SIMULATOR_LOG)
 
-    def stop_all(self) -> None:
-        """Stop the stack first (the simulator then writes what it saw), then the
-        simulator's case."""
-        hurry = self.interrupt.hurry
+    def end_simulation(self) -> None:
+        """End the case's simulation: a stack still running is told to stop (SIGINT) and
+        left to end while the simulator takes its next case (stop_stack waits for it) if
+        its simulator is done with the case; otherwise it is stopped first (the simulator
+        then writes what it saw), then the simulator's case."""
+        if self.stack is not None and not self.simulator.finished:
+            self.stop_stack()
+        elif self.stack is not None:
+            self.stack.begin_stop(signal.SIGINT)
+        self.simulator.stop_case(SIMULATOR_GRACE_S, self.interrupt.hurry)
+
+    def stop_stack(self) -> None:
+        """Wait for the stack to end (SIGKILL to what is left after its grace, at once in
+        a hurry); its master's port may then go to another case's master."""
         if self.stack is not None:
-            status = self.stack.stop(signal.SIGINT, GRACE_S, hurry)
+            status = self.stack.stop(signal.SIGINT, GRACE_S, self.interrupt.hurry)
             if self.stack_status is None:
                 self.stack_status = status
-        self.simulator.stop_case(SIMULATOR_GRACE_S, hurry)
+        if self.master_port is not None:
+            self.masters.remove(self.master_port)
+            self.master_port = None
 
 
 def _stack_problem(what: str) -> Problem:

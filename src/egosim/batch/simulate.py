@@ -15,7 +15,7 @@ import os
 import resource
 import threading
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Collection, Mapping
 from pathlib import Path
 
 import numpy as np
@@ -27,7 +27,7 @@ from egosim.app.runner import run
 from egosim.batch.case import CaseSpec
 from egosim.batch.documents import Drive, ScoreFile
 from egosim.batch.files import BAG_FILE, CASE_FILE, MORAI_SCENARIO_FILE, SCENARIO_FILE, SCORE_FILE
-from egosim.batch.ros_graph import stack_connected
+from egosim.batch.ros_graph import CALLER_ID, stack_connected
 from egosim.batch.worker_protocol import ENDED, MASTER, PREFIX, RUNNING
 from egosim.bridge import ClockMode
 from egosim.bridge.context import BridgeContext
@@ -189,11 +189,14 @@ def _cpu_s() -> float:
 
 
 def simulate_case(
-    case_dir: Path, stop: threading.Event, renderer: Callable[[], CameraRenderer]
+    case_dir: Path,
+    stop: threading.Event,
+    renderer: Callable[[], CameraRenderer],
+    avoid_ports: Collection[int] = (),
 ) -> int:
     """Drive the case in `case_dir` until its drive ends or `stop` is set; the run's exit
-    status. The process's ROS_MASTER_URI and ROS_IP are the case's afterwards (the worker
-    puts its environment back)."""
+    status. Its master takes none of `avoid_ports`. The process's ROS_MASTER_URI and
+    ROS_IP are the case's afterwards (the worker puts its environment back)."""
     cpu_before = _cpu_s()
     case = CaseSpec.from_dict(json.loads((case_dir / CASE_FILE).read_text(encoding="utf-8")))
     if case.openscenario:
@@ -204,8 +207,11 @@ def simulate_case(
     else:
         scenario_path = case_dir / SCENARIO_FILE
         scenario_path.write_text(yaml.safe_dump(case.scenario, sort_keys=False), encoding="utf-8")
-    master = Master("http://127.0.0.1:0/").start()
+    master = Master("http://127.0.0.1:0/").start(avoid_ports)
     try:
+        # Set before the stack starts, so it always finds it (rospy reads it once, as its
+        # node starts), however soon that is; the run sets it again.
+        master.set_param(CALLER_ID, "/use_sim_time", True)
         os.environ["ROS_MASTER_URI"] = master.uri
         os.environ.setdefault("ROS_IP", "127.0.0.1")
         print(f"{PREFIX}{MASTER} {master.uri}", flush=True)

@@ -17,6 +17,7 @@ import queue
 import sys
 import threading
 import time
+from collections.abc import Collection
 from pathlib import Path
 from typing import IO
 
@@ -52,8 +53,9 @@ class WarmSimulator:
 
     # The case's side ------------------------------------------------------------------
 
-    def begin(self, folder: Path) -> None:
-        """Run the case in `folder` (its case.json written)."""
+    def begin(self, folder: Path, avoid_ports: Collection[int] = ()) -> None:
+        """Run the case in `folder` (its case.json written), its master on none of
+        `avoid_ports`."""
         if self._process is not None and (self._last_done() or self._process.poll() is not None):
             self._end_process(CLOSE_GRACE_S)
         if self._process is None:
@@ -61,11 +63,12 @@ class WarmSimulator:
         self._done = None
         self._in_case = True
         self._logs.pending = folder
-        if not self._send(run_command(folder)):
+        command = run_command(folder, avoid_ports)
+        if not self._send(command):
             self._end_process(0.0)
             self._start()
             self._logs.pending = folder
-            self._send(run_command(folder))
+            self._send(command)
 
     def take(self, wait_s: float = 0.0) -> str | None:
         """The case's next protocol line (None if none came within `wait_s`); after its

@@ -2,7 +2,9 @@
 to each other, one line at a time.
 
 To the worker, on its standard input:
-    run "CASE_DIR"          run the case in CASE_DIR (a JSON string)
+    run "CASE_DIR" [PORT, ...]  run the case in CASE_DIR (a JSON string), its master on
+                            none of the ports listed (a JSON list: masters whose
+                            stacks may still be running)
     stop                    end the case running now, as its stack leaving would
     (end of input)          end the case running now, then exit
 
@@ -20,6 +22,7 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -31,23 +34,39 @@ MASTER_LINE = re.compile(r"^egosim-batch: master (\S+)$")
 DONE_LINE = re.compile(r"^egosim-batch: done (-?\d+)( last)?$")
 
 
-def run_command(case_dir: Path) -> bytes:
-    return f"{RUN} {json.dumps(str(case_dir))}\n".encode()
+def run_command(case_dir: Path, avoid_ports: Collection[int] = ()) -> bytes:
+    return f"{RUN} {json.dumps(str(case_dir))} {json.dumps(sorted(avoid_ports))}\n".encode()
 
 
 def stop_command() -> bytes:
     return f"{STOP}\n".encode()
 
 
-def parse_command(line: str) -> tuple[str, Path | None]:
-    """(RUN, case folder) or (STOP, None); ValueError for anything else."""
+@dataclass(frozen=True)
+class Command:
+    kind: str
+    """RUN or STOP."""
+    case_dir: Path | None = None
+    avoid_ports: frozenset[int] = frozenset()
+
+
+def parse_command(line: str) -> Command:
+    """A RUN (with its case folder and the ports to avoid) or STOP command; ValueError for
+    anything else."""
     word, _, argument = line.strip().partition(" ")
     if word == STOP and not argument:
-        return STOP, None
+        return Command(STOP)
     if word == RUN:
-        folder = json.loads(argument)
-        if isinstance(folder, str):
-            return RUN, Path(folder)
+        decoder = json.JSONDecoder()
+        folder, end = decoder.raw_decode(argument)
+        ports, end = decoder.raw_decode(argument, end + 1)
+        if (
+            isinstance(folder, str)
+            and end == len(argument)
+            and isinstance(ports, list)
+            and all(isinstance(port, int) for port in ports)
+        ):
+            return Command(RUN, Path(folder), frozenset(ports))
     raise ValueError(f"not a worker command: {line.strip()!r}")
 
 
