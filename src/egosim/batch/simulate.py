@@ -228,6 +228,8 @@ def simulate_case(
             scenario_parameters=tuple(case.scenario_parameters.items()),
             # The drive stage ends the run, with the scenario's end among its reasons.
             keep_running=True,
+            # Most cases take no camera frame; the worker keeps the scene once built.
+            camera_scene_at_first_frame=True,
         )
         status = run(options, [drive.attach], stop, handle_signals=False, renderer=renderer)
         result: ScoreFile = {
