@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import http.client
 import logging
 import socketserver
@@ -14,6 +15,7 @@ from urllib.parse import urlsplit
 from xmlrpc.server import SimpleXMLRPCRequestHandler, SimpleXMLRPCServer
 
 from .errors import PeerUnreachableError
+from .handler_threads import HandlerThreads
 
 if TYPE_CHECKING:
     from _typeshed import ReadableBuffer
@@ -123,7 +125,8 @@ class _RequestHandler(SimpleXMLRPCRequestHandler):
 
 
 class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
-    """Serves one handler object's public methods on a daemon thread."""
+    """Serves one handler object's public methods on a daemon thread, each request in a
+    thread of its own (handler_threads: one whose last request ended, if one waits)."""
 
     daemon_threads = True
     block_on_close = False
@@ -138,6 +141,7 @@ class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
         self.register_multicall_functions()
         self._thread: threading.Thread | None = None
         self._address = (str(self.server_address[0]), self.port)
+        self._handlers = HandlerThreads()
 
     @property
     def port(self) -> int:
@@ -163,6 +167,11 @@ class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
             self.shutdown()
             self._thread.join()
         self.server_close()
+        self._handlers.close()
+
+    def process_request(self, request: Any, client_address: Any) -> None:
+        job = functools.partial(self.process_request_thread, request, client_address)
+        self._handlers.run(job, self._name)
 
     def answer_in_process(self, request: str) -> bytes:
         """The reply to an XML-RPC request made in this process, as a peer would get it."""
