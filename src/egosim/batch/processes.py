@@ -42,6 +42,7 @@ class GroupProcess:
         on_line: Callable[[str], None] | None = None,
         commands: bool = False,
     ) -> None:
+        self.started = time.monotonic()
         self.popen = subprocess.Popen(
             [sys.executable, "-I", "-S", str(DEFAULT_SIGNALS), *args],
             env=env,

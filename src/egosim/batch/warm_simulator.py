@@ -17,7 +17,6 @@ import queue
 import sys
 import threading
 import time
-from collections.abc import Collection
 from pathlib import Path
 from typing import IO
 
@@ -53,9 +52,8 @@ class WarmSimulator:
 
     # The case's side ------------------------------------------------------------------
 
-    def begin(self, folder: Path, avoid_ports: Collection[int] = ()) -> None:
-        """Run the case in `folder` (its case.json written), its master on none of
-        `avoid_ports`."""
+    def begin(self, folder: Path, master_uri: str) -> None:
+        """Run the case in `folder` (its case.json written) on the master at `master_uri`."""
         if self._process is not None and (self._last_done() or self._process.poll() is not None):
             self._end_process(CLOSE_GRACE_S)
         if self._process is None:
@@ -63,7 +61,7 @@ class WarmSimulator:
         self._done = None
         self._in_case = True
         self._logs.pending = folder
-        command = run_command(folder, avoid_ports)
+        command = run_command(folder, master_uri)
         if not self._send(command):
             self._end_process(0.0)
             self._start()

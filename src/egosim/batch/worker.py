@@ -104,7 +104,6 @@ class Worker:
     def run(self, command: Command) -> bool:
         """Run one case; whether the worker may run another."""
         case_dir = command.case_dir
-        assert case_dir is not None
         print(case_line(case_dir), flush=True)
         self.cases += 1
         print(f"{WORKER_LINE} {os.getpid()}: case {self.cases} in this process", flush=True)
@@ -116,7 +115,7 @@ class Worker:
         failed = False
         try:
             os.chdir(case_dir)
-            status = simulate_case(case_dir, stop, self.renderer.open, command.avoid_ports)
+            status = simulate_case(case_dir, command.master_uri, stop, self.renderer.open)
         except Exception:
             traceback.print_exc()
             status, failed = EXIT_FAILED, True

@@ -2,15 +2,15 @@
 to each other, one line at a time.
 
 To the worker, on its standard input:
-    run "CASE_DIR" [PORT, ...]  run the case in CASE_DIR (a JSON string), its master on
-                            none of the ports listed (a JSON list: masters whose
-                            stacks may still be running)
+    run "CASE_DIR" "MASTER_URI"  run the case in CASE_DIR on the ROS master at MASTER_URI
+                            (the supervisor's: JSON strings)
     stop                    end the case running now, as its stack leaving would
     (end of input)          end the case running now, then exit
 
 From the worker, among its output (stdout and stderr, merged):
     egosim-batch: case "CASE_DIR"   a case begins: what follows is its simulator's log
-    egosim-batch: master URI        its ROS master is up (the stack may be started)
+    egosim-batch: master URI        the case's simulator starts, on the case's master at
+                                    URI (the stack's time to connect counts from here)
     egosim-batch: running           the stack is connected and the drive has begun
     egosim-batch: ended REASON      the drive is over (the simulator then stops)
     egosim-batch: done STATUS       the case is over: score.json written, everything it
@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import json
 import re
-from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -30,12 +29,11 @@ PREFIX = "egosim-batch: "
 RUN, STOP = "run", "stop"
 CASE, MASTER, RUNNING, ENDED, DONE = "case", "master", "running", "ended", "done"
 LAST = "last"
-MASTER_LINE = re.compile(r"^egosim-batch: master (\S+)$")
 DONE_LINE = re.compile(r"^egosim-batch: done (-?\d+)( last)?$")
 
 
-def run_command(case_dir: Path, avoid_ports: Collection[int] = ()) -> bytes:
-    return f"{RUN} {json.dumps(str(case_dir))} {json.dumps(sorted(avoid_ports))}\n".encode()
+def run_command(case_dir: Path, master_uri: str) -> bytes:
+    return f"{RUN} {json.dumps(str(case_dir))} {json.dumps(master_uri)}\n".encode()
 
 
 def stop_command() -> bytes:
@@ -46,27 +44,22 @@ def stop_command() -> bytes:
 class Command:
     kind: str
     """RUN or STOP."""
-    case_dir: Path | None = None
-    avoid_ports: frozenset[int] = frozenset()
+    case_dir: Path = Path()
+    master_uri: str = ""
 
 
 def parse_command(line: str) -> Command:
-    """A RUN (with its case folder and the ports to avoid) or STOP command; ValueError for
-    anything else."""
+    """A RUN (with its case folder and master) or STOP command; ValueError for anything
+    else."""
     word, _, argument = line.strip().partition(" ")
     if word == STOP and not argument:
         return Command(STOP)
     if word == RUN:
         decoder = json.JSONDecoder()
         folder, end = decoder.raw_decode(argument)
-        ports, end = decoder.raw_decode(argument, end + 1)
-        if (
-            isinstance(folder, str)
-            and end == len(argument)
-            and isinstance(ports, list)
-            and all(isinstance(port, int) for port in ports)
-        ):
-            return Command(RUN, Path(folder), frozenset(ports))
+        master_uri, end = decoder.raw_decode(argument, end + 1)
+        if isinstance(folder, str) and isinstance(master_uri, str) and end == len(argument):
+            return Command(RUN, Path(folder), master_uri)
     raise ValueError(f"not a worker command: {line.strip()!r}")
 
 

@@ -8,7 +8,7 @@ import logging
 import os
 import threading
 import uuid
-from collections.abc import Callable, Collection
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 from urllib.parse import urlsplit, urlunsplit
@@ -97,18 +97,9 @@ class Master:
         netloc = f"{parts.hostname}:{self._server.port}"
         return urlunsplit((parts.scheme or "http", netloc, parts.path or "/", "", ""))
 
-    def start(self, avoid_ports: Collection[int] = ()) -> Master:
-        """Bind and serve; OSError (e.g. address in use) if another master holds the port.
-        On port 0, the port the system picks is none of `avoid_ports` (ports another
-        master had, which its nodes may still call)."""
+    def start(self) -> Master:
+        """Bind and serve; OSError (e.g. address in use) if another master holds the port."""
         server = XmlRpcServer(self._bind, name="ros master")
-        rejected = []
-        while self._bind[1] == 0 and server.port in avoid_ports:
-            # Held until a good one is bound, so the system does not offer it again.
-            rejected.append(server)
-            server = XmlRpcServer(self._bind, name="ros master")
-        for unused in rejected:
-            unused.server_close()
         server.register_api(self._api())
         server.start()
         self._server = server
