@@ -175,12 +175,6 @@ class EndingCase:
         """The drive's wall time as its supervisor saw it (None: it never began)."""
         return self._supervisor.drive_wall_s
 
-    @property
-    def stack_start_s(self) -> float | None:
-        """Wall time from starting the stack to the drive's beginning, for a stack started
-        just before its simulator (None otherwise)."""
-        return self._supervisor.stack_start_s
-
     def finish(self) -> CaseResult:
         """The case's result, once its stack has ended (SIGKILL after its grace) and its
         master is shut down."""
@@ -221,7 +215,6 @@ class _Supervisor:
         self.stack_status: int | None = None
         self.drive_ended = False
         self.drive_wall_s: float | None = None
-        self.stack_start_s: float | None = None
 
     def run(self) -> Problem | None:
         """Drive the case to its end; why it could not be scored, if it could not."""
@@ -237,10 +230,7 @@ class _Supervisor:
             if self.simulator.finished:
                 return self._simulator_failure("stopped before the drive began")
             return _stack_problem(f"never connected within {case.stack.connect_timeout_s:g} s")
-        started = time.monotonic()
-        if not self.start.ahead:
-            self.stack_start_s = started - self.start.stack.started
-        return self._drive(started)
+        return self._drive(started=time.monotonic())
 
     def _wait_for(self, what: str, timeout_s: float, watch_stack: bool = False) -> str | None:
         """The simulator's `egosim-batch: <what>` line, None if it did not come in time

@@ -4,12 +4,13 @@ case's start and end overlapping the case before and after.
 - A case's stack ends (told to stop once its simulator is done with it) while the next
   case runs; at most one stack of the slot is still ending at a time.
 - The next case's master and stack are started ahead, while this case drives, at the
-  point where, by the batch's drives so far, the stack is about ready when this case's
-  drive ends (DriveTimes): it waits for its simulator as it would for any simulator
-  coming up, and its start (a new Python, importing rospy: about half a second) no
-  longer stands between two drives. A stack started ahead whose simulator is still busy
-  AHEAD_LIMIT_S later is stopped and its case started afresh once the simulator is
-  free, so no stack waits for its simulator much longer than at any simulator's start.
+  point where, by the batch's drives and stack starts so far, the stack is about ready
+  when this case's drive ends (DriveTimes): it waits for its simulator as it would for
+  any simulator coming up, and its start (a new Python, importing rospy: about half a
+  second) no longer stands between two drives. A stack started ahead whose simulator is
+  still busy AHEAD_LIMIT_S past a stack's usual start is stopped and its case started
+  afresh once the simulator is free, so no stack waits for its simulator much longer
+  than at any simulator's start.
 """
 
 from __future__ import annotations
@@ -25,7 +26,8 @@ from egosim.batch.interrupt import Interrupt
 from egosim.batch.warm_simulator import WarmSimulator
 
 AHEAD_LIMIT_S = 5.0
-"""The longest a stack started ahead waits for its simulator before it is started afresh."""
+"""How much longer than a stack's start (DriveTimes) a stack started ahead waits for its
+simulator before it is started afresh."""
 HANDOVER_S = 0.1
 """From a drive's end to the next case's services being up on the same simulator (its
 last case's shutdown, the next one's world and registration), about."""
@@ -40,21 +42,30 @@ class DriveTimes:
         self._drives: list[float] = []
         self._starts: list[float] = []
 
-    def record(self, case: EndingCase) -> None:
+    def drove(self, seconds: float) -> None:
         with self._lock:
-            if case.drive_wall_s is not None:
-                self._drives.append(case.drive_wall_s)
-            if case.stack_start_s is not None:
-                self._starts.append(case.stack_start_s)
+            self._drives.append(seconds)
 
-    def ahead_after(self) -> float | None:
-        """How long after a drive begins to start the next case's stack: its median
-        length, less a stack's median start, plus HANDOVER_S; None until both are known."""
+    def started(self, seconds: float) -> None:
+        with self._lock:
+            self._starts.append(seconds)
+
+    def ahead_after(self) -> float:
+        """How long after a drive begins to start the next case's stack: the median drive
+        less the median stack start, plus HANDOVER_S (at once while either is unknown:
+        a first drive longer than that only costs a stack started again)."""
         with self._lock:
             if not self._drives or not self._starts:
-                return None
+                return 0.0
             drive, start = statistics.median(self._drives), statistics.median(self._starts)
         return max(drive - start + HANDOVER_S, 0.0)
+
+    def ahead_limit(self) -> float:
+        """How long a stack started ahead may wait for its simulator: AHEAD_LIMIT_S more
+        than a stack's median start."""
+        with self._lock:
+            start = statistics.median(self._starts) if self._starts else 0.0
+        return start + AHEAD_LIMIT_S
 
 
 class LocalSlot:
@@ -83,14 +94,19 @@ class LocalSlot:
         self._pending: CaseSpec | None = None
         self._discarding: threading.Thread | None = None
         self._none_left = False
+        self._current: StartedCase | None = None
+        self._timed = False
+        """The current case's stack start is noted (or not to be: it started ahead)."""
 
     def run(self) -> None:
         ending: threading.Thread | None = None
         try:
             start = self._next()
             while start is not None:
+                self._current, self._timed = start, start.ahead
                 driven = drive_case(start, self._simulator, self._interrupt, self._watch)
-                self._times.record(driven)
+                if driven.drive_wall_s is not None:
+                    self._times.drove(driven.drive_wall_s)
                 if ending is not None:
                     ending.join()
                 ending = threading.Thread(
@@ -128,9 +144,13 @@ class LocalSlot:
 
     def _watch(self, driving_s: float) -> None:
         """While a case drives: start the next one's stack when due; start it afresh
-        later if its simulator is still busy AHEAD_LIMIT_S after."""
+        later if its simulator is still busy too long after (DriveTimes.ahead_limit)."""
+        if not self._timed and self._current is not None:
+            self._timed = True
+            began = time.monotonic() - driving_s
+            self._times.started(began - self._current.stack.started)
         if self._ahead is not None:
-            if time.monotonic() - self._ahead.started > AHEAD_LIMIT_S:
+            if time.monotonic() - self._ahead.started > self._times.ahead_limit():
                 # In a thread: the drive is still watched while the stack stops.
                 self._discarding = threading.Thread(
                     target=self._ahead.discard,
@@ -142,8 +162,7 @@ class LocalSlot:
             return
         if self._pending is not None or self._none_left:
             return
-        due = self._times.ahead_after()
-        if due is None or driving_s < due:
+        if driving_s < self._times.ahead_after():
             return
         case = self._take()
         if case is None:
