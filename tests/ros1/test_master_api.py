@@ -163,3 +163,31 @@ def test_shutdown_unregisters_everything_and_tells_the_owner(embedded_master, ma
     assert observer.get_system_state() == ([], [], [])
     with pytest.raises(MasterError):
         observer.lookup_node("/sim")
+
+
+def test_a_held_lookup_waits_for_its_service_and_errs_once_the_hold_ends(embedded_master):
+    stack = MasterClient(embedded_master.uri, "/stack")
+    simulator = MasterClient(embedded_master.uri, "/simulator")
+    embedded_master.hold_lookups(True)
+    answers: dict[str, object] = {}
+
+    def look(service: str) -> None:
+        try:
+            answers[service] = stack.lookup_service(service)
+        except MasterError as error:
+            answers[service] = error
+
+    waiting = [threading.Thread(target=look, args=(s,)) for s in ("/provided", "/never")]
+    for thread in waiting:
+        thread.start()
+    waiting[0].join(0.2)
+    assert waiting[0].is_alive() and answers == {}  # nobody provides it yet
+    simulator.register_service("/provided", "rosrpc://simulator:3", "http://simulator:2/")
+    waiting[0].join(30)
+    assert answers == {"/provided": "rosrpc://simulator:3"}
+    assert waiting[1].is_alive()
+    embedded_master.hold_lookups(False)
+    waiting[1].join(30)
+    assert isinstance(answers["/never"], MasterError)
+    with pytest.raises(MasterError):  # no hold: at once
+        stack.lookup_service("/never")

@@ -31,7 +31,7 @@ from egosim.batch.logs import log_tail
 from egosim.batch.processes import GRACE_S, GroupProcess
 from egosim.batch.ros_graph import CALLER_ID
 from egosim.batch.warm_simulator import WarmSimulator
-from egosim.batch.worker_protocol import ENDED, MASTER, PREFIX, RUNNING
+from egosim.batch.worker_protocol import ENDED, MASTER, PREFIX, RUNNING, SERVING
 from egosim.evaluation import METRIC_NAMES, Metrics, parse_criterion
 from egosim.ros1 import Master
 
@@ -89,6 +89,8 @@ class StartedCase:
         # Set before the stack starts, so it always finds it (rospy reads it once, as its
         # node starts); the simulator sets it again.
         self.master.set_param(CALLER_ID, "/use_sim_time", True)
+        # Until the simulator serves, the stack's lookups of its services wait for them.
+        self.master.hold_lookups(True)
         self.stack = self._start_stack()
 
     def _start_stack(self) -> GroupProcess:
@@ -239,6 +241,8 @@ class _Supervisor:
         while time.monotonic() < deadline:
             self._check_interrupt()
             line = self.simulator.take(POLL_S)
+            if line == f"{PREFIX}{SERVING}":
+                self.start.master.hold_lookups(False)
             if line is not None and line.startswith(f"{PREFIX}{what}"):
                 return line
             if line is None:
@@ -294,6 +298,7 @@ class _Supervisor:
         left to end while the simulator takes its next case (stop_stack waits for it) if
         its simulator is done with the case; otherwise it is stopped first (the simulator
         then writes what it saw), then the simulator's case."""
+        self.start.master.hold_lookups(False)  # (a simulator that never served)
         if not self.simulator.finished:
             self.stop_stack()
         else:

@@ -28,7 +28,7 @@ from egosim.batch.case import CaseSpec
 from egosim.batch.documents import Drive, ScoreFile
 from egosim.batch.files import BAG_FILE, CASE_FILE, MORAI_SCENARIO_FILE, SCENARIO_FILE, SCORE_FILE
 from egosim.batch.ros_graph import stack_connected
-from egosim.batch.worker_protocol import ENDED, MASTER, PREFIX, RUNNING
+from egosim.batch.worker_protocol import ENDED, MASTER, PREFIX, RUNNING, SERVING
 from egosim.bridge import ClockMode
 from egosim.bridge.context import BridgeContext
 from egosim.bridge.pipeline import Stage, Tick
@@ -98,9 +98,11 @@ class CaseDrive:
         self.world: World | None = None
 
     def attach(self, running: RunningSimulator) -> CaseDrive:
-        """Ride on the run: the drive stage right after the world's step."""
+        """Ride on the run: the drive stage right after the world's step (the simulator
+        serves every topic and service by now: the supervisor is told so)."""
         context = running.context
         context.pipeline = context.pipeline.with_stage(Stage("drive", self.run), after="world")
+        print(f"{PREFIX}{SERVING}", flush=True)
         return self
 
     def close(self) -> None:

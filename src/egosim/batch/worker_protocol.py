@@ -11,6 +11,7 @@ From the worker, among its output (stdout and stderr, merged):
     egosim-batch: case "CASE_DIR"   a case begins: what follows is its simulator's log
     egosim-batch: master URI        the case's simulator starts, on the case's master at
                                     URI (the stack's time to connect counts from here)
+    egosim-batch: serving           every topic and service of the simulator is up
     egosim-batch: running           the stack is connected and the drive has begun
     egosim-batch: ended REASON      the drive is over (the simulator then stops)
     egosim-batch: done STATUS       the case is over: score.json written, everything it
@@ -27,7 +28,14 @@ from pathlib import Path
 
 PREFIX = "egosim-batch: "
 RUN, STOP = "run", "stop"
-CASE, MASTER, RUNNING, ENDED, DONE = "case", "master", "running", "ended", "done"
+CASE, MASTER, SERVING, RUNNING, ENDED, DONE = (
+    "case",
+    "master",
+    "serving",
+    "running",
+    "ended",
+    "done",
+)
 LAST = "last"
 DONE_LINE = re.compile(r"^egosim-batch: done (-?\d+)( last)?$")
 
