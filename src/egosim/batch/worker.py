@@ -4,8 +4,8 @@ slot of the batch (warm_simulator) and running its cases one after another.
 What a case would pay for in a process of its own, a worker pays for once: starting
 Python, importing egosim, numpy and rosbags, the message types, each map and its camera
 scene (kept: they are immutable), the cameras' OpenGL context. Everything a case can
-change is made anew for it, as `egosim run` makes it: its ROS master (on a new port: an
-empty graph and parameter server), the node and every topic and service, the world and
+change is made anew for it, as `egosim run` makes it (its ROS master, on a new port, is
+its supervisor's: case_runner): the node and every topic and service, the world and
 its random generator (the scenario's seed), the clock, sync mode, replay, sensors, ego
 sessions, the recorder and its bag, the drive's evaluation. Between cases the worker
 puts back what a run changes in the process (environment, working folder, log throttles)
