@@ -102,7 +102,7 @@ class Master:
     def start(self) -> Master:
         """Bind and serve; OSError (e.g. address in use) if another master holds the port."""
         server = XmlRpcServer(self._bind, name="ros master")
-        server.register_api(self._api())
+        server.register_api(self.api())
         server.start()
         self._server = server
         log.info("embedded ROS master serving at %s", self.uri)
@@ -130,7 +130,8 @@ class Master:
     def __exit__(self, *exc: object) -> None:
         self.shutdown()
 
-    def _api(self) -> dict[str, Callable[..., Reply]]:
+    def api(self) -> dict[str, Callable[..., Reply]]:
+        """The Master and Parameter Server API's functions, by their names."""
         return {
             "registerService": self.register_service,
             "unregisterService": self.unregister_service,
