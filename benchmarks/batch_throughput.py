@@ -3,7 +3,8 @@
 
 Writes a suite of N cases (the example stack, sync clock, the first 50 m of the town lap,
 seeds 1..N) to a temporary folder, exports morai_msgs for rospy there (`egosim msgs
---export-python`; Debian's ROS 1 needed), runs `egosim batch` once per configuration and
+--export-python` of each checkout, as its users would have them; Debian's ROS 1 needed),
+runs `egosim batch` once per configuration and
 reads results.json: wall time, cases per hour, and the split of a case's wall time
 between the drive and the rest (starting the stack, joining the graph, stopping).
 
@@ -131,11 +132,19 @@ def main() -> None:
     checkouts = [c.resolve() for c in args.checkout] or [ROOT]
     with tempfile.TemporaryDirectory() as temp:
         folder = Path(temp)
-        subprocess.run(
-            [sys.executable, "-m", "egosim", "msgs", "--export-python", str(folder / "msgs")],
-            check=True,
-            capture_output=True,
-        )
+        environments = []
+        for k, checkout in enumerate(checkouts):
+            env = {n: v for n, v in os.environ.items() if not n.startswith("ROS_")}
+            env["PYTHONPATH"] = str(checkout / "src")
+            msgs = folder / f"msgs-{k}"
+            subprocess.run(
+                [sys.executable, "-m", "egosim", "msgs", "--export-python", str(msgs)],
+                check=True,
+                capture_output=True,
+                env=env,
+            )
+            env["PYTHONPATH"] = os.pathsep.join([str(checkout / "src"), str(msgs)])
+            environments.append(env)
         suite = write_suite(folder, args.cases, args.route_m)
         print(f"{args.cases} cases, {args.route_m:g} m routes")
         print(
@@ -147,12 +156,8 @@ def main() -> None:
         for round_ in range(args.rounds):
             for run in args.runs:
                 for k, checkout in enumerate(checkouts):
-                    env = {n: v for n, v in os.environ.items() if not n.startswith("ROS_")}
-                    env["PYTHONPATH"] = os.pathsep.join(
-                        [str(checkout / "src"), str(folder / "msgs")]
-                    )
                     out = folder / f"{run}-{k}-{round_}"
-                    row = run_batch(suite, out, RUNS[run], env)
+                    row = run_batch(suite, out, RUNS[run], environments[k])
                     print(f"| {checkout.name} | {run} | {row}", flush=True)
         bag = next(folder.glob("*/*/drive.bag"))
         print(

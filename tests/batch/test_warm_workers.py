@@ -155,6 +155,6 @@ def test_a_worker_that_cannot_start_says_why_in_the_case_log(
     finally:
         simulator.close()
     assert result["status"] == "error"
-    assert result["reason"] == "simulator did not start its ROS master"
+    assert result["reason"] == "simulator did not start"
     assert result["log_tail"]["file"] == "simulator.log"
     assert "ImportError: this egosim is broken" in "\n".join(result["log_tail"]["lines"])

@@ -16,7 +16,7 @@ from PIL import Image
 from egosim.bridge import ClockMode, simulation_context
 from egosim.bridge.context import BridgeContext
 from egosim.bridge.protocol.network import parse_network_settings
-from egosim.bridge.sensors import camera_rows, sensor_files, sensor_rows
+from egosim.bridge.sensors import camera_rig, camera_rows, sensor_files, sensor_rows
 from egosim.bridge.sensors.camera_rig import open_camera_rig
 from egosim.bridge.sensors.sensor_rig import SensorRig
 from egosim.msgs import get_profile
@@ -202,6 +202,33 @@ def test_the_map_scene_is_built_and_loaded_with_the_rig_not_in_a_frame() -> None
     # The next simulator on the same map (a batch worker's next case) reuses the scene.
     again = simulation_context(World(world.map), open_renderer=lambda: watched)
     assert again.cameras is not None and again.cameras.scene is scene
+
+
+def test_asked_to_the_scene_is_built_when_the_first_frame_is_taken(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    built: list[StaticScene] = []
+    build = camera_rig.static_scene
+
+    def counted(lane_map: Any) -> StaticScene:
+        built.append(build(lane_map))
+        return built[-1]
+
+    monkeypatch.setattr(camera_rig, "static_scene", counted)
+    watched = WatchedRenderer(renderer())
+    world = World(build_builtin_map("straight"))
+    context = simulation_context(
+        world, open_renderer=lambda: watched, camera_scene_at_first_frame=True
+    )
+    assert context.cameras is not None
+    assert built == [] and watched.loaded == []  # a batch case that takes no frame
+    first = camera_rows.camera_image_message(context, 0)
+    assert watched.loaded == built == [context.cameras.scene]
+    camera_rows.camera_image_message(context, 0)
+    assert len(built) == 1 and watched.drawn == built * 2
+    # The same frame as a scene built at the start gives.
+    eager = simulation_context(World(world.map), open_renderer=lambda: watched)
+    assert bytes(camera_rows.camera_image_message(eager, 0).data) == bytes(first.data)
 
 
 def test_without_a_renderer_the_cameras_are_off_in_one_line(caplog) -> None:

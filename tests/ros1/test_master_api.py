@@ -3,11 +3,16 @@ the slave API callbacks it makes (publisherUpdate, paramUpdate, shutdown)."""
 
 from __future__ import annotations
 
+import contextlib
 import threading
+from collections.abc import Iterator
+from typing import Any
+from xmlrpc.server import SimpleXMLRPCServer
 
 import pytest
 
 from egosim.ros1 import Master, MasterClient, MasterError, MasterUnreachableError
+from egosim.ros1.errors import MulticallUnsupportedError
 from tests.conftest import free_port
 from tests.ros1.helpers import PROFILE, STRING, string_bytes, string_text, wait_until
 
@@ -163,3 +168,98 @@ def test_shutdown_unregisters_everything_and_tells_the_owner(embedded_master, ma
     assert observer.get_system_state() == ([], [], [])
     with pytest.raises(MasterError):
         observer.lookup_node("/sim")
+
+
+def test_a_held_lookup_waits_for_its_service_and_errs_once_the_hold_ends(embedded_master):
+    stack = MasterClient(embedded_master.uri, "/stack")
+    simulator = MasterClient(embedded_master.uri, "/simulator")
+    embedded_master.hold_lookups(True)
+    answers: dict[str, object] = {}
+
+    def look(service: str) -> None:
+        try:
+            answers[service] = stack.lookup_service(service)
+        except MasterError as error:
+            answers[service] = error
+
+    waiting = [threading.Thread(target=look, args=(s,)) for s in ("/provided", "/never")]
+    for thread in waiting:
+        thread.start()
+    waiting[0].join(0.2)
+    assert waiting[0].is_alive() and answers == {}  # nobody provides it yet
+    simulator.register_service("/provided", "rosrpc://simulator:3", "http://simulator:2/")
+    waiting[0].join(30)
+    assert answers == {"/provided": "rosrpc://simulator:3"}
+    assert waiting[1].is_alive()
+    embedded_master.hold_lookups(False)
+    waiting[1].join(30)
+    assert isinstance(answers["/never"], MasterError)
+    with pytest.raises(MasterError):  # no hold: at once
+        stack.lookup_service("/never")
+
+
+def _registered(master_uri: str) -> tuple[list[Any], list[Any], list[Any]]:
+    return MasterClient(master_uri, "/observer").get_system_state()
+
+
+def _registering_together_serves(master_uri: str, make_node) -> None:
+    talker = make_node("talker", master_uri=master_uri)
+    pub = talker.advertise("/chatter", STRING)
+    node = make_node("grouped", master_uri=master_uri)
+    received: list[str] = []
+    with node.registering_together():
+        node.advertise("/out", STRING)
+        sub = node.subscribe("/chatter", STRING, lambda d, h: received.append(string_text(d)))
+        node.advertise_service("/serve", EVENT_SRV, lambda data, header: data)
+        publishers, subscribers, services = _registered(master_uri)
+        assert ["/out", ["/grouped"]] not in publishers and services == []  # not yet
+    publishers, subscribers, services = _registered(master_uri)
+    assert ["/out", ["/grouped"]] in publishers
+    assert ["/chatter", ["/grouped"]] in subscribers
+    assert services == [["/serve", ["/grouped"]]]
+    wait_until(lambda: sub.num_publishers == 1)  # the publishers its registration returned
+    pub.publish(string_bytes("hello"))
+    wait_until(lambda: received == ["hello"])
+    node.shutdown()  # its unregistrations, together too
+    publishers, subscribers, services = _registered(master_uri)
+    assert services == [] and all("/grouped" not in nodes for _, nodes in publishers)
+    assert all("/grouped" not in nodes for _, nodes in subscribers)
+
+
+def test_registrations_made_together_reach_the_master_as_the_block_ends(embedded_master, make_node):
+    _registering_together_serves(embedded_master.uri, make_node)
+
+
+@contextlib.contextmanager
+def serving(api: dict[str, Any], multicall: bool) -> Iterator[str]:
+    """A master serving `api` (with or without system.multicall) on a thread; its URI."""
+    server = SimpleXMLRPCServer(("127.0.0.1", 0), logRequests=False)
+    for method, function in api.items():
+        server.register_function(function, method)
+    if multicall:
+        server.register_multicall_functions()
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    try:
+        yield f"http://127.0.0.1:{server.server_address[1]}/"
+    finally:
+        server.shutdown()
+        server.server_close()
+
+
+def test_a_master_without_multicall_gets_them_one_by_one(make_node):
+    with serving(Master().api(), multicall=False) as uri:
+        with pytest.raises(MulticallUnsupportedError):
+            MasterClient(uri, "/n").call_together([("getUri", ())])
+        _registering_together_serves(uri, make_node)
+
+
+@pytest.mark.parametrize("multicall", [True, False])
+def test_a_registration_refused_in_a_group_raises_as_the_block_ends(make_node, multicall):
+    def refuse(*args: Any) -> list[Any]:
+        return [-1, "refused", 0]
+
+    with serving({**Master().api(), "registerService": refuse}, multicall) as uri:
+        node = make_node("grouped", master_uri=uri)
+        with pytest.raises(MasterError, match="refused"), node.registering_together():
+            node.advertise("/ok", STRING)
+            node.advertise_service("/refused", EVENT_SRV, lambda data, header: data)

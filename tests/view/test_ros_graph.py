@@ -1,4 +1,4 @@
-from egosim.view.ros_graph import nodes_of
+from egosim.ros1.graph import nodes_of
 
 
 def test_system_state_becomes_one_entry_per_node() -> None:

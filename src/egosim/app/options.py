@@ -30,6 +30,9 @@ class RunOptions:
     """--param NAME=VALUE: values of an OpenSCENARIO file's declared parameters."""
     keep_running: bool = False
     """Keep running after the OpenSCENARIO scenario's storyboard has ended."""
+    camera_scene_at_first_frame: bool = False
+    """Build the map's camera scene when a camera first renders, not before the run
+    starts (the first frame then takes that long: a batch case, which seldom renders)."""
 
     @property
     def physics_dt(self) -> float:

@@ -196,6 +196,7 @@ def _run(
             bridge=bridge,
             hold_output=node.holding_output,
             open_renderer=renderer,
+            camera_scene_at_first_frame=options.camera_scene_at_first_frame,
         )
         if recorder is not None:
             bridge.taps.append(recorder.tap())

@@ -1,7 +1,9 @@
 """Running many cases: a local pool of N worker slots, or one Ray actor per slot.
 
 A slot runs one case at a time and keeps a warm simulator worker (warm_simulator) from
-one case to the next; a case's stack is its own process. The local pool only supervises:
+one case to the next; a case's stack is its own process. In the local pool a slot's
+cases overlap at their ends: the next one's stack starts while the last one drives, and
+the last one's stack ends while the next one runs (local_slot). The local pool only supervises:
 N threads, each waiting on its slot's case. When the batch is interrupted, every running
 case's processes are stopped (their scores so far are kept) and the cases not started are
 reported not run, in the local pool and on Ray alike.
@@ -18,9 +20,10 @@ from collections.abc import Callable, Sequence
 from typing import Protocol, cast
 
 from egosim.batch.case import CaseSpec
-from egosim.batch.case_runner import ERROR, PASSED, run_case
+from egosim.batch.case_runner import ERROR, PASSED, EndingCase, run_case
 from egosim.batch.documents import CaseResult
 from egosim.batch.interrupt import Interrupt
+from egosim.batch.local_slot import DriveTimes, LocalSlot
 from egosim.batch.warm_simulator import WarmSimulator
 
 Result = CaseResult
@@ -64,21 +67,21 @@ def run_local(
             running[0] += 1
             return todo.popleft()
 
-    def slot() -> None:
-        simulator = WarmSimulator()
-        try:
-            while (case := next_case()) is not None:
-                result = run_case(case, out_dir, simulator, interrupt)
-                with lock:
-                    running[0] -= 1
-                finished.put(result)
-        finally:
-            simulator.close(interrupt.hurry)
+    def give_back() -> None:
+        with lock:
+            running[0] -= 1
 
-    threads = [
-        threading.Thread(target=slot, name=f"case slot {k}")
+    def deliver(case: EndingCase) -> None:
+        result = case.finish()
+        give_back()
+        finished.put(result)
+
+    times = DriveTimes()
+    slots = [
+        LocalSlot(out_dir, next_case, give_back, deliver, times, interrupt, f"case slot {k}")
         for k in range(min(workers, len(cases)))
     ]
+    threads = [threading.Thread(target=slot.run, name=slot.name) for slot in slots]
     for thread in threads:
         thread.start()
     while any(thread.is_alive() for thread in threads) or not finished.empty():

@@ -42,6 +42,7 @@ class GroupProcess:
         on_line: Callable[[str], None] | None = None,
         commands: bool = False,
     ) -> None:
+        self.started = time.monotonic()
         self.popen = subprocess.Popen(
             [sys.executable, "-I", "-S", str(DEFAULT_SIGNALS), *args],
             env=env,
@@ -57,6 +58,7 @@ class GroupProcess:
         self.cpu_s: float | None = None
         """User + system CPU time of the process and what it waited for, once it ended."""
         self._reaping = threading.Lock()
+        self._stopping_since: float | None = None
 
     def poll(self) -> int | None:
         return self._reap(os.WNOHANG)
@@ -86,17 +88,25 @@ class GroupProcess:
             return True
         return True
 
+    def begin_stop(self, first_signal: int = signal.SIGINT) -> None:
+        """`first_signal` to the whole group, once: the grace of `stop` runs from now."""
+        if self._stopping_since is None:
+            self._stopping_since = time.monotonic()
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(self.popen.pid, first_signal)
+
     def stop(
         self,
         first_signal: int = signal.SIGINT,
         grace_s: float = GRACE_S,
         hurry: threading.Event | None = None,
     ) -> int:
-        """`first_signal` to the whole group, SIGKILL to what is left after `grace_s` (at
-        once when `hurry` is set); the exit status of the process itself."""
-        with contextlib.suppress(ProcessLookupError):
-            os.killpg(self.popen.pid, first_signal)
-        self.wait_group(grace_s, hurry)
+        """`first_signal` to the whole group (unless `begin_stop` sent it already),
+        SIGKILL to what is left `grace_s` after it (at once when `hurry` is set); the exit
+        status of the process itself."""
+        self.begin_stop(first_signal)
+        assert self._stopping_since is not None
+        self.wait_group(max(self._stopping_since + grace_s - time.monotonic(), 0.0), hurry)
         return self.kill()
 
     def wait_group(self, timeout_s: float, hurry: threading.Event | None = None) -> bool:

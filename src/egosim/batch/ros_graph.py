@@ -5,7 +5,7 @@ from __future__ import annotations
 import http.client
 import xmlrpc.client
 
-from egosim.view.ros_graph import nodes_of
+from egosim.ros1.graph import nodes_of
 
 SIMULATOR_NODE = "/egosim"
 NOT_THE_STACK = frozenset({SIMULATOR_NODE, "/master"})

@@ -1,11 +1,11 @@
 """The simulator of one case, as a simulator worker (egosim.batch.worker) runs it.
 
-Reads CASE_DIR/case.json, starts a ROS master of its own on a port the system picks (so
-two cases never share one, and each begins with an empty graph and parameter server),
-runs `egosim run` with the case's scenario and a drive observer on the tick pipeline,
-and writes CASE_DIR/score.json however the drive ends (route done, blocked, time limit,
-or stopped by its supervisor). Its `master`, `running` and `ended` lines on stdout
-(worker_protocol) tell the supervisor how far it got.
+Reads CASE_DIR/case.json, joins the case's own ROS master (its supervisor's: each case
+has one, with an empty graph and parameter server), runs `egosim run` with the case's
+scenario and a drive observer on the tick pipeline, and writes CASE_DIR/score.json
+however the drive ends (route done, blocked, time limit, or stopped by its supervisor).
+Its `master`, `running` and `ended` lines on stdout (worker_protocol) tell the
+supervisor how far it got.
 """
 
 from __future__ import annotations
@@ -28,13 +28,12 @@ from egosim.batch.case import CaseSpec
 from egosim.batch.documents import Drive, ScoreFile
 from egosim.batch.files import BAG_FILE, CASE_FILE, MORAI_SCENARIO_FILE, SCENARIO_FILE, SCORE_FILE
 from egosim.batch.ros_graph import stack_connected
-from egosim.batch.worker_protocol import ENDED, MASTER, PREFIX, RUNNING
+from egosim.batch.worker_protocol import ENDED, MASTER, PREFIX, RUNNING, SERVING
 from egosim.bridge import ClockMode
 from egosim.bridge.context import BridgeContext
 from egosim.bridge.pipeline import Stage, Tick
 from egosim.evaluation import DriveEvaluator, EvaluationSettings, InfractionKind, Route
 from egosim.evaluation.route import RouteError
-from egosim.ros1 import Master
 from egosim.scenario_files import is_morai_scenario
 from egosim.sensors.camera_render import CameraRenderer
 from egosim.world import World
@@ -104,7 +103,8 @@ class CaseDrive:
         self.world: World | None = None
 
     def attach(self, running: RunningSimulator) -> CaseDrive:
-        """Ride on the run: the drive stage right after the world's step."""
+        """Ride on the run: the drive stage right after the world's step (the simulator
+        serves every topic and service by now: the supervisor is told so)."""
         context = running.context
         world = self.world = context.world
         if self._gate:  # the sim clock's world waits for the stack from its first step on
@@ -118,6 +118,7 @@ class CaseDrive:
             self.evaluator = DriveEvaluator(world, route, evaluation_settings(self.case.scoring))
             self.evaluator.observe(world)
         context.pipeline = context.pipeline.with_stage(Stage("drive", self.run), after="world")
+        print(f"{PREFIX}{SERVING}", flush=True)
         return self
 
     def close(self) -> None:
@@ -201,11 +202,15 @@ def _cpu_s() -> float:
 
 
 def simulate_case(
-    case_dir: Path, stop: threading.Event, renderer: Callable[[], CameraRenderer]
+    case_dir: Path,
+    master_uri: str,
+    stop: threading.Event,
+    renderer: Callable[[], CameraRenderer],
 ) -> int:
-    """Drive the case in `case_dir` until its drive ends or `stop` is set; the run's exit
-    status. The process's ROS_MASTER_URI and ROS_IP are the case's afterwards (the worker
-    puts its environment back)."""
+    """Drive the case in `case_dir` on the ROS master at `master_uri` (its supervisor's)
+    until its drive ends or `stop` is set; the run's exit status. The process's
+    ROS_MASTER_URI and ROS_IP are the case's afterwards (the worker puts its environment
+    back)."""
     cpu_before = _cpu_s()
     case = CaseSpec.from_dict(json.loads((case_dir / CASE_FILE).read_text(encoding="utf-8")))
     if case.openscenario:
@@ -216,32 +221,30 @@ def simulate_case(
     else:
         scenario_path = case_dir / SCENARIO_FILE
         scenario_path.write_text(yaml.safe_dump(case.scenario, sort_keys=False), encoding="utf-8")
-    master = Master("http://127.0.0.1:0/").start()
-    try:
-        os.environ["ROS_MASTER_URI"] = master.uri
-        os.environ.setdefault("ROS_IP", "127.0.0.1")
-        print(f"{PREFIX}{MASTER} {master.uri}", flush=True)
-        drive = CaseDrive(case, master.uri, stop)
-        options = RunOptions(
-            map=case.map,
-            scenario=scenario_path,
-            clock=ClockMode(case.clock),
-            rtf=case.rtf if case.clock == ClockMode.SIM.value else 1.0,
-            record=None if case.bags == "none" else case_dir / BAG_FILE,
-            log_level="WARNING",
-            physics_rate_hz=PHYSICS_RATE_HZ,
-            data_roots=(case_dir,),
-            scenario_parameters=tuple(case.scenario_parameters.items()),
-            # The drive stage ends the run, with the scenario's end among its reasons.
-            keep_running=True,
-        )
-        status = run(options, [drive.attach], stop, handle_signals=False, renderer=renderer)
-        result: ScoreFile = {
-            "exit_status": status,
-            **drive.result(),
-            "cpu_s": _cpu_s() - cpu_before,
-        }
-        (case_dir / SCORE_FILE).write_text(json.dumps(result), encoding="utf-8")
-        return status
-    finally:
-        master.shutdown()
+    os.environ["ROS_MASTER_URI"] = master_uri
+    os.environ.setdefault("ROS_IP", "127.0.0.1")
+    print(f"{PREFIX}{MASTER} {master_uri}", flush=True)
+    drive = CaseDrive(case, master_uri, stop)
+    options = RunOptions(
+        map=case.map,
+        scenario=scenario_path,
+        clock=ClockMode(case.clock),
+        rtf=case.rtf if case.clock == ClockMode.SIM.value else 1.0,
+        record=None if case.bags == "none" else case_dir / BAG_FILE,
+        log_level="WARNING",
+        physics_rate_hz=PHYSICS_RATE_HZ,
+        data_roots=(case_dir,),
+        scenario_parameters=tuple(case.scenario_parameters.items()),
+        # The drive stage ends the run, with the scenario's end among its reasons.
+        keep_running=True,
+        # Most cases take no camera frame; the worker keeps the scene once built.
+        camera_scene_at_first_frame=True,
+    )
+    status = run(options, [drive.attach], stop, handle_signals=False, renderer=renderer)
+    result: ScoreFile = {
+        "exit_status": status,
+        **drive.result(),
+        "cpu_s": _cpu_s() - cpu_before,
+    }
+    (case_dir / SCORE_FILE).write_text(json.dumps(result), encoding="utf-8")
+    return status

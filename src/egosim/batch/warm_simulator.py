@@ -52,8 +52,8 @@ class WarmSimulator:
 
     # The case's side ------------------------------------------------------------------
 
-    def begin(self, folder: Path) -> None:
-        """Run the case in `folder` (its case.json written)."""
+    def begin(self, folder: Path, master_uri: str) -> None:
+        """Run the case in `folder` (its case.json written) on the master at `master_uri`."""
         if self._process is not None and (self._last_done() or self._process.poll() is not None):
             self._end_process(CLOSE_GRACE_S)
         if self._process is None:
@@ -61,11 +61,12 @@ class WarmSimulator:
         self._done = None
         self._in_case = True
         self._logs.pending = folder
-        if not self._send(run_command(folder)):
+        command = run_command(folder, master_uri)
+        if not self._send(command):
             self._end_process(0.0)
             self._start()
             self._logs.pending = folder
-            self._send(run_command(folder))
+            self._send(command)
 
     def take(self, wait_s: float = 0.0) -> str | None:
         """The case's next protocol line (None if none came within `wait_s`); after its

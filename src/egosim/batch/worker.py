@@ -4,8 +4,8 @@ slot of the batch (warm_simulator) and running its cases one after another.
 What a case would pay for in a process of its own, a worker pays for once: starting
 Python, importing egosim, numpy and rosbags, the message types, each map and its camera
 scene (kept: they are immutable), the cameras' OpenGL context. Everything a case can
-change is made anew for it, as `egosim run` makes it: its ROS master (on a new port: an
-empty graph and parameter server), the node and every topic and service, the world and
+change is made anew for it, as `egosim run` makes it (its ROS master, on a new port, is
+its supervisor's: case_runner): the node and every topic and service, the world and
 its random generator (the scenario's seed), the clock, sync mode, replay, sensors, ego
 sessions, the recorder and its bag, the drive's evaluation. Between cases the worker
 puts back what a run changes in the process (environment, working folder, log throttles)
@@ -30,7 +30,7 @@ from pathlib import Path
 from typing import BinaryIO
 
 from egosim.batch.simulate import simulate_case
-from egosim.batch.worker_protocol import RUN, case_line, done_line, parse_command
+from egosim.batch.worker_protocol import RUN, Command, case_line, done_line, parse_command
 from egosim.logthrottle import forget_every_window
 from egosim.render import open_renderer
 from egosim.sensors.camera_render import CameraRenderer
@@ -101,8 +101,9 @@ class Worker:
         self.leaving.set()
         self.stop_case()
 
-    def run(self, case_dir: Path) -> bool:
+    def run(self, command: Command) -> bool:
         """Run one case; whether the worker may run another."""
+        case_dir = command.case_dir
         print(case_line(case_dir), flush=True)
         self.cases += 1
         print(f"{WORKER_LINE} {os.getpid()}: case {self.cases} in this process", flush=True)
@@ -114,7 +115,7 @@ class Worker:
         failed = False
         try:
             os.chdir(case_dir)
-            status = simulate_case(case_dir, stop, self.renderer.open)
+            status = simulate_case(case_dir, command.master_uri, stop, self.renderer.open)
         except Exception:
             traceback.print_exc()
             status, failed = EXIT_FAILED, True
@@ -144,17 +145,17 @@ class Worker:
             time.sleep(0.05)
 
 
-def read_commands(stream: BinaryIO, worker: Worker, cases: queue.Queue[Path | None]) -> None:
+def read_commands(stream: BinaryIO, worker: Worker, cases: queue.Queue[Command | None]) -> None:
     """The supervisor's commands: cases to run are queued, `stop` ends the one running;
     the end of input ends the worker."""
     for raw in stream:
         try:
-            kind, folder = parse_command(raw.decode("utf-8", "replace"))
+            command = parse_command(raw.decode("utf-8", "replace"))
         except ValueError as error:
             print(f"egosim batch worker: {error}", file=sys.stderr, flush=True)
             continue
-        if kind == RUN:
-            cases.put(folder)
+        if command.kind == RUN:
+            cases.put(command)
         else:
             worker.stop_case()
     worker.leave()
@@ -163,7 +164,7 @@ def read_commands(stream: BinaryIO, worker: Worker, cases: queue.Queue[Path | No
 
 def main() -> int:
     worker = Worker()
-    cases: queue.Queue[Path | None] = queue.Queue()
+    cases: queue.Queue[Command | None] = queue.Queue()
     reader = threading.Thread(
         target=read_commands, args=(sys.stdin.buffer, worker, cases), name="commands", daemon=True
     )
@@ -173,10 +174,10 @@ def main() -> int:
         signal.signal(number, lambda *_: worker.leave())
     while not worker.leaving.is_set():
         try:
-            case_dir = cases.get(timeout=POLL_S)
+            command = cases.get(timeout=POLL_S)
         except queue.Empty:
             continue
-        if case_dir is None or not worker.run(case_dir):
+        if command is None or not worker.run(command):
             break
     return 0
 

@@ -2,13 +2,16 @@
 to each other, one line at a time.
 
 To the worker, on its standard input:
-    run "CASE_DIR"          run the case in CASE_DIR (a JSON string)
+    run "CASE_DIR" "MASTER_URI"  run the case in CASE_DIR on the ROS master at MASTER_URI
+                            (the supervisor's: JSON strings)
     stop                    end the case running now, as its stack leaving would
     (end of input)          end the case running now, then exit
 
 From the worker, among its output (stdout and stderr, merged):
     egosim-batch: case "CASE_DIR"   a case begins: what follows is its simulator's log
-    egosim-batch: master URI        its ROS master is up (the stack may be started)
+    egosim-batch: master URI        the case's simulator starts, on the case's master at
+                                    URI (the stack's time to connect counts from here)
+    egosim-batch: serving           every topic and service of the simulator is up
     egosim-batch: running           the stack is connected and the drive has begun
     egosim-batch: ended REASON      the drive is over (the simulator then stops)
     egosim-batch: done STATUS       the case is over: score.json written, everything it
@@ -25,29 +28,46 @@ from pathlib import Path
 
 PREFIX = "egosim-batch: "
 RUN, STOP = "run", "stop"
-CASE, MASTER, RUNNING, ENDED, DONE = "case", "master", "running", "ended", "done"
+CASE, MASTER, SERVING, RUNNING, ENDED, DONE = (
+    "case",
+    "master",
+    "serving",
+    "running",
+    "ended",
+    "done",
+)
 LAST = "last"
-MASTER_LINE = re.compile(r"^egosim-batch: master (\S+)$")
 DONE_LINE = re.compile(r"^egosim-batch: done (-?\d+)( last)?$")
 
 
-def run_command(case_dir: Path) -> bytes:
-    return f"{RUN} {json.dumps(str(case_dir))}\n".encode()
+def run_command(case_dir: Path, master_uri: str) -> bytes:
+    return f"{RUN} {json.dumps(str(case_dir))} {json.dumps(master_uri)}\n".encode()
 
 
 def stop_command() -> bytes:
     return f"{STOP}\n".encode()
 
 
-def parse_command(line: str) -> tuple[str, Path | None]:
-    """(RUN, case folder) or (STOP, None); ValueError for anything else."""
+@dataclass(frozen=True)
+class Command:
+    kind: str
+    """RUN or STOP."""
+    case_dir: Path = Path()
+    master_uri: str = ""
+
+
+def parse_command(line: str) -> Command:
+    """A RUN (with its case folder and master) or STOP command; ValueError for anything
+    else."""
     word, _, argument = line.strip().partition(" ")
     if word == STOP and not argument:
-        return STOP, None
+        return Command(STOP)
     if word == RUN:
-        folder = json.loads(argument)
-        if isinstance(folder, str):
-            return RUN, Path(folder)
+        decoder = json.JSONDecoder()
+        folder, end = decoder.raw_decode(argument)
+        master_uri, end = decoder.raw_decode(argument, end + 1)
+        if isinstance(folder, str) and isinstance(master_uri, str) and end == len(argument):
+            return Command(RUN, Path(folder), master_uri)
     raise ValueError(f"not a worker command: {line.strip()!r}")
 
 

@@ -81,17 +81,19 @@ def simulation_context(
     hold_output: Callable[[], AbstractContextManager[None]] = nullcontext,
     wall_clock: Callable[[], float] | None = None,
     open_renderer: Callable[[], CameraRenderer] | None = None,
+    camera_scene_at_first_frame: bool = False,
 ) -> BridgeContext:
     """Everything the row handlers need around `world`, with the standard tick pipeline.
 
     With a `bridge` (bound to a ROS node) the pipeline publishes and additional egos'
     rows open at run time; without one, the simulation runs in-process. With
-    `open_renderer` (the camera engine), the configured cameras render.
+    `open_renderer` (the camera engine), the configured cameras render; the map's camera
+    scene is built now, or with `camera_scene_at_first_frame` when a camera first renders.
     """
     settings = settings or default_network_settings()
     sensors = sensor_rig_of(settings, world.map.georef)
     cameras = (
-        open_camera_rig(sensors, open_renderer, world.map)
+        open_camera_rig(sensors, open_renderer, world.map, camera_scene_at_first_frame)
         if open_renderer is not None and settings.row("camera").enabled
         else None
     )

@@ -165,10 +165,12 @@ class Bridge:
         return self._context
 
     def open(self, context: BridgeContext) -> None:
-        """Advertise, subscribe and serve every enabled row, handled with `context`."""
+        """Advertise, subscribe and serve every enabled row, handled with `context` (all
+        registered with the master in one request)."""
         self._context = context
-        for row in self.settings.enabled_rows():
-            self._bind(row)
+        with self.node.registering_together():
+            for row in self.settings.enabled_rows():
+                self._bind(row)
 
     def apply_settings(self, settings: NetworkSettings) -> list[str]:
         """Make `settings` the table in force, changing only the rows that changed: a

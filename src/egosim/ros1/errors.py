@@ -21,6 +21,10 @@ class MasterUnreachableError(MasterError, PeerUnreachableError):
     """Nothing answers XML-RPC at the master URI."""
 
 
+class MulticallUnsupportedError(MasterError):
+    """The master does not serve system.multicall (calls then go one by one)."""
+
+
 class ProtocolError(Ros1Error):
     """A peer sent bytes that break TCPROS framing or the connection header format."""
 

@@ -87,6 +87,8 @@ class Master:
         self._params.set("/run_id", str(uuid.uuid1()))
         self._notifier = Notifier(MASTER_CALLER_ID)
         self._server: XmlRpcServer | None = None
+        self._service_added = threading.Condition(self._lock)
+        self._holding_lookups = False
 
     @property
     def uri(self) -> str:
@@ -100,13 +102,23 @@ class Master:
     def start(self) -> Master:
         """Bind and serve; OSError (e.g. address in use) if another master holds the port."""
         server = XmlRpcServer(self._bind, name="ros master")
-        server.register_api(self._api())
+        server.register_api(self.api())
         server.start()
         self._server = server
         log.info("embedded ROS master serving at %s", self.uri)
         return self
 
+    def hold_lookups(self, holding: bool) -> None:
+        """While holding, a lookup of a service no node provides yet waits until one does
+        (or the hold ends, and it gets the usual error): a node that starts before the
+        nodes it needs (a batch case's stack, before its simulator) then goes on the moment
+        they are up instead of at its next try (rospy's wait_for_service tries every 0.3 s)."""
+        with self._lock:
+            self._holding_lookups = holding
+            self._service_added.notify_all()
+
     def shutdown(self) -> None:
+        self.hold_lookups(False)
         self._notifier.close()
         if self._server is not None:
             self._server.stop()
@@ -118,7 +130,8 @@ class Master:
     def __exit__(self, *exc: object) -> None:
         self.shutdown()
 
-    def _api(self) -> dict[str, Callable[..., Reply]]:
+    def api(self) -> dict[str, Callable[..., Reply]]:
+        """The Master and Parameter Server API's functions, by their names."""
         return {
             "registerService": self.register_service,
             "unregisterService": self.unregister_service,
@@ -177,6 +190,7 @@ class Master:
         with self._lock:
             self._register_node(caller_id, caller_api)
             self._reg.services[service] = {caller_id: service_api}
+            self._service_added.notify_all()
         return _ok(f"Registered [{caller_id}] as provider of [{service}]", 1)
 
     def unregister_service(self, caller_id: str, service: str, service_api: str) -> Reply:
@@ -273,7 +287,10 @@ class Master:
     def lookup_service(self, caller_id: str, service: str) -> Reply:
         service = self._resolve(service, caller_id)
         with self._lock:
-            providers = list(self._reg.services.get(service, {}).values())
+            while not (providers := list(self._reg.services.get(service, {}).values())):
+                if not self._holding_lookups:
+                    break
+                self._service_added.wait()
         if not providers:
             return reply(StatusCode.ERROR, f"no provider for [{service}]", "")
         return _ok(f"rosrpc URI: [{providers[0]}]", providers[0])

@@ -11,10 +11,10 @@ import socket
 import threading
 import time
 from collections.abc import Callable, Iterator, Mapping
-from typing import Any, Literal
+from typing import Any, Literal, NamedTuple
 
 from .connection_header import error_header, write_header
-from .errors import MasterError, MasterUnreachableError, Ros1Error
+from .errors import MasterError, MasterUnreachableError, MulticallUnsupportedError, Ros1Error
 from .master import Master
 from .master_client import MasterClient
 from .master_watch import MasterWatch
@@ -39,6 +39,15 @@ _MISSING: Any = object()
 SHUTDOWN_BUDGET_S = 1.0
 #: How long to wait for an existing master to answer before starting an embedded one (s).
 MASTER_PROBE_TIMEOUT_S = 1.0
+
+
+class _Call(NamedTuple):
+    """A Master API call kept for a request of several (Node.registering_together), and
+    what takes its value."""
+
+    method: str
+    args: tuple[Any, ...]
+    then: Callable[[Any], None] | None = None
 
 
 class Node:
@@ -82,6 +91,8 @@ class Node:
         self.embedded_master = self._join_or_start_master(embedded_master)
 
         self._lock = threading.RLock()
+        self._together = threading.local()
+        """The calls of a registering_together block (calls: list of _Call), per thread."""
         self._output_hold = OutputHold()
         self._publishers: dict[str, Publisher] = {}
         self._subscribers: dict[str, Subscriber] = {}
@@ -182,7 +193,7 @@ class Node:
             if name in self._publishers:
                 raise Ros1Error(f"{self.name} already publishes {name}")
             self._publishers[name] = publisher
-        self.master.register_publisher(name, msg_type.name, self.uri)
+        self._register("registerPublisher", (name, msg_type.name, self.uri))
         return publisher
 
     def subscribe(
@@ -211,7 +222,11 @@ class Node:
             if name in self._subscribers:
                 raise Ros1Error(f"{self.name} already subscribes to {name}")
             self._subscribers[name] = subscriber
-        subscriber.update_publishers(self.master.register_subscriber(name, msg_type.name, self.uri))
+        self._register(
+            "registerSubscriber",
+            (name, msg_type.name, self.uri),
+            lambda uris: subscriber.update_publishers(list(uris)),
+        )
         return subscriber
 
     @contextlib.contextmanager
@@ -275,7 +290,7 @@ class Node:
             if name in self._services:
                 raise Ros1Error(f"{self.name} already provides {name}")
             self._services[name] = server
-        self.master.register_service(name, self._service_uri, self.uri)
+        self._register("registerService", (name, self._service_uri, self.uri))
         return server
 
     @property
@@ -423,29 +438,72 @@ class Node:
             return None
         return self._shutdown_deadline - time.monotonic()
 
-    def _unregister(self, call: Callable[..., Any], *args: Any) -> None:
+    @contextlib.contextmanager
+    def registering_together(self) -> Iterator[None]:
+        """The registrations this thread makes inside the block (advertise, subscribe,
+        advertise_service) go to the master together as the block ends, in one request
+        (system.multicall) instead of one each; a master that serves no multicall gets
+        them one by one. A failed one raises MasterError there, as it would have at once."""
+        pending: list[_Call] = []
+        self._together.calls = pending
+        try:
+            yield
+        finally:
+            self._together.calls = None
+        self._send_together(pending)
+
+    def _register(
+        self, method: str, args: tuple[Any, ...], then: Callable[[Any], None] | None = None
+    ) -> None:
+        grouped: list[_Call] | None = getattr(self._together, "calls", None)
+        if grouped is not None:
+            grouped.append(_Call(method, args, then))
+            return
+        value = self.master.call(method, *args)
+        if then is not None:
+            then(value)
+
+    def _send_together(self, calls: list[_Call], timeout: float | None = None) -> None:
+        """Send `calls` in one request; raise the first one's MasterError, if one failed."""
+        if not calls:
+            return
+        try:
+            values = self.master.call_together([(c.method, c.args) for c in calls], timeout)
+        except MulticallUnsupportedError:
+            values = [self.master.call(c.method, *c.args, timeout=timeout) for c in calls]
+        for call, value in zip(calls, values, strict=True):
+            if isinstance(value, MasterError):
+                raise value
+            if call.then is not None:
+                call.then(value)
+
+    def _unregister(self, method: str, *args: Any) -> None:
+        grouped: list[_Call] | None = getattr(self._together, "calls", None)
+        if grouped is not None:
+            grouped.append(_Call(method, args))
+            return
         timeout = self._master_timeout()
         if timeout is not None and timeout <= 0:
             return
         try:
-            call(*args, timeout=timeout)
+            self.master.call(method, *args, timeout=timeout)
         except (MasterError, OSError) as exc:
-            log.info("%s%s: %s", call.__name__, args, exc)
+            log.info("%s%s: %s", method, args, exc)
 
     def _release_publisher(self, publisher: Publisher) -> None:
         with self._lock:
             self._publishers.pop(publisher.topic, None)
-        self._unregister(self.master.unregister_publisher, publisher.topic, self.uri)
+        self._unregister("unregisterPublisher", publisher.topic, self.uri)
 
     def _release_subscriber(self, subscriber: Subscriber) -> None:
         with self._lock:
             self._subscribers.pop(subscriber.topic, None)
-        self._unregister(self.master.unregister_subscriber, subscriber.topic, self.uri)
+        self._unregister("unregisterSubscriber", subscriber.topic, self.uri)
 
     def _release_service(self, server: ServiceServer) -> None:
         with self._lock:
             self._services.pop(server.service, None)
-        self._unregister(self.master.unregister_service, server.service, self._service_uri)
+        self._unregister("unregisterService", server.service, self._service_uri)
 
     def on_shutdown(self, callback: Callable[[str], None]) -> None:
         """``callback(reason)`` runs once the node has shut down (e.g. after ``rosnode kill``)."""
@@ -495,13 +553,19 @@ class Node:
             *self.subscribers,
             *self.services,
         ]
-        for handle in handles:
-            handle.close()
         with self._lock:
             param_keys, self._param_callbacks = list(self._param_callbacks), {}
             proxies, self._proxies = self._proxies, []
-        for key in param_keys:
-            self._unregister(self.master.unsubscribe_param, self.uri, key)
+        unregistrations: list[_Call] = []
+        self._together.calls = unregistrations
+        try:
+            for handle in handles:
+                handle.close()
+            for key in param_keys:
+                self._unregister("unsubscribeParam", self.uri, key)
+        finally:
+            self._together.calls = None
+        self._unregister_together(unregistrations)
         for proxy in proxies:
             proxy.close()
         self._tcpros.close()
@@ -516,6 +580,17 @@ class Node:
                 callback(reason)
             except Exception:
                 log.exception("shutdown callback failed")
+
+    def _unregister_together(self, calls: list[_Call]) -> None:
+        """Shutdown's unregistrations, in one request within the shutdown budget; what
+        fails is logged (the node is going either way)."""
+        timeout = self._master_timeout()
+        if not calls or (timeout is not None and timeout <= 0):
+            return
+        try:
+            self._send_together(calls, timeout)
+        except (MasterError, OSError) as exc:
+            log.info("unregistering %d names: %s", len(calls), exc)
 
     def __enter__(self) -> Node:
         return self

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import http.client
 import logging
 import socketserver
@@ -10,9 +11,11 @@ import xmlrpc.client
 from collections.abc import Callable
 from enum import IntEnum
 from typing import TYPE_CHECKING, Any
+from urllib.parse import urlsplit
 from xmlrpc.server import SimpleXMLRPCRequestHandler, SimpleXMLRPCServer
 
 from .errors import PeerUnreachableError
+from .handler_threads import HandlerThreads
 
 if TYPE_CHECKING:
     from _typeshed import ReadableBuffer
@@ -39,6 +42,9 @@ def reply(code: StatusCode, message: str, value: Any) -> Reply:
     return [int(code), message, value]
 
 
+IN_PROCESS = ("this process", 0)
+"""The peer address of a call made in the server's own process."""
+
 #: Largest XML-RPC request body accepted (the largest ROS calls carry parameter trees).
 MAX_REQUEST_BYTES = 64 * 1024 * 1024
 
@@ -56,9 +62,17 @@ class _TimeoutTransport(xmlrpc.client.Transport):
 
 def call(uri: str, method: str, *args: Any, timeout: float = 5.0) -> Any:
     """Call ``method`` on the XML-RPC server at ``uri``; a fresh connection keeps it thread-safe.
+    A server of this process (an embedded master, for one) is handed the request's bytes
+    directly, without a socket, a thread or HTTP: the same call and reply, the same
+    marshalling, in a fraction of the time.
 
     Raises PeerUnreachableError when nothing answers (refused, reset, timed out).
     """
+    server = _in_process(uri)
+    if server is not None:
+        # Marshalled as ServerProxy marshals (its defaults): the same values, the same errors.
+        reply_body = server.answer_in_process(xmlrpc.client.dumps(args, method))
+        return xmlrpc.client.loads(reply_body)[0][0]
     proxy = xmlrpc.client.ServerProxy(uri, transport=_TimeoutTransport(timeout))
     try:
         return getattr(proxy, method)(*args)
@@ -66,6 +80,21 @@ def call(uri: str, method: str, *args: Any, timeout: float = 5.0) -> Any:
         raise PeerUnreachableError(f"no XML-RPC answer from {uri} to {method}: {exc}") from exc
     finally:
         proxy("close")()
+
+
+_serving: dict[tuple[str, int], XmlRpcServer] = {}
+"""This process's servers while they serve, by the host and port they are bound to."""
+_serving_lock = threading.Lock()
+
+
+def _in_process(uri: str) -> XmlRpcServer | None:
+    parts = urlsplit(uri)
+    try:
+        address = (parts.hostname or "", parts.port or 0)
+    except ValueError:  # not a port: the network call says what is wrong
+        return None
+    with _serving_lock:
+        return _serving.get(address)
 
 
 class _RequestHandler(SimpleXMLRPCRequestHandler):
@@ -96,7 +125,8 @@ class _RequestHandler(SimpleXMLRPCRequestHandler):
 
 
 class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
-    """Serves one handler object's public methods on a daemon thread."""
+    """Serves one handler object's public methods on a daemon thread, each request in a
+    thread of its own (handler_threads: one whose last request ended, if one waits)."""
 
     daemon_threads = True
     block_on_close = False
@@ -110,6 +140,8 @@ class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
         super().__init__(address, requestHandler=_RequestHandler, logRequests=False)
         self.register_multicall_functions()
         self._thread: threading.Thread | None = None
+        self._address = (str(self.server_address[0]), self.port)
+        self._handlers = HandlerThreads()
 
     @property
     def port(self) -> int:
@@ -124,12 +156,27 @@ class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
             target=self.serve_forever, kwargs={"poll_interval": 0.05}, name=self._name, daemon=True
         )
         self._thread.start()
+        with _serving_lock:
+            _serving[self._address] = self
 
     def stop(self) -> None:
+        with _serving_lock:
+            if _serving.get(self._address) is self:
+                del _serving[self._address]
         if self._thread is not None:
             self.shutdown()
             self._thread.join()
         self.server_close()
+        self._handlers.close()
+
+    def process_request(self, request: Any, client_address: Any) -> None:
+        job = functools.partial(self.process_request_thread, request, client_address)
+        self._handlers.run(job, self._name)
+
+    def answer_in_process(self, request: str) -> bytes:
+        """The reply to an XML-RPC request made in this process, as a peer would get it."""
+        self.peer.address = IN_PROCESS
+        return self._marshaled_dispatch(request)
 
     # typeshed declares str, but CPython's dispatcher returns the encoded body (bytes),
     # which is what the request handler writes.

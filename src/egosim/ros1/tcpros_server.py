@@ -1,11 +1,13 @@
 """The one TCP server of a node that accepts TCPROS connections for its topics and services.
 
-Each accepted connection gets a thread that reads the connection header (bounded in size and
-time) and hands the socket to whoever serves the named topic or service.
+Each accepted connection gets a thread (handler_threads: one whose last connection ended, if
+one waits) that reads the connection header (bounded in size and time) and hands the
+socket to whoever serves the named topic or service.
 """
 
 from __future__ import annotations
 
+import functools
 import logging
 import socket
 import threading
@@ -15,6 +17,7 @@ from typing import cast
 
 from .connection_header import read_header
 from .errors import ProtocolError
+from .handler_threads import HandlerThreads
 from .tcpros import Limits, close_quietly
 
 log = logging.getLogger(__name__)
@@ -34,6 +37,7 @@ class TcprosServer:
         self._lock = threading.Lock()
         self._pending: set[socket.socket] = set()
         self._closed = False
+        self._handlers = HandlerThreads()
         self._thread = threading.Thread(target=self._accept, name="tcpros accept", daemon=True)
         self._thread.start()
 
@@ -65,9 +69,7 @@ class TcprosServer:
                     sock.close()
                     return
                 self._pending.add(sock)
-            threading.Thread(
-                target=self._handle, args=(sock, peer), name=f"tcpros from {peer}", daemon=True
-            ).start()
+            self._handlers.run(functools.partial(self._handle, sock, peer), f"tcpros from {peer}")
 
     def _handle(self, sock: socket.socket, peer: str) -> None:
         keep = False
@@ -96,3 +98,4 @@ class TcprosServer:
         for sock in pending:
             close_quietly(sock)
         self._thread.join(timeout=2.0)
+        self._handlers.close()

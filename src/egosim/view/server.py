@@ -25,10 +25,10 @@ from aiohttp import WSMsgType, web
 
 from ..app.inbox import Inbox, LoopStoppedError
 from ..json_value import JsonValue
+from ..ros1.graph import SystemState, nodes_of
 from .controls import PreparedRequest
 from .hub import FrameHub
 from .messages import Hello, Reply
-from .ros_graph import SystemState, nodes_of
 
 log = logging.getLogger(__name__)
 

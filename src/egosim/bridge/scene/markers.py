@@ -1,7 +1,8 @@
 """/egosim/markers: the scene as visualization_msgs/MarkerArray for RViz, in frame `map`.
 
 The map is built once and latched (Handlers.latched): roads at their width, lane centre
-lines, stop lines, crosswalks, sidewalks, and the ids of road lanes and lights as text.
+lines, stop lines, crosswalks, sidewalks, and the ids of road lanes and lights as text
+(kept for the next run on the same map and start time: a batch worker builds it once).
 At the row's rate (10 Hz) follow every ego, NPC, pedestrian and obstacle as a box and
 every light as a sphere in the colour of its aspect; those markers live
 LIFETIME_PERIODS of the row, so an object that leaves the scene leaves the display too.
@@ -25,7 +26,7 @@ from ...world.map.sections import lane_cross_section
 from ...world.signals.aspects import shown_colour
 from ...world.traffic import ObjectType
 from ..context import MAP_FRAME, BridgeContext
-from ..protocol.messages import point, quaternion, vector3
+from ..protocol.messages import header, point, quaternion, vector3
 from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
 
@@ -34,6 +35,8 @@ LIFETIME_PERIODS = 5
 not blink, an object that is gone goes."""
 UNTIMED_LIFETIME_S = 0.5
 """Their lifetime when the row has no rate."""
+MAPS_KEPT = 4
+"""Maps whose static scene message is kept (a batch worker's cases may use several)."""
 
 # visualization_msgs/Marker types and actions.
 CUBE, SPHERE_LIST, LINE_STRIP, LINE_LIST, TEXT_VIEW_FACING = 1, 7, 4, 5, 9
@@ -78,9 +81,9 @@ class _Builder:
     """Makes the Marker messages of one MarkerArray (message classes looked up once; one
     colour and one lifetime message per value, shared by the markers that have it)."""
 
-    def __init__(self, context: BridgeContext) -> None:
-        self.profile: CanonicalProfile = context.profile
-        self.header = context.header()
+    def __init__(self, profile: CanonicalProfile, header: standard.Header) -> None:
+        self.profile = profile
+        self.header = header
         self.marker_type = self.profile.message("visualization_msgs/Marker").make
         self.pose_type = self.profile.message("geometry_msgs/Pose").make
         self.point_type = self.profile.message("geometry_msgs/Point").make
@@ -160,8 +163,19 @@ def _yaw_quaternion(yaw: float, sign: float) -> Quaternion:
 
 def build_map_markers(context: BridgeContext, row: Row) -> standard.MarkerArray:
     """The static scene, once: roads, centre lines, stop lines, crosswalks, sidewalks, ids."""
-    lane_map = context.world.map
-    make = _Builder(context)
+    # A profile hashes by identity; its typed view (a Protocol) does not say so.
+    return map_markers(context.world.map, context.profile, context.stamp_ns())  # type: ignore[arg-type]
+
+
+@functools.lru_cache(maxsize=MAPS_KEPT)
+def map_markers(
+    lane_map: LaneMap, profile: CanonicalProfile, stamp_ns: int
+) -> standard.MarkerArray:
+    """The static scene of `lane_map` stamped `stamp_ns`: the same message for the same map
+    object (maps are immutable, and egosim.maps hands out the map it read before for the
+    same source), built once for every run of a batch worker that starts at that time.
+    Nothing changes a message once built."""
+    make = _Builder(profile, header(profile, stamp_ns, MAP_FRAME))
     # One point list per lane, shared by the road and centre-line markers (their poses set
     # their heights): points are most of the cost of this message.
     segments = {
@@ -222,7 +236,7 @@ def build_map_markers(context: BridgeContext, row: Row) -> standard.MarkerArray:
                 position=(x, y, z + LIGHT_SIZE_M + TEXT_Z_M), text=light.id,
             )
         )  # fmt: skip
-    return context.profile.message("visualization_msgs/MarkerArray").new(markers=markers)
+    return profile.message("visualization_msgs/MarkerArray").new(markers=markers)
 
 
 def build_scene_markers(context: BridgeContext, row: Row) -> bytes:

@@ -3,7 +3,8 @@ camera.
 
 The static scene is built where the rig is, from the world's map (a world keeps its map:
 a scenario load must name the one running), and loaded into the renderer there, so the
-first frame costs what the next ones do. It is kept for the next rig on the same map
+first frame costs what the next ones do; or, asked to, when the first frame is taken
+(a batch worker: most cases take none). It is kept for the next rig on the same map
 (maps are immutable, and egosim.maps hands out the map it read before for the same
 source: a batch worker builds each scene once). A camera's mount comes from the
 SensorRig (SensorPosControl moves it there).
@@ -33,13 +34,20 @@ static_scene = lru_cache(maxsize=SCENES_KEPT)(build_static_scene)
 
 
 class CameraRig:
-    """The main ego's cameras on `renderer`, over the static scene of the world's map
-    (loaded into the renderer here)."""
+    """The main ego's cameras on `renderer`, over the static scene `scene` gives (built
+    and loaded into the renderer when first asked for)."""
 
-    def __init__(self, renderer: CameraRenderer, scene: StaticScene) -> None:
+    def __init__(self, renderer: CameraRenderer, scene: Callable[[], StaticScene]) -> None:
         self.renderer = renderer
-        self.scene = scene
-        renderer.load(scene)
+        self._scene_of = scene
+        self._scene: StaticScene | None = None
+
+    @property
+    def scene(self) -> StaticScene:
+        if self._scene is None:
+            self._scene = self._scene_of()
+            self.renderer.load(self._scene)
+        return self._scene
 
     def image(self, sensors: SensorRig, world: World, k: int) -> Image:
         """Camera k's image of the world as it is now; the main ego does not see itself."""
@@ -67,11 +75,15 @@ class CameraRig:
 
 
 def open_camera_rig(
-    sensors: SensorRig, open_renderer: Callable[[], CameraRenderer], lane_map: LaneMap
+    sensors: SensorRig,
+    open_renderer: Callable[[], CameraRenderer],
+    lane_map: LaneMap,
+    scene_at_first_frame: bool = False,
 ) -> CameraRig | None:
     """A CameraRig on the renderer `open_renderer` gives, over the static scene of
-    `lane_map` (built and loaded now, so the first frame does not stall the loop), or
-    None (logged in one line) when no camera is configured or no renderer can run here."""
+    `lane_map` (built and loaded now, so the first frame does not stall the loop; with
+    `scene_at_first_frame`, when the first frame is taken), or None (logged in one line)
+    when no camera is configured or no renderer can run here."""
     if not sensors.cameras:
         return None
     try:
@@ -81,4 +93,7 @@ def open_camera_rig(
         return None
     described = getattr(renderer, "description", type(renderer).__name__)
     log.info("cameras: %d, rendered with %s", len(sensors.cameras), described)
-    return CameraRig(renderer, static_scene(lane_map))
+    rig = CameraRig(renderer, lambda: static_scene(lane_map))
+    if not scene_at_first_frame:
+        rig.scene  # noqa: B018 (built and loaded now)
+    return rig

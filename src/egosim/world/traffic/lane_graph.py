@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import functools
 import math
+from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
-from egosim.world.arrays import IntArray
+from egosim.world.arrays import FloatArray, IntArray
 from egosim.world.map import Lane, LaneMap
 from egosim.world.map.polyline import segment_headings
 
@@ -15,6 +18,8 @@ TURN_LIMIT_RAD = math.radians(30.0)
 TURN_LEFT, TURN_STRAIGHT, TURN_RIGHT = 1, 0, -1
 COMFORT_LATERAL_ACCEL_MPS2 = 3.0
 """Lateral acceleration an NPC accepts in a curve; caps its speed at sqrt(a / curvature)."""
+MAPS_KEPT = 4
+"""Maps whose lane table is kept (maps are immutable: a batch worker's cases reuse it)."""
 
 
 class LaneGraph:
@@ -23,27 +28,55 @@ class LaneGraph:
     def __init__(self, lane_map: LaneMap, lane_signals: IntArray) -> None:
         """`lane_signals`: per lane, the signal its drivers obey (LaneSignals.of_lane)."""
         self.lane_map = lane_map
-        ids = lane_map.lane_ids
-        lanes = [lane_map.lanes[i] for i in ids]
-        self.length = np.array([lane.length for lane in lanes])
-        self.speed_limit = np.array([lane.speed_limit for lane in lanes])
-        self.stop_s = np.array(
-            [np.nan if lane.stop_line_s is None else lane.stop_line_s for lane in lanes]
-        )
+        lanes = lane_table(lane_map)
+        self.length = lanes.length
+        self.speed_limit = lanes.speed_limit
+        self.stop_s = lanes.stop_s
         self.light: IntArray = lane_signals
         """Per lane: its signal (an index into LightsView), -1 without a light."""
-        self.curve_speed = np.minimum(
-            self.speed_limit, [_comfortable_curve_speed(lane) for lane in lanes]
-        )
+        self.curve_speed = lanes.curve_speed
         """Speed (m/s) an NPC drives at most on each lane: limit and curvature."""
-        self.is_junction = np.array([lane.is_junction for lane in lanes], dtype=bool)
-        self.turn = np.array([_turn_direction(lane) for lane in lanes], dtype=np.int64)
-        self.successors: list[tuple[int, ...]] = [
-            tuple(lane_map.lane_index(s) for s in lane.successors) for lane in lanes
-        ]
+        self.is_junction = lanes.is_junction
+        self.turn = lanes.turn
+        self.successors = lanes.successors
 
     def __len__(self) -> int:
         return len(self.length)
+
+
+@dataclass(frozen=True)
+class LaneTable:
+    """What LaneGraph takes from the map alone, read-only: the same for every world on
+    the map (a batch worker's cases on one map share it)."""
+
+    length: FloatArray
+    speed_limit: FloatArray
+    stop_s: FloatArray
+    curve_speed: FloatArray
+    is_junction: npt.NDArray[np.bool_]
+    turn: IntArray
+    successors: tuple[tuple[int, ...], ...]
+
+
+@functools.lru_cache(maxsize=MAPS_KEPT)
+def lane_table(lane_map: LaneMap) -> LaneTable:
+    """The lane table of `lane_map`, worked out once per map object."""
+    lanes = [lane_map.lanes[i] for i in lane_map.lane_ids]
+    speed_limit = np.array([lane.speed_limit for lane in lanes])
+    table = LaneTable(
+        length=np.array([lane.length for lane in lanes]),
+        speed_limit=speed_limit,
+        stop_s=np.array([np.nan if ln.stop_line_s is None else ln.stop_line_s for ln in lanes]),
+        curve_speed=np.minimum(speed_limit, [_comfortable_curve_speed(lane) for lane in lanes]),
+        is_junction=np.array([lane.is_junction for lane in lanes], dtype=bool),
+        turn=np.array([_turn_direction(lane) for lane in lanes], dtype=np.int64),
+        successors=tuple(tuple(lane_map.lane_index(s) for s in lane.successors) for lane in lanes),
+    )
+    for array in (table.length, table.speed_limit, table.stop_s, table.curve_speed):
+        array.flags.writeable = False
+    table.is_junction.flags.writeable = False
+    table.turn.flags.writeable = False
+    return table
 
 
 def _turn_direction(lane: Lane) -> int:

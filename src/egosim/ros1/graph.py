@@ -1,5 +1,5 @@
 """The master's getSystemState turned round: per node, what it publishes, subscribes
-to and serves, for the page's "ROS nodes" panel."""
+to and serves (the live view's "ROS nodes" panel, a batch case's wait for its stack)."""
 
 from __future__ import annotations
 
