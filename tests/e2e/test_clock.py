@@ -50,7 +50,9 @@ def test_header_stamps_are_clock_times(egosim) -> None:
         listen(*CLOCK)
         listen(*EGO)
         wait_until(lambda: len(received[EGO[0]]) >= 50)
-        wait_until(lambda: received[CLOCK[0]][-1] >= received[EGO[0]][49])
+        wait_until(
+            lambda: bool(received[CLOCK[0]]) and received[CLOCK[0]][-1] >= received[EGO[0]][49]
+        )
     clocks = {round(t, 9) for t in received[CLOCK[0]]}
     stamps = [round(t, 9) for t in received[EGO[0]][:50]]
     # The subscriptions connect at different moments: compare from the first /clock on.
