@@ -30,6 +30,15 @@ def run_along(context: BridgeContext, s0: float, speed: float, seconds: float) -
         context.tick(DT)
 
 
+def hold_before_the_line(context: BridgeContext, run_up: float, speed: float) -> None:
+    """Place the main ego `run_up` m before R1_E_1's stop line, held at `speed`."""
+    assert LANE.stop_line_s is not None
+    vehicle = context.world.egos[0].vehicle
+    x, y, _, heading = TOWN.pose_at(LANE.id, LANE.stop_line_s - run_up)
+    vehicle.teleport(Pose(x=x, y=y, yaw=heading), speed)
+    vehicle.hold_speed(speed)
+
+
 def town_context(**scenario: object) -> BridgeContext:
     """The town (with `scenario`'s egos and obstacles, if any), its drive log a stage."""
     world = World(TOWN, parse_scenario({"map": "town", **scenario}) if scenario else None)
@@ -76,10 +85,7 @@ def test_a_red_light_run_between_coarse_sync_ticks_is_logged(
     context.world.signals.set_light(LANE.traffic_light_ids[0], RED)
     caplog.set_level(logging.DEBUG, LOGGER)
     speed, run_up = 30.0, 40.0
-    vehicle = context.world.egos[0].vehicle
-    x, y, _, heading = TOWN.pose_at(LANE.id, LANE.stop_line_s - run_up)
-    vehicle.teleport(Pose(x=x, y=y, yaw=heading), speed)
-    vehicle.hold_speed(speed)
+    hold_before_the_line(context, run_up, speed)
     for _ in range(round(3.0 / tick_s)):
         context.tick(tick_s)
     (red,) = messages(caplog, logging.INFO)
@@ -102,10 +108,7 @@ def test_a_red_light_run_in_the_very_first_sync_tick_is_logged(
     context.world.signals.set_light(LANE.traffic_light_ids[0], RED)
     caplog.set_level(logging.DEBUG, LOGGER)
     speed, run_up, tick_s = 30.0, 20.0, 1.0
-    vehicle = context.world.egos[0].vehicle
-    x, y, _, heading = TOWN.pose_at(LANE.id, LANE.stop_line_s - run_up)
-    vehicle.teleport(Pose(x=x, y=y, yaw=heading), speed)
-    vehicle.hold_speed(speed)
+    hold_before_the_line(context, run_up, speed)
     context.tick(tick_s)
     (red,) = messages(caplog, logging.INFO)
     assert red.startswith(f"ego 1: red light run: light {LANE.traffic_light_ids[0]} red"), red
