@@ -5,7 +5,8 @@ As it starts it adds a line to `starts` in its case folder and asks its master
 (ROS_MASTER_URI) for /run_id and the graph's nodes (before it looks for the simulator).
 It steps the world at the physics step until the simulator goes away (thinking THINK_S
 over each frame, as a stack does), then keeps asking every 20 ms for LINGER_S (SIGINT,
-which the batch sends once the drive is over, waits until then). It writes `met.json`
+which the batch sends once the drive is over, is ignored from the drive's start; before
+it, SIGINT ends the stack at once). It writes `met.json`
 in its case folder: every /run_id and node it met (or that its master did not answer),
 and the wall times of its start, of the drive's end and of its own end.
 """
@@ -72,6 +73,9 @@ def drive(node: Node) -> None:
         *proxies["/SyncModeCmd"], "SyncModeCmd", user_id=USER, start_sync_mode=True, time_step=0
     )
     frame = int(started.frame)
+    # Told to stop (SIGINT) as its drive ends, before it has seen the simulator go, it
+    # still notes the end and lingers, as a slow stack's shutdown does.
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
         while True:
             frame += 1
@@ -90,7 +94,6 @@ def main() -> int:
     node = Node(USER, rosout_logger=None, embedded_master="never")
     drive(node)
     drive_over = time.time()
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
     while time.time() < drive_over + LINGER_S:
         met.ask()
         time.sleep(ASK_EVERY_S)
