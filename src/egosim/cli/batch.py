@@ -43,15 +43,13 @@ def positive_int(text: str) -> int:
     return value
 
 
-def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    parser = subparsers.add_parser(
-        "batch",
-        help="run a stack through a suite of scenarios and score every drive",
-        description="Run the suite's stack once per case, each case with its own ROS "
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.description = (
+        "Run the suite's stack once per case, each case with its own ROS "
         "master and world on a simulator each worker keeps warm, score every drive from "
         "the world, and write results.json, junit.xml, report.html and a bag per case to "
         "the output folder. SIGINT or SIGTERM stops the running cases in order (their "
-        "drives kept) and still writes every output; a second signal stops at once.",
+        "drives kept) and still writes every output; a second signal stops at once."
     )
     parser.add_argument(
         "suite",
