@@ -35,7 +35,8 @@ class _Subcommands(_SubParsersAction):
     """Only the subcommand the command line names is defined (its module imported), just
     before its arguments are parsed. Each module imports what its command runs on (the
     world and numba, the ROS bridge, the live view's server, matplotlib: over a second
-    together), which no other command is to pay for."""
+    together), which no other command is to pay for; `egosim batch` starts its simulator
+    workers before it imports its own."""
 
     def __call__(
         self,
