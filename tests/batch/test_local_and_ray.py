@@ -15,7 +15,7 @@ from typing import Any
 import pytest
 import yaml
 
-from egosim.batch.pool import default_workers
+from egosim.batch.early_workers import default_workers
 from tests.batch.processes import processes_using
 from tests.batch.results_files import comparable, read_results
 from tests.batch.suites import STRAIGHT_SCENARIO

@@ -141,8 +141,9 @@ def test_its_bag_is_the_bag_it_records_alone(after_others, alone) -> None:
     assert len(recorded["/Ego_topic"]) in (20, 21)  # 50 Hz over 40 ticks of 10 ms
 
 
+@pytest.mark.parametrize("started", ["with its case", "ahead of its case"])
 def test_a_worker_that_cannot_start_says_why_in_the_case_log(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, started: str
 ) -> None:
     broken = tmp_path / "broken" / "egosim"
     broken.mkdir(parents=True)
@@ -150,6 +151,8 @@ def test_a_worker_that_cannot_start_says_why_in_the_case_log(
     monkeypatch.setenv("PYTHONPATH", str(broken.parent))
     (case,) = load_suite(write_suite(tmp_path / "suite"))[-1:]
     simulator = WarmSimulator()
+    if started == "ahead of its case":  # as the batch command starts it
+        simulator.start()
     try:
         result = run_case(case, str(tmp_path / "out"), simulator)
     finally:

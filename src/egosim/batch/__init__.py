@@ -7,7 +7,8 @@ Modules (imported one by one: a case's simulator loads only what it needs):
     simulate     a case's simulator: its master, `egosim run`, the drive's evaluation
     worker       the simulator worker process (`python -m egosim.batch.worker`): one case
                  after another, nothing carried over; worker_protocol: its lines
-    warm_simulator  the supervisor's handle on a worker, kept warm from case to case
+    warm_simulator  the supervisor's handle on a worker, kept warm from case to case;
+                 early_workers: workers started as the batch command begins
     case_runner  run_case: one case's master, stack and simulator, supervised -> its
                  result (start_case, drive_case, EndingCase: the same in parts)
     pool         run_local (N slots) and run_ray (one Ray actor per slot); interrupt:

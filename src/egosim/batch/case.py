@@ -9,6 +9,9 @@ from typing import TypedDict, cast
 from egosim.batch.sweep import Value, format_value
 from egosim.json_value import JsonObject
 
+DEFAULT_TIME_LIMIT_S = 60.0
+"""Simulated time a case may take when its suite says nothing."""
+
 
 @dataclass(frozen=True)
 class StackSpec:
@@ -64,7 +67,7 @@ class CaseSpec:
     """{"waypoints": [[x, y], ...]} or {"lanes": [...]}, optionally with "first_m"."""
     clock: str = "sim"
     rtf: float = 0.0
-    time_limit_s: float = 60.0
+    time_limit_s: float = DEFAULT_TIME_LIMIT_S
     wall_limit_s: float = 720.0
     criteria: tuple[str, ...] = ()
     scoring: JsonObject = field(default_factory=dict)

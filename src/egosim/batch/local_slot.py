@@ -72,6 +72,7 @@ class LocalSlot:
     def __init__(
         self,
         out_dir: str,
+        simulator: WarmSimulator,
         take: Callable[[], CaseSpec | None],
         give_back: Callable[[], None],
         deliver: Callable[[EndingCase], None],
@@ -79,9 +80,10 @@ class LocalSlot:
         interrupt: Interrupt,
         name: str,
     ) -> None:
-        """`take` gives the batch's next case (None: none is left, or the batch stops),
-        `give_back` is told of a case taken and not run (the batch stopped), `deliver`
-        ends a case and reports its result (in a thread of its own)."""
+        """The slot's cases run on `simulator` (the slot ends it). `take` gives the
+        batch's next case (None: none is left, or the batch stops), `give_back` is told of
+        a case taken and not run (the batch stopped), `deliver` ends a case and reports
+        its result (in a thread of its own)."""
         self._out_dir = out_dir
         self._take = take
         self._give_back = give_back
@@ -89,7 +91,7 @@ class LocalSlot:
         self._times = times
         self._interrupt = interrupt
         self.name = name
-        self._simulator = WarmSimulator()
+        self._simulator = simulator
         self._ahead: StartedCase | None = None
         self._pending: CaseSpec | None = None
         self._discarding: threading.Thread | None = None

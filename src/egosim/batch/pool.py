@@ -1,7 +1,8 @@
 """Running many cases: a local pool of N worker slots, or one Ray actor per slot.
 
 A slot runs one case at a time and keeps a warm simulator worker (warm_simulator) from
-one case to the next; a case's stack is its own process. In the local pool a slot's
+one case to the next (in the local pool, one the batch command started as it began:
+early_workers); a case's stack is its own process. In the local pool a slot's
 cases overlap at their ends: the next one's stack starts while the last one drives, and
 the last one's stack ends while the next one runs (local_slot). The local pool only supervises:
 N threads, each waiting on its slot's case. When the batch is interrupted, every running
@@ -12,7 +13,6 @@ reported not run, in the local pool and on Ray alike.
 from __future__ import annotations
 
 import importlib
-import os
 import queue
 import threading
 from collections import deque
@@ -22,6 +22,7 @@ from typing import Protocol, cast
 from egosim.batch.case import CaseSpec
 from egosim.batch.case_runner import ERROR, PASSED, EndingCase, run_case
 from egosim.batch.documents import CaseResult
+from egosim.batch.early_workers import EarlyWorkers
 from egosim.batch.interrupt import Interrupt
 from egosim.batch.local_slot import DriveTimes, LocalSlot
 from egosim.batch.warm_simulator import WarmSimulator
@@ -38,10 +39,6 @@ RAY_CLOSE_S = 60.0
 """Time for every actor to end its simulator worker when a Ray batch ends."""
 
 
-def default_workers() -> int:
-    return max(len(os.sched_getaffinity(0)), 1)
-
-
 def run_local(
     cases: Sequence[CaseSpec],
     out_dir: str,
@@ -49,11 +46,14 @@ def run_local(
     on_result: OnResult,
     results: dict[str, Result] | None = None,
     interrupt: Interrupt | None = None,
+    early: EarlyWorkers | None = None,
 ) -> dict[str, Result]:
     """Run `cases`, `workers` at a time; their results by name, also put in `results` as
     they come. Once `interrupt` stops the batch, the running cases end (their results
-    kept) and no other starts."""
+    kept) and no other starts. The slots take their simulator workers from `early` (the
+    workers it has left end at once), else start their own."""
     interrupt = interrupt or Interrupt()
+    early = early or EarlyWorkers(0)
     results = {} if results is None else results
     todo: deque[CaseSpec] = deque(cases)
     finished: queue.Queue[Result] = queue.Queue()
@@ -78,9 +78,12 @@ def run_local(
 
     times = DriveTimes()
     slots = [
-        LocalSlot(out_dir, next_case, give_back, deliver, times, interrupt, f"case slot {k}")
+        LocalSlot(
+            out_dir, early.take(), next_case, give_back, deliver, times, interrupt, f"case slot {k}"
+        )
         for k in range(min(workers, len(cases)))
     ]
+    early.close()
     threads = [threading.Thread(target=slot.run, name=slot.name) for slot in slots]
     for thread in threads:
         thread.start()

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import jsonschema
 
-from egosim.batch.case import CaseSpec, StackSpec
+from egosim.batch.case import DEFAULT_TIME_LIMIT_S, CaseSpec, StackSpec
 from egosim.batch.errors import SuiteError
 from egosim.batch.sweep import Value, case_name, format_value, parameter_sets
 from egosim.evaluation import METRIC_NAMES, CriterionError, InfractionKind, parse_criterion
@@ -43,7 +43,6 @@ from egosim.yamltext import (
     text_at,
 )
 
-DEFAULT_TIME_LIMIT_S = 60.0
 DEFAULT_CRITERIA = ("no_collision",)
 
 

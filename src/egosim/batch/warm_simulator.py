@@ -1,7 +1,7 @@
 """The supervisor's side of a simulator worker: one warm process (`python -m
 egosim.batch.worker`) that runs one case after another for a worker slot of the batch (a
-thread of the local pool, a Ray actor), started when its first case begins and again
-whenever the last one left it gone or replaced.
+thread of the local pool, a Ray actor), started ahead of its cases (early_workers) or when
+its first case begins, and again whenever the last one left it gone or replaced.
 
 Its output goes to the simulator.log of the case it belongs to (the worker says where
 each case begins and ends); its protocol lines (worker_protocol) are handed to the case's
@@ -57,14 +57,14 @@ class WarmSimulator:
         if self._process is not None and (self._last_done() or self._process.poll() is not None):
             self._end_process(CLOSE_GRACE_S)
         if self._process is None:
-            self._start()
+            self.start()
         self._done = None
         self._in_case = True
         self._logs.pending = folder
         command = run_command(folder, master_uri)
         if not self._send(command):
             self._end_process(0.0)
-            self._start()
+            self.start()
             self._logs.pending = folder
             self._send(command)
 
@@ -118,7 +118,19 @@ class WarmSimulator:
         if self._process is not None:
             self._end_process(0.0 if hurry is not None and hurry.is_set() else CLOSE_GRACE_S)
 
-    def _start(self) -> None:
+    def discard(self) -> None:
+        """End a worker that was handed no case, at once: it has nothing to finish."""
+        assert self.finished
+        process, self._process = self._process, None
+        if process is not None:
+            assert process.popen.stdin is not None
+            with contextlib.suppress(BrokenPipeError):
+                process.popen.stdin.close()
+            process.kill()
+
+    def start(self) -> None:
+        """Start the worker now (its first case would): it imports egosim, numpy, numba
+        and rosbags meanwhile, ready for the case to begin."""
         env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
         env["PYTHONUNBUFFERED"] = "1"
         self._lines = queue.Queue()

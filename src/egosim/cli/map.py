@@ -13,14 +13,12 @@ from ..maps import MapLoadError, read_map
 from ..world.map import DEFAULT_MAP_NAME, GeoReference, LaneMap
 
 
-def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    parser = subparsers.add_parser(
-        "map",
-        help="describe a map and draw it to a PNG",
-        description="What a map holds (size, georeference, counts), its lane, light and "
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.description = (
+        "What a map holds (size, georeference, counts), its lane, light and "
         "crosswalk ids with their positions, and a top-down picture with lane and light ids "
         "and a scale bar. Positions are in the map frame: metres, x east, y north; headings "
-        "in degrees counter-clockwise from east, as scenario files write them.",
+        "in degrees counter-clockwise from east, as scenario files write them."
     )
     parser.add_argument(
         "map",

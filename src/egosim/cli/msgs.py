@@ -12,14 +12,12 @@ from ..msgs.export import DEFAULT_ROS_PYTHON, write_catkin_package, write_python
 from ..msgs.show import show_message, show_service
 
 
-def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    parser = subparsers.add_parser(
-        "msgs",
-        help="list message and service types with their md5sums, show one, or export them",
-        description="Without TYPE: every message and service type of the profile with its "
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.description = (
+        "Without TYPE: every message and service type of the profile with its "
         "md5sum. With TYPE (e.g. CtrlCmd or morai_msgs/CtrlCmd): its md5sum and fields, as "
         "rosmsg show / rossrv show print them. --export / --export-python: morai_msgs for "
-        "your ROS side.",
+        "your ROS side."
     )
     parser.add_argument("--profile", default=DEFAULT_PROFILE, choices=PROFILES)
     parser.add_argument("--md5", action="store_true", help="print only the md5sum of TYPE")

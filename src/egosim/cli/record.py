@@ -17,15 +17,13 @@ from ..bridge.sensors.camera_rows import camera_topic_names
 from ..replay import RecorderError
 from ..ros1 import Ros1Error
 from ..yamltext import YamlFileError
-from .run import LOG_LEVELS, positive_float
+from .arguments import LOG_LEVELS, positive_float
 
 
-def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    parser = subparsers.add_parser(
-        "record",
-        help="record a running simulator's topics into a ROS 1 bag",
-        description="Join the ROS master at ROS_MASTER_URI and record topics into a new bag "
-        "(every topic egosim publishes, by default) until Ctrl-C or --duration.",
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.description = (
+        "Join the ROS master at ROS_MASTER_URI and record topics into a new bag "
+        "(every topic egosim publishes, by default) until Ctrl-C or --duration."
     )
     parser.add_argument("bag", type=Path, metavar="BAG", help="the bag to write (must not exist)")
     parser.add_argument(

@@ -12,14 +12,12 @@ from ..maps import MapLoadError, load_map, map_names
 from ..replay import BagError, ReplayTopics
 
 
-def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    parser = subparsers.add_parser(
-        "report",
-        help="an HTML report (and PNGs) of a drive recorded in a bag",
-        description="Read a bag egosim recorded (egosim run --record, egosim record) and write "
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.description = (
+        "Read a bag egosim recorded (egosim run --record, egosim record) and write "
         "a self-contained HTML page: the ego's trajectory over the map, its speed, steering, "
         "pedals, lateral and heading error against the lane, with collisions and red lights "
-        "run marked on the time axis. Each figure is also written beside the page as a PNG.",
+        "run marked on the time axis. Each figure is also written beside the page as a PNG."
     )
     parser.add_argument("bag", type=Path, metavar="BAG", help="the recorded bag")
     parser.add_argument(

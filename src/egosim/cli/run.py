@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import logging
-import math
 import sys
 from pathlib import Path
 
@@ -15,22 +14,7 @@ from ..bridge import ClockMode
 from ..bridge.protocol.codes import ControlMode
 from ..msgs import DEFAULT_PROFILE, PROFILES
 from ..view import DEFAULT_HOST, DEFAULT_PORT, ViewOptions, live_view
-
-LOG_LEVELS = ("DEBUG", "INFO", "WARNING", "ERROR")
-
-
-def non_negative_float(text: str) -> float:
-    value = float(text)
-    if not (math.isfinite(value) and value >= 0):
-        raise argparse.ArgumentTypeError(f"expected a number >= 0, got {text}")
-    return value
-
-
-def positive_float(text: str) -> float:
-    value = non_negative_float(text)
-    if value == 0:
-        raise argparse.ArgumentTypeError("expected a number > 0")
-    return value
+from .arguments import LOG_LEVELS, non_negative_float, positive_float
 
 
 def port_number(text: str) -> int:
@@ -47,13 +31,11 @@ def parameter_assignment(text: str) -> tuple[str, str]:
     return name.strip(), value
 
 
-def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    parser = subparsers.add_parser(
-        "run",
-        help="start the simulator",
-        description="Start the simulator: joins the ROS master at ROS_MASTER_URI, or starts "
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.description = (
+        "Start the simulator: joins the ROS master at ROS_MASTER_URI, or starts "
         "one there when none answers. Extra ROS arguments (__name:=, __ns:=, from:=to) "
-        "are accepted after the options.",
+        "are accepted after the options."
     )
     parser.add_argument(
         "--map",

@@ -9,12 +9,10 @@ from ..bridge.protocol.network import load_network_settings
 from ..yamltext import YamlFileError
 
 
-def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    parser = subparsers.add_parser(
-        "topics",
-        help="print the effective topic/service table",
-        description="Every row of the MORAI protocol table as egosim will serve it, after "
-        "the network settings file's overrides.",
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.description = (
+        "Every row of the MORAI protocol table as egosim will serve it, after "
+        "the network settings file's overrides."
     )
     parser.add_argument("--network", metavar="PATH", help="network settings YAML file")
     parser.set_defaults(handler=run)
