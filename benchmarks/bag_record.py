@@ -21,8 +21,8 @@ from egosim.replay import BagRecorder, BagTimeline
 PROFILE = get_profile("26.r1")
 EGO = PROFILE.message("morai_msgs/EgoVehicleStatus")
 OBJECTS = PROFILE.message("morai_msgs/ObjectStatusList")
-OBJECT = PROFILE.store.types["morai_msgs/msg/ObjectStatus"]
-VECTOR = PROFILE.store.types["geometry_msgs/msg/Vector3"]
+OBJECT = PROFILE.message("morai_msgs/ObjectStatus").make
+VECTOR = PROFILE.message("geometry_msgs/Vector3").make
 OBJECTS_PER_LIST = 20
 
 

@@ -23,7 +23,7 @@ def every_type_of_every_release() -> list[tuple[str, str]]:
     return [
         (release, name)
         for release in PROFILES
-        for name in sorted(get_profile(release).store.fielddefs)
+        for name in sorted(get_profile(release).complete_store().fielddefs)
     ]
 
 

@@ -88,7 +88,7 @@ def times(rate_hz: int) -> list[float]:
 
 
 def vector(x: float, y: float, z: float) -> Any:
-    return PROFILE.store.types[VECTOR](x=x, y=y, z=z)
+    return PROFILE.message(VECTOR).make(x=x, y=y, z=z)
 
 
 def header(t: float, seq: int) -> Any:
@@ -115,7 +115,7 @@ def ego_message(t: float, seq: int) -> Any:
 
 def objects_message(t: float, seq: int) -> Any:
     lists: dict[str, list[Any]] = {"npc_list": [], "pedestrian_list": []}
-    status_type = PROFILE.store.types["morai_msgs/msg/ObjectStatus"]
+    status_type = PROFILE.message("morai_msgs/ObjectStatus").make
     for obj in MOVING_OBJECTS:
         if t >= obj.until_s:
             continue

@@ -31,7 +31,7 @@ COLLISION_S = 11.0
 
 
 def _vector(profile: Any, x: float, y: float, z: float = 0.0) -> Any:
-    return profile.store.types["geometry_msgs/msg/Vector3"](x=x, y=y, z=z)
+    return profile.message("geometry_msgs/Vector3").make(x=x, y=y, z=z)
 
 
 def _header(profile: Any, type_name: str, t: float) -> Any:

@@ -33,7 +33,7 @@ def _header(type_name: str, t: float) -> Any:
 
 
 def _object(unique_id: int, x: float) -> Any:
-    position = P26.store.types["geometry_msgs/msg/Vector3"](x=x, y=-1.75, z=0.0)
+    position = P26.message("geometry_msgs/Vector3").make(x=x, y=-1.75, z=0.0)
     name = {BARRIER: "Barrier", CONE: "Cone"}[unique_id]
     return OBJECT.new(unique_id=unique_id, type=2, name=name, position=position)
 

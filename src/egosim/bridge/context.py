@@ -17,7 +17,6 @@ from typing import TYPE_CHECKING, Protocol, TypeVar
 
 from ..logthrottle import LogThrottle
 from ..msgs import TypedMessageType
-from ..msgs.typed import standard
 from ..replay import ReplaySession
 from ..world import World
 from ..world.traffic import ObjectTable, SceneObjects
@@ -27,13 +26,14 @@ from .egos.angle_rates import AngleRates
 from .pipeline import Tick, TickPipeline
 from .protocol.messages import header
 from .protocol.network import NetworkSettings
-from .protocol.releases import CanonicalProfile
 from .protocol.table import Row
 from .sensors.sensor_rig import SensorRig
 from .sync.sync_session import SyncSession
 
 if TYPE_CHECKING:
+    from ..msgs.typed import standard
     from ..world import Ego
+    from .protocol.releases import CanonicalProfile
     from .sensors.camera_rig import CameraRig
 
 log = logging.getLogger(__name__)

@@ -15,12 +15,11 @@ import dataclasses
 import logging
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Protocol, TypeVar
+from typing import TYPE_CHECKING, Protocol, TypeVar
 
 from ..logthrottle import LogThrottle
 from ..msgs import MessageType, MsgsError, TypedMessageType, get_profile
 from ..msgs.packing import restamped
-from ..msgs.typed import standard
 from ..ros1 import (
     BadRequestError,
     ConnectionRefusedByPeerError,
@@ -36,7 +35,6 @@ from .protocol.messages import time_msg
 from .protocol.network import NetworkSettings
 from .protocol.releases import (
     CANONICAL_PROFILE,
-    CanonicalProfile,
     Release,
     ServiceRelease,
     canonical,
@@ -49,6 +47,10 @@ from .protocol.releases import (
 from .protocol.table import Direction, Row
 from .rate_schedule import RateSchedule
 from .receivers import Receiver, handler
+
+if TYPE_CHECKING:
+    from ..msgs.typed import standard
+    from .protocol.releases import CanonicalProfile
 
 log = logging.getLogger(__name__)
 throttle = LogThrottle(log)

@@ -13,12 +13,15 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Generic, Protocol, TypeVar
+from typing import TYPE_CHECKING, Generic, Protocol, TypeVar
 
 from ..msgs import MessageType, TypedMessageType
 from .context import BridgeContext
-from .protocol.releases import CanonicalProfile, convert
+from .protocol.releases import convert
 from .protocol.table import Row
+
+if TYPE_CHECKING:
+    from .protocol.releases import CanonicalProfile
 
 M = TypeVar("M")
 """The message or request a handler takes (a type of egosim.msgs.typed)."""

@@ -190,17 +190,17 @@ def imports(body: str, extra: list[str]) -> str:
 
 def standard_module() -> str:
     profiles = [get_profile(name) for name in PROFILES]
-    store = profiles[0].store
+    store = profiles[0].complete_store()
     roots = [
         name
         for profile in profiles
-        for name in closure(profile.store, own_types(profile.name))
+        for name in closure(profile.complete_store(), own_types(profile.name))
         if is_standard(name)
     ]
     names = closure(store, sorted({*roots, *map(_store_name, STANDARD_TYPES + BRIDGE_TYPES)}))
     for profile in profiles[1:]:
         for name in names:
-            assert profile.store.fielddefs[name] == store.fielddefs[name], name
+            assert profile.complete_store().fielddefs[name] == store.fielddefs[name], name
     assert len({class_name(n) for n in names}) == len(names), "standard names collide"
     body = "\n\n".join(protocol(store, name, "", qualify=False) for name in names)
     head = HEADER.format(title="The ROS standard types morai_msgs embeds and egosim publishes.")
@@ -213,8 +213,7 @@ def _store_name(ros_name: str) -> str:
 
 
 def release_module(release: str) -> str:
-    profile = get_profile(release)
-    store = profile.store
+    store = get_profile(release).complete_store()
     names = own_types(release)
     standard = closure(store, [*names, *map(_store_name, STANDARD_TYPES + BRIDGE_TYPES)])
     standard = [name for name in standard if is_standard(name)]

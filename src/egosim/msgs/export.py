@@ -77,9 +77,10 @@ def package_files(profile: Profile) -> dict[str, str]:
 def dependency_packages(profile: Profile) -> list[str]:
     """The packages morai_msgs' types embed (std_msgs, geometry_msgs), sorted."""
     packages: set[str] = set()
-    for store_name in profile.store.fielddefs:
+    store = profile.complete_store()
+    for store_name in store.fielddefs:
         if store_name.startswith(f"{PACKAGE}/"):
-            for dep in fulltext.all_depends(profile.store, store_name):
+            for dep in fulltext.all_depends(store, store_name):
                 if dep not in fulltext.BUILTIN_TIME_TYPES:
                     packages.add(dep.split("/")[0])
     packages.discard(PACKAGE)
@@ -125,7 +126,7 @@ def dependency_sources(profile: Profile, package: str) -> dict[str, str]:
     prefix = f"{package}/msg/"
     return {
         f"msg/{store_name[len(prefix) :]}.msg": profile.own_text(store_name)
-        for store_name in profile.store.fielddefs
+        for store_name in profile.complete_store().fielddefs
         if store_name.startswith(prefix)
     }
 

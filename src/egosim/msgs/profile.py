@@ -1,13 +1,18 @@
-"""A protocol profile: every type of one morai_msgs release plus the ROS standard types."""
+"""A protocol profile: every type of one morai_msgs release plus the ROS standard types,
+each parsed on its first use."""
 
 from __future__ import annotations
 
 import functools
+import threading
+from collections.abc import Iterable
 from typing import TYPE_CHECKING, Literal, overload
 
+from rosbags.interfaces import Nodetype
 from rosbags.interfaces.typing import Typesdict
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from rosbags.typesys.msg import denormalize_msgtype, normalize_msgtype
+from rosbags.typesys.store import Typestore
 
 from . import fulltext
 from .definitions import (
@@ -52,59 +57,99 @@ STANDARD_TYPES: tuple[str, ...] = (
 
 
 class Profile:
-    """Every type of one protocol release, ready to serialise."""
+    """Every type of one protocol release, ready to serialise.
+
+    A type's definition is parsed when the type is first used (`message`, `service`,
+    `own_text`), together with the types its fields name, so that a process pays only
+    for the types it uses; `complete_store` parses every one, for what lists them all.
+    A malformed definition raises DefinitionError, naming the type, on its first use
+    (or on the first use of a type that embeds it). A profile is shared by threads: the
+    parsing is serialised by a lock."""
 
     def __init__(self, name: str) -> None:
         self.name = name
-        self.store = get_typestore(Stores.ROS1_NOETIC)
-        self._own_texts: dict[str, str] = {}
+        self._store = get_typestore(Stores.ROS1_NOETIC)
+        # every message and service half the release ships, by store name: its own text
+        self._texts: dict[str, str] = {}
         self._package_messages: list[str] = []
         self._services: dict[str, ServiceText] = {}
-        types: Typesdict = {}
         for package in load_package_definitions(name):
             for short, text in package.messages.items():
                 ros_name = f"{package.package}/{short}"
-                types.update(self._parse(text, ros_name))
+                self._texts[normalize_msgtype(ros_name)] = text
                 self._package_messages.append(ros_name)
             for short, srv in package.services.items():
                 ros_name = f"{package.package}/{short}"
-                types.update(self._parse(srv.request, f"{ros_name}Request"))
-                types.update(self._parse(srv.response, f"{ros_name}Response"))
+                self._texts[normalize_msgtype(f"{ros_name}Request")] = srv.request
+                self._texts[normalize_msgtype(f"{ros_name}Response")] = srv.response
                 self._services[ros_name] = srv
-        self.store.register(types)
+        self._parsing = threading.RLock()
+        self._complete = False
         self._messages: dict[str, MessageType[object]] = {}
 
-    def _parse(self, text: str, ros_name: str) -> Typesdict:
-        store_name = normalize_msgtype(ros_name)
+    def _require(self, store_names: Iterable[str]) -> None:
+        """Parse and register each of `store_names` the release ships and every shipped
+        type their fields name that is not registered yet; rosbags' own types always are."""
+        with self._parsing:
+            parsed: Typesdict = {}
+            todo = list(store_names)
+            while todo:
+                store_name = todo.pop()
+                if (
+                    store_name in parsed
+                    or store_name in self._store.fielddefs
+                    or store_name not in self._texts
+                ):
+                    continue
+                parsed.update(self._parse(store_name))
+                for _, desc in parsed[store_name][1]:
+                    element = fulltext.element_desc(desc)
+                    if element[0] == Nodetype.NAME:
+                        todo.append(element[1])
+            if parsed:
+                self._store.register(parsed)
+
+    def _parse(self, store_name: str) -> Typesdict:
         try:
-            parsed = get_types_from_msg(text, store_name)
+            return get_types_from_msg(self._texts[store_name], store_name)
         except Exception as exc:
+            ros_name = denormalize_msgtype(store_name)
             raise DefinitionError(f"{self.name}: cannot parse {ros_name}: {exc}") from exc
-        self._own_texts[store_name] = text
-        return parsed
+
+    def complete_store(self) -> Typestore:
+        """The rosbags store with every type of the release parsed, for what goes through
+        them all; the first call parses every type not used yet."""
+        with self._parsing:
+            if not self._complete:
+                self._require(self._texts)
+                self._complete = True
+        return self._store
 
     def own_text(self, store_name: str) -> str:
         """The definition of `store_name` alone (`pkg/msg/Name`), as its .msg file has it."""
-        if store_name in self._own_texts:
-            return self._own_texts[store_name]
-        return self.store.gendefhash(store_name, {})[0]
+        if store_name in self._texts:
+            self._require([store_name])
+            return self._texts[store_name]
+        return self._store.gendefhash(store_name, {})[0]
 
     def message(self, name: str) -> MessageType[object]:
         """The message type `pkg/Name` (also accepts rosbags' `pkg/msg/Name`)."""
         if found := self._messages.get(name):  # the hot path: builders ask per message
             return found
         ros_name = denormalize_msgtype(normalize_msgtype(name))
-        if ros_name not in self._messages:
-            store_name = normalize_msgtype(ros_name)
-            if store_name not in self.store.fielddefs:
-                raise UnknownTypeError(f"no message type {name!r} in profile {self.name}")
-            self._messages[ros_name] = MessageType(
-                name=ros_name,
-                md5sum=self.store.generate_msgdef(store_name)[1],
-                definition=fulltext.full_text(self.store, store_name, self.own_text),
-                store=self.store,
-            )
-        self._messages[name] = self._messages[ros_name]
+        with self._parsing:
+            if ros_name not in self._messages:
+                store_name = normalize_msgtype(ros_name)
+                if store_name not in self._texts and store_name not in self._store.fielddefs:
+                    raise UnknownTypeError(f"no message type {name!r} in profile {self.name}")
+                self._require([store_name])
+                self._messages[ros_name] = MessageType(
+                    name=ros_name,
+                    md5sum=self._store.generate_msgdef(store_name)[1],
+                    definition=fulltext.full_text(self._store, store_name, self.own_text),
+                    store=self._store,
+                )
+            self._messages[name] = self._messages[ros_name]
         return self._messages[name]
 
     def service(self, name: str) -> ServiceType[object, object]:
@@ -115,7 +160,7 @@ class Profile:
         srv = self._services[name]
         return ServiceType(
             name=name,
-            md5sum=fulltext.service_md5(self.store, request.store_name, response.store_name),
+            md5sum=fulltext.service_md5(self._store, request.store_name, response.store_name),
             request=request,
             response=response,
             definition=f"{srv.request}{SERVICE_SEPARATOR}\n{srv.response}",
@@ -129,7 +174,7 @@ class Profile:
         halves = {f"{srv}{half}" for srv in self._services for half in ("Request", "Response")}
         known = [
             ros_name
-            for store_name in self.store.fielddefs
+            for store_name in self.complete_store().fielddefs
             if not store_name.startswith(ROSBAGS_INTERNAL)
             and (ros_name := denormalize_msgtype(store_name)) not in halves
         ]

@@ -8,16 +8,21 @@ or lacks) the type checker makes the reader handle.
 
 from __future__ import annotations
 
-from typing import Literal, Protocol, TypeVar, get_args
+from typing import TYPE_CHECKING, Literal, Protocol, TypeVar, get_args
 
 from egosim.msgs import get_profile
-from egosim.msgs.typed import morai_24_r2, morai_26_r1, morai_2021_08
 
 from .errors import UnsupportedReleaseError
 
+if TYPE_CHECKING:
+    from egosim.msgs.typed import morai_24_r2, morai_26_r1, morai_2021_08
+
+    BagRelease = (
+        morai_26_r1.ReleaseProfile | morai_24_r2.ReleaseProfile | morai_2021_08.ReleaseProfile
+    )
+
 M_co = TypeVar("M_co", covariant=True)
 
-BagRelease = morai_26_r1.ReleaseProfile | morai_24_r2.ReleaseProfile | morai_2021_08.ReleaseProfile
 ReleaseName = Literal["26.r1", "24.r2", "2021.08"]
 RELEASE_NAMES: tuple[ReleaseName, ...] = get_args(ReleaseName)
 """Every release egosim speaks (egosim.msgs.PROFILES), newest first."""

@@ -7,7 +7,7 @@ import os
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Final, Generic, Protocol, TypeVar
+from typing import TYPE_CHECKING, Final, Generic, Protocol, TypeVar
 
 import numpy as np
 from rosbags.interfaces import Connection
@@ -19,9 +19,13 @@ from egosim.msgs import PROFILES, MsgsError
 from .errors import BagError, BagInUseError, MissingTopicsError, UnsupportedReleaseError
 from .frame import ReplayFrame
 from .recordings import is_recording
-from .releases import BagRelease, Decoder, bag_release
+from .releases import Decoder, bag_release
 from .repair import needs_repair, repair_bag
-from .tracks import ControlTrack, CtrlCmd, EgoStatus, EgoTrack, ObjectList, ObjectTrack
+from .tracks import ControlTrack, EgoTrack, ObjectTrack
+
+if TYPE_CHECKING:
+    from .releases import BagRelease
+    from .tracks import CtrlCmd, EgoStatus, ObjectList
 
 log = logging.getLogger(__name__)
 

@@ -10,26 +10,28 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import overload
+from typing import TYPE_CHECKING, overload
 
 import numpy as np
 
-from egosim.msgs.typed import morai_24_r2, morai_26_r1, morai_2021_08, standard
 from egosim.world.arrays import FloatArray
 
 from .frame import ControlCommand, EgoState, ObjectState, Vector
 
-EgoStatus = (
-    morai_26_r1.EgoVehicleStatus | morai_24_r2.EgoVehicleStatus | morai_2021_08.EgoVehicleStatus
-)
-"""An EgoVehicleStatus of any release (before 26.r1: the front steer is `wheel_angle`, and
-there is no rear steer)."""
-ObjectList = (
-    morai_26_r1.ObjectStatusList | morai_24_r2.ObjectStatusList | morai_2021_08.ObjectStatusList
-)
-CtrlCmd = morai_26_r1.CtrlCmd | morai_24_r2.CtrlCmd | morai_2021_08.CtrlCmd
-"""A CtrlCmd of any release (before 26.r1: the front steer is `steering`, and there is no
-rear steer)."""
+if TYPE_CHECKING:
+    from egosim.msgs.typed import morai_24_r2, morai_26_r1, morai_2021_08, standard
+
+    EgoStatus = (
+        morai_26_r1.EgoVehicleStatus | morai_24_r2.EgoVehicleStatus | morai_2021_08.EgoVehicleStatus
+    )
+    """An EgoVehicleStatus of any release (before 26.r1: the front steer is `wheel_angle`,
+    and there is no rear steer)."""
+    ObjectList = (
+        morai_26_r1.ObjectStatusList | morai_24_r2.ObjectStatusList | morai_2021_08.ObjectStatusList
+    )
+    CtrlCmd = morai_26_r1.CtrlCmd | morai_24_r2.CtrlCmd | morai_2021_08.CtrlCmd
+    """A CtrlCmd of any release (before 26.r1: the front steer is `steering`, and there is
+    no rear steer)."""
 
 KMH_TO_MS = 1.0 / 3.6
 TWO_PI = 2.0 * math.pi

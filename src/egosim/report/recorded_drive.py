@@ -8,7 +8,7 @@ import os
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Final
+from typing import TYPE_CHECKING, Final
 
 import numpy as np
 from rosbags.interfaces import Connection
@@ -16,18 +16,24 @@ from rosbags.rosbag1 import Reader, ReaderError
 from rosbags.typesys.msg import denormalize_msgtype
 
 from egosim.msgs import PROFILES, MsgsError
-from egosim.msgs.typed import morai_24_r2, morai_26_r1, morai_2021_08, standard
 from egosim.replay import DEFAULT_TOPICS, BagError, BagTimeline, MissingTopicsError, ReplayTopics
-from egosim.replay.releases import BagRelease, bag_release
+from egosim.replay.releases import bag_release
 from egosim.world.arrays import FloatArray
 from egosim.world.collision import ContactTracker
+
+if TYPE_CHECKING:
+    from egosim.msgs.typed import morai_24_r2, morai_26_r1, morai_2021_08, standard
+    from egosim.replay.releases import BagRelease
+
+    CollisionData = (
+        morai_26_r1.CollisionData | morai_24_r2.CollisionData | morai_2021_08.CollisionData
+    )
+    """A CollisionData of any release."""
 
 log = logging.getLogger(__name__)
 
 COLLISION_TYPE: Final = "morai_msgs/CollisionData"
 LIGHT_STATUS_TYPE: Final = "morai_msgs/GetTrafficLightStatus"
-CollisionData = morai_26_r1.CollisionData | morai_24_r2.CollisionData | morai_2021_08.CollisionData
-"""A CollisionData of any release."""
 #: The ego's side of each contact pair the tracker follows (one topic: one ego).
 EGO_SIDE = -1
 

@@ -6,12 +6,15 @@ import dataclasses
 import logging
 import threading
 from functools import cache
+from typing import TYPE_CHECKING
 
 from egosim.msgs import DEFAULT_PROFILE, get_profile
-from egosim.msgs.typed import standard
 
 from .errors import NodeShutdownError
 from .publication import Publisher
+
+if TYPE_CHECKING:
+    from egosim.msgs.typed import standard
 
 ROSOUT_TOPIC = "/rosout"
 _LEVELS = ((logging.CRITICAL, 16), (logging.ERROR, 8), (logging.WARNING, 4), (logging.INFO, 2))

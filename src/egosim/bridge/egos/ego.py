@@ -5,17 +5,19 @@ Frames and units of every EgoVehicleStatus field are listed in docs/protocol.md.
 
 from __future__ import annotations
 
-from typing import TypedDict
+from typing import TYPE_CHECKING, TypedDict
 
-from ...msgs.typed import morai_26_r1, standard
 from ...world import EgoLaneState
 from ...world.vehicle import ControlCommand, Vehicle, VehicleStatus
 from ..context import MAP_FRAME, BridgeContext
 from ..protocol.messages import vector3
-from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
 from ..protocol.units import deg, heading_deg, mps
 from .ground_vehicle import commanded_vehicle
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1, standard
+    from ..protocol.releases import CanonicalProfile
 
 
 class EgoMotionFields(TypedDict):

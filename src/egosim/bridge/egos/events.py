@@ -11,13 +11,16 @@ from __future__ import annotations
 
 import logging
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
-from ...msgs.typed import morai_26_r1
 from ...world.vehicle import Gear
 from ..context import BridgeContext
 from ..ego_session import Lamps
 from ..protocol.codes import ControlMode
 from ..protocol.table import Row
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1
 
 log = logging.getLogger(__name__)
 

@@ -11,10 +11,10 @@ Wheel speeds are the speed of each wheel's contact point along the wheel's headi
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ...msgs.typed import morai_26_r1
 from ...sensors.rotation import quaternion_from_euler
 from ...world.map.projection import LaneProjections
 from ...world.traffic import ObjectState
@@ -25,6 +25,9 @@ from ..protocol.table import Row
 from ..protocol.units import deg
 from ..scene.objects import object_status_fields
 from .ego import ego_motion_fields
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1
 
 FRONT, REAR = 0, 1
 

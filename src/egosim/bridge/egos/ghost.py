@@ -16,8 +16,8 @@ from __future__ import annotations
 
 import logging
 import math
+from typing import TYPE_CHECKING
 
-from ...msgs.typed import morai_26_r1
 from ...world.traffic.ghosts import GhostPlacement, NpcGhosts, TurnSignal
 from ...world.vehicle import (
     ControlCommand,
@@ -31,6 +31,9 @@ from ..context import BridgeContext
 from ..protocol.table import Row
 from ..protocol.units import mps, rad
 from .ground_vehicle import commanded_main_vehicle
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1
 
 log = logging.getLogger(__name__)
 

@@ -8,9 +8,8 @@ Semantics and codes are listed in docs/protocol.md.
 
 from __future__ import annotations
 
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
-from ...msgs.typed import morai_26_r1, standard
 from ...world.vehicle import (
     BodyVelocityCommand,
     SideEffortCommand,
@@ -20,6 +19,9 @@ from ...world.vehicle import (
 from ..context import BridgeContext
 from ..protocol.codes import ControlMode
 from ..protocol.table import Row
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1, standard
 
 VehicleT = TypeVar("VehicleT", Vehicle, SkidSteerVehicle)
 

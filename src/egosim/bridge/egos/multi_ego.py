@@ -19,8 +19,8 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
-from ...msgs.typed import morai_26_r1
 from ...world.vehicle import Gear, Pose
 from ..context import BridgeContext, RowBinder
 from ..ego_session import Lamps
@@ -28,6 +28,9 @@ from ..protocol.codes import ControlMode
 from ..protocol.table import Row
 from ..protocol.units import mps, rad
 from .ego import drive_with_ctrl_cmd, ego_status_of
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1
 
 log = logging.getLogger(__name__)
 

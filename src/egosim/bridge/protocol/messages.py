@@ -8,9 +8,11 @@ work out defaults that none of them needs.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
-from ...msgs.typed import standard
-from .releases import CanonicalProfile
+if TYPE_CHECKING:
+    from ...msgs.typed import standard
+    from .releases import CanonicalProfile
 
 
 def vector3(profile: CanonicalProfile, xyz: Sequence[float]) -> standard.Vector3:

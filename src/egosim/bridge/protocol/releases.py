@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Final, TypeVar, cast
+from typing import TYPE_CHECKING, Final, TypeVar, cast
 
 from rosbags.interfaces import Nodetype
 from rosbags.interfaces.typing import FieldDesc
@@ -24,12 +24,15 @@ from ...msgs import PROFILES, MessageType, ServiceType, UnknownTypeError, get_pr
 from ...msgs.defaults import default_message
 from ...msgs.fulltext import BUILTIN_TIME_TYPES, element_desc
 from ...msgs.message_type import TypedMessageType
-from ...msgs.typed import morai_26_r1
 from ...msgs.values import FieldValue, Message
 
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1
+
+    CanonicalProfile = morai_26_r1.ReleaseProfile
+    """The profile handlers build and read, typed: each type's fields are known."""
+
 CANONICAL_PROFILE: Final = "26.r1"
-CanonicalProfile = morai_26_r1.ReleaseProfile
-"""The profile handlers build and read, typed: each type's fields are known."""
 
 Source = TypeVar("Source")
 Target = TypeVar("Target")

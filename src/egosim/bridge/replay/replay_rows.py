@@ -11,9 +11,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import TypedDict
+from typing import TYPE_CHECKING, TypedDict
 
-from ...msgs.typed import morai_26_r1, standard
 from ...replay import BagTimeline, CommandResult, Mode, ObjectState, ReplayTopics
 from ...sensors.rotation import quaternion_from_euler
 from ...world.traffic import ObjectType
@@ -24,6 +23,9 @@ from ..protocol.table import Row
 from ..protocol.units import deg
 from ..scene.objects import object_status
 from .replayed_scene import recorded_scene, shows_nothing_recorded, world_objects
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1, standard
 
 # The yaw rate ReplayInfo reports is the slope of the recorded heading over this span (s).
 YAW_RATE_SPAN_S = 0.002

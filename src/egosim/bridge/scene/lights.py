@@ -10,11 +10,14 @@ is where a differing release would differ.
 from __future__ import annotations
 
 import logging
+from typing import TYPE_CHECKING
 
-from ...msgs.typed import morai_26_r1
 from ...world.signals import OFF, SignalError
 from ..context import MAP_FRAME, BridgeContext
 from ..protocol.table import Row
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1
 
 log = logging.getLogger(__name__)
 

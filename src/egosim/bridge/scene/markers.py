@@ -15,11 +15,11 @@ import functools
 import math
 from collections import defaultdict
 from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
 
-from ...msgs.typed import standard
 from ...sensors.rotation import Quaternion, quaternion_from_euler
 from ...world.map import LaneMap
 from ...world.map.sections import lane_cross_section
@@ -27,8 +27,11 @@ from ...world.signals.aspects import shown_colour
 from ...world.traffic import ObjectType
 from ..context import MAP_FRAME, BridgeContext
 from ..protocol.messages import header, point, quaternion, vector3
-from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
+
+if TYPE_CHECKING:
+    from ...msgs.typed import standard
+    from ..protocol.releases import CanonicalProfile
 
 LIFETIME_PERIODS = 5
 """Moving markers live this many periods of the row (0.5 s at 10 Hz): a missed message does

@@ -10,19 +10,21 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
-from typing import TypedDict
+from typing import TYPE_CHECKING, TypedDict
 
 import numpy as np
 
-from ...msgs.typed import morai_26_r1, standard
 from ...world.arrays import IntArray
 from ...world.collision import VehicleCollision
 from ...world.traffic import ObjectState, ObjectTable
 from ..context import MAP_FRAME, BridgeContext
 from ..protocol.messages import vector3
-from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
 from ..protocol.units import heading_deg, kmh, swap_length_width
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1, standard
+    from ..protocol.releases import CanonicalProfile
 
 
 def to_object_frame(vector: Sequence[float], heading: float) -> tuple[float, float, float]:

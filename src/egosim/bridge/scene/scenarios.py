@@ -14,10 +14,9 @@ from __future__ import annotations
 import logging
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Generic, Protocol, TypeVar
+from typing import TYPE_CHECKING, Generic, Protocol, TypeVar
 
 from ...datapaths import PathOutsideRootsError, resolve_in_roots
-from ...msgs.typed import morai_26_r1
 from ...scenario_files import SCENARIO_SUFFIXES, read_scenario_file
 from ...world.scenario import Scenario, ScenarioError, ScenarioLoadOptions, ScenarioLoadReport
 from ...yamltext import YamlFileError
@@ -27,6 +26,13 @@ from ..protocol.table import Row
 from ..sensors.sensor_rig import sensor_rig_of
 from .storyboard import scenario_drives_ego
 
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1
+
+    ScenarioLoadFields = morai_26_r1.ScenarioLoad | morai_26_r1.SyncModeScenarioLoad
+    """A scenario-loading request: the topic's message or the sync-mode service's, which
+    share the fields read here."""
+
 log = logging.getLogger(__name__)
 
 
@@ -34,13 +40,8 @@ class ScenarioRequestError(Exception):
     """A ScenarioLoad request that cannot be honoured; the message says why."""
 
 
-ScenarioLoadFields = morai_26_r1.ScenarioLoad | morai_26_r1.SyncModeScenarioLoad
-"""A scenario-loading request: the topic's message or the sync-mode service's, which share
-the fields read here."""
-
-
-Load = TypeVar("Load", bound=ScenarioLoadFields)
-Load_co = TypeVar("Load_co", bound=ScenarioLoadFields, covariant=True)
+Load = TypeVar("Load", bound="ScenarioLoadFields")
+Load_co = TypeVar("Load_co", bound="ScenarioLoadFields", covariant=True)
 
 
 class LoadingRequest(Protocol[Load_co]):

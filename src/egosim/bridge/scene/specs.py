@@ -3,19 +3,22 @@
 from __future__ import annotations
 
 import logging
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ...msgs.typed import morai_26_r1
 from ...world import World
 from ...world.map.georef import GeoReference
 from ...world.traffic import ObjectType
 from ...world.vehicle import VEHICLE_CATALOGUE, GroundVehicleModel, VehicleModel
 from ..context import BridgeContext
 from ..protocol.messages import vector3
-from ..protocol.releases import CanonicalProfile
 from ..protocol.table import Row
 from ..protocol.units import deg
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1
+    from ..protocol.releases import CanonicalProfile
 
 log = logging.getLogger(__name__)
 

@@ -23,7 +23,6 @@ from typing import TYPE_CHECKING, Final
 
 import numpy as np
 
-from ...msgs.typed import standard
 from ...sensors.camera import CameraMode
 from ...sensors.image_encoding import depth_bytes
 from ..context import BridgeContext
@@ -34,6 +33,7 @@ from ..rate_schedule import RateSchedule
 from .sensor_rig import optical_frame
 
 if TYPE_CHECKING:
+    from ...msgs.typed import standard
     from ..core import Bridge, Builder
 
 log = logging.getLogger(__name__)

@@ -15,14 +15,17 @@ from __future__ import annotations
 import json
 import logging
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ...datapaths import PathOutsideRootsError, resolve_in_roots
-from ...msgs.typed import morai_26_r1
 from ...sensors import encode_pcd, gps_imu_snapshot
 from ...sensors.camera import CameraMode
 from ...sensors.image_encoding import ImageFormat, encode_depth_tiff, encode_image
 from ..context import BridgeContext
 from ..protocol.table import Row
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1
 
 log = logging.getLogger(__name__)
 

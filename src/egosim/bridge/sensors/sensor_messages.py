@@ -4,17 +4,20 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
 
-from ...msgs.typed import morai_26_r1, standard
 from ...sensors import GpsFix, ImuReading, Transform
 from ...sensors.imu import Covariance
 from ...sensors.radar import RadarDetections
 from ..protocol.messages import point, quaternion, vector3
-from ..protocol.releases import CanonicalProfile
 from ..protocol.units import deg
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1, standard
+    from ..protocol.releases import CanonicalProfile
 
 POINT_FIELDS = ("x", "y", "z", "intensity")
 FLOAT32 = 7  # sensor_msgs/PointField datatype code

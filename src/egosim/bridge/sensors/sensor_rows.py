@@ -10,12 +10,15 @@ sensor's frame_id.
 from __future__ import annotations
 
 import logging
+from typing import TYPE_CHECKING
 
-from ...msgs.typed import morai_26_r1, standard
 from ..context import BridgeContext
 from ..protocol.table import Row
 from .sensor_messages import gps_message, imu_message, point_cloud, radar_message, tf_bytes
 from .sensor_rig import GPS_INDEX, IMU_INDEX, LIDAR_INDEX, finite_mount
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1, standard
 
 log = logging.getLogger(__name__)
 

@@ -34,9 +34,9 @@ from __future__ import annotations
 
 import logging
 from contextlib import nullcontext
+from typing import TYPE_CHECKING
 
 from ...msgs import Message, get_profile
-from ...msgs.typed import morai_26_r1, morai_2021_08
 from ...world.vehicle import Gear
 from ..context import BridgeContext
 from ..egos.ego import ego_status_of, on_ctrl_cmd
@@ -44,6 +44,9 @@ from ..protocol.releases import CANONICAL_PROFILE, convert
 from ..protocol.table import Row
 from ..scene.scenarios import ScenarioRequest, ScenarioRequestError, load_requested_scenario
 from .sync_session import MAX_PENDING_ACTIONS, Action, SyncSession
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1, morai_2021_08
 
 log = logging.getLogger(__name__)
 

@@ -11,13 +11,16 @@ from __future__ import annotations
 
 import logging
 import math
+from typing import TYPE_CHECKING
 
-from ...msgs.typed import morai_26_r1
 from ...world import UnknownObjectModelError
 from ..context import BridgeContext
 from ..protocol.table import Row
 from ..protocol.units import rad
 from .sync_mode import at_frame, result_message, service_response
+
+if TYPE_CHECKING:
+    from ...msgs.typed import morai_26_r1
 
 log = logging.getLogger(__name__)
 
