@@ -104,5 +104,4 @@ def run(args: argparse.Namespace) -> int:
         # Imported once the workers have started: they import (0.9 s) beside the driver.
         from .batch_run import run_batch  # noqa: PLC0415
 
-        ray_address = None if args.ray in (None, LOCAL_RAY) else args.ray
-        return run_batch(args, workers, early, ray_address)
+        return run_batch(args, workers, early)

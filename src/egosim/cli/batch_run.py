@@ -32,6 +32,7 @@ from ..batch.results import (
 )
 from ..batch.suite import load_suite, scenario_suite
 from ..scenario_files import is_morai_scenario, is_openscenario
+from .batch import LOCAL_RAY
 
 EXIT_ALL_PASSED = 0
 EXIT_SOME_FAILED = 1
@@ -47,12 +48,9 @@ def selected(cases: list[CaseSpec], patterns: list[str]) -> list[CaseSpec]:
     ]
 
 
-def run_batch(
-    args: argparse.Namespace, workers: int, early: EarlyWorkers, ray_address: str | None
-) -> int:
+def run_batch(args: argparse.Namespace, workers: int, early: EarlyWorkers) -> int:
     """The batch `args` ask for: its cases run by `workers` local slots, which take their
-    simulator workers from `early`, or on the Ray cluster at `ray_address` (None: the one
-    `ray start` left running here, else a new local one) with --ray."""
+    simulator workers from `early`, or on Ray with --ray."""
     try:
         if is_openscenario(args.suite) or is_morai_scenario(args.suite):
             if not args.stack:
@@ -75,7 +73,7 @@ def run_batch(
     interrupt = Interrupt()
     with interrupted_by_signals(interrupt) as reinstall:
         started = time.monotonic()
-        new = _run_cases(args, to_run, out_dir, workers, early, ray_address, interrupt, reinstall)
+        new = _run_cases(args, to_run, out_dir, workers, early, interrupt, reinstall)
         return _report(args, cases, to_run, results, new, out_dir, workers, interrupt, started)
 
 
@@ -85,7 +83,6 @@ def _run_cases(
     out_dir: Path,
     workers: int,
     early: EarlyWorkers,
-    ray_address: str | None,
     interrupt: Interrupt,
     reinstall: Callable[[], None],
 ) -> dict[str, Result]:
@@ -103,7 +100,8 @@ def _run_cases(
             bar.update(done, failures, running)
 
         if args.ray is not None:
-            run_ray(to_run, str(out_dir), ray_address, on_result, new, interrupt, reinstall)
+            address = None if args.ray == LOCAL_RAY else args.ray
+            run_ray(to_run, str(out_dir), address, on_result, new, interrupt, reinstall)
         else:
             run_local(to_run, str(out_dir), workers, on_result, new, interrupt, early)
     return new
