@@ -6,6 +6,8 @@ import argparse
 import math
 
 LOG_LEVELS = ("DEBUG", "INFO", "WARNING", "ERROR")
+LOCAL_RAY = "local"
+"""`egosim batch --ray` with no address: a Ray instance on this machine."""
 
 
 def non_negative_float(text: str) -> float:

@@ -11,8 +11,7 @@ from pathlib import Path
 from ..app.exit_codes import EXIT_BAD_INPUT
 from ..batch.case import DEFAULT_TIME_LIMIT_S
 from ..batch.early_workers import EarlyWorkers, default_workers
-
-LOCAL_RAY = "local"
+from .arguments import LOCAL_RAY
 
 
 def positive_int(text: str) -> int:

@@ -32,7 +32,7 @@ from ..batch.results import (
 )
 from ..batch.suite import load_suite, scenario_suite
 from ..scenario_files import is_morai_scenario, is_openscenario
-from .batch import LOCAL_RAY
+from .arguments import LOCAL_RAY
 
 EXIT_ALL_PASSED = 0
 EXIT_SOME_FAILED = 1
