@@ -76,14 +76,23 @@ def test_a_suite_that_does_not_load_ends_the_workers_started_for_it(
     with pytest.raises(SuiteError) as expected:
         load_suite(suite)
     running_while_loading: list[list[str]] = []
+    started = min(2, default_workers())
 
     def load_suite_watched(path: Path) -> list[CaseSpec]:
-        running_while_loading.append(workers_in(tmp_path))
+        # A worker may be between its launcher's exec and its own (its command line not
+        # readable for that instant): looked for again until the deadline.
+        running_while_loading.append(
+            until(
+                lambda: found if len(found := workers_in(tmp_path)) == started else None,
+                f"{started} workers running while the suite loads",
+                10,
+            )
+        )
         return load_suite(path)
 
     monkeypatch.setattr(batch_run, "load_suite", load_suite_watched)
     monkeypatch.chdir(tmp_path)  # where the workers start
     assert main(["batch", str(suite), "--workers", "2"]) == EXIT_BAD_INPUT
     assert capsys.readouterr().err == f"egosim batch: {expected.value}\n"
-    assert [len(found) for found in running_while_loading] == [min(2, default_workers())]
+    assert [len(found) for found in running_while_loading] == [started]
     assert workers_in(tmp_path) == []
