@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import contextlib
 import threading
+import time
 from collections.abc import Iterator
 from typing import Any
 from xmlrpc.server import SimpleXMLRPCServer
@@ -13,6 +14,7 @@ import pytest
 
 from egosim.ros1 import Master, MasterClient, MasterError, MasterUnreachableError
 from egosim.ros1.errors import MulticallUnsupportedError
+from egosim.ros1.node import MASTER_PROBE_TIMEOUT_S
 from tests.conftest import free_port
 from tests.ros1.helpers import PROFILE, STRING, string_bytes, string_text, wait_until
 
@@ -244,6 +246,23 @@ def serving(api: dict[str, Any], multicall: bool) -> Iterator[str]:
     finally:
         server.shutdown()
         server.server_close()
+
+
+def test_a_node_that_needs_a_master_waits_for_a_slow_one(make_node):
+    api = Master().api()
+    answer_uri = api["getUri"]
+    first_call = threading.Event()
+
+    def slow_get_uri(*args: Any) -> Any:
+        if not first_call.is_set():
+            first_call.set()
+            time.sleep(MASTER_PROBE_TIMEOUT_S + 0.5)
+        return answer_uri(*args)
+
+    with serving({**api, "getUri": slow_get_uri}, multicall=True) as uri:
+        node = make_node("patient", master_uri=uri, embedded_master="never")
+        assert node.embedded_master is None
+        assert first_call.is_set()
 
 
 def test_a_master_without_multicall_gets_them_one_by_one(make_node):

@@ -37,7 +37,8 @@ ParamCallback = Callable[[str, Any], None]
 _MISSING: Any = object()
 #: Time budget for unregistering everything from the master when shutting down (s).
 SHUTDOWN_BUDGET_S = 1.0
-#: How long to wait for an existing master to answer before starting an embedded one (s).
+#: How long to wait for an existing master to answer before starting an embedded one (s). A
+#: node that never starts one waits the client's full timeout: a loaded master is slow, not gone.
 MASTER_PROBE_TIMEOUT_S = 1.0
 
 
@@ -134,7 +135,7 @@ class Node:
     def _join_or_start_master(self, mode: EmbeddedMaster) -> Master | None:
         if mode != "always":
             try:
-                self.master.get_uri(timeout=MASTER_PROBE_TIMEOUT_S)
+                self.master.get_uri(timeout=MASTER_PROBE_TIMEOUT_S if mode == "auto" else None)
                 return None
             except MasterUnreachableError:
                 if mode == "never":
