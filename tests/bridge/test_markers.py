@@ -44,7 +44,9 @@ def by_ns(message) -> dict[str, list]:
 def test_the_map_message_of_the_straight_road() -> None:
     lane_map = build_builtin_map("straight")
     scenario = parse_scenario("map: straight\nego: {start: {lane: R1_E_1, s: 5}}\n", "s.yaml")
-    message = build_map_markers(*with_row(context_of(World(lane_map, scenario))))
+    context, row = with_row(context_of(World(lane_map, scenario)))
+    message_type = context.profile.message("visualization_msgs/MarkerArray")
+    message = message_type.deserialize(build_map_markers(context, row))
     markers = by_ns(message)
     assert set(markers) == {"roads", "lane_centres", "lane_ids"}  # no lights, stops, walks
     (road,) = markers["roads"]

@@ -5,9 +5,11 @@ from __future__ import annotations
 
 import argparse
 import fnmatch
+import importlib
 import importlib.util
 import signal
 import sys
+import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -17,7 +19,6 @@ from ..batch.case import CaseSpec
 from ..batch.documents import Execution
 from ..batch.early_workers import EarlyWorkers
 from ..batch.errors import SuiteError
-from ..batch.html_report import write_html_report
 from ..batch.interrupt import EXIT_SIGNALLED, Interrupt, interrupted_by_signals
 from ..batch.junit import write_junit
 from ..batch.logs import tail_report
@@ -36,6 +37,8 @@ from .arguments import LOCAL_RAY
 
 EXIT_ALL_PASSED = 0
 EXIT_SOME_FAILED = 1
+REPORT_MODULE = "egosim.batch.html_report"
+"""The HTML report's module: matplotlib and the maps, about 1 s of CPU to import."""
 
 
 def selected(cases: list[CaseSpec], patterns: list[str]) -> list[CaseSpec]:
@@ -88,12 +91,24 @@ def _run_cases(
 ) -> dict[str, Result]:
     done = failures = 0
     new: dict[str, Result] = {}
+    report_imports: threading.Thread | None = None
     with BatchProgress(len(to_run)) as bar:
 
         def on_result(result: Result, running: int) -> None:
-            nonlocal done, failures
+            nonlocal done, failures, report_imports
             done += 1
             failures += failed(result)
+            if report_imports is None and done + running == len(to_run) and running < workers:
+                # No case is left to start and a slot is idle: its core imports what the
+                # report needs while the last cases end, instead of the batch's start (whose
+                # cores the simulators' imports keep busy) or its end.
+                report_imports = threading.Thread(
+                    target=importlib.import_module,
+                    args=(REPORT_MODULE,),
+                    name="report imports",
+                    daemon=True,
+                )
+                report_imports.start()
             bar.log(f"{result['status'].upper():7} {result['name']}  {result.get('reason', '')}")
             for line in tail_report(result.get("log_tail")):
                 bar.log(f"        {line}")
@@ -131,6 +146,8 @@ def _report(
     if interrupt.hurry.is_set():
         print("egosim batch: stopped at once: no report.html", file=sys.stderr)
     else:
+        from ..batch.html_report import write_html_report  # noqa: PLC0415 (see REPORT_MODULE)
+
         written.append(write_html_report(out_dir, f"egosim batch: {args.suite.name}", document))
     counts = summary(document["cases"])
     print(", ".join(f"{v} {k}" for k, v in counts.items()), flush=True)
