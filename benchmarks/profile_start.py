@@ -4,8 +4,9 @@ for a while after the import; egosim.msgs imported first, not timed); the
 import time of `egosim.batch.worker` (`-X importtime`, the sum of every module's own
 time); and the CPU time (user + system) of a process that imports it, builds the three
 profiles and looks up every release of each type a default `egosim run` binds (its
-enabled rows' types, as the bridge's `releases_of` / `service_releases_of` do), that part
-alone, and which typed modules (egosim.msgs.typed, for the type checker) it imported.
+enabled rows' types, as the bridge's `releases_of` / `service_releases_of` do, with the
+default release's type, which the bridge advertises), that part alone, and which typed
+modules (egosim.msgs.typed, for the type checker) it imported.
 
 Run it with bytecode cached, as a user's machine has it: each command runs once before
 it is timed.
@@ -53,9 +54,9 @@ for name in PROFILES:
     get_profile(name)
 for row in default_network_settings().enabled_rows():
     if row.direction is Direction.SERVICE:
-        service_releases_of(row.type_name, PROFILES[0])
+        service_releases_of(row.type_name, PROFILES[0])[0].service_type
     else:
-        releases_of(row.type_name, PROFILES[0])
+        releases_of(row.type_name, PROFILES[0])[0].message_type
 print(time.thread_time() - start)
 print(len(parsed))
 typed = sorted(name for name in sys.modules if name.startswith("egosim.msgs.typed."))
@@ -69,8 +70,8 @@ def python(*args: str) -> list[str]:
 
 def bound_types() -> tuple[float, float, int, str]:
     """The bound-types process's CPU time (interpreter start included), the CPU time of its
-    profiles and look-ups alone, how many definitions it parsed (every release's), and the
-    typed modules (egosim.msgs.typed) it imported."""
+    profiles and look-ups alone, how many definitions it parsed (of each release whose
+    types it built), and the typed modules (egosim.msgs.typed) it imported."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     command = python("-c", BOUND_TYPES)
     out = subprocess.run(command, check=True, capture_output=True, text=True).stdout

@@ -39,6 +39,26 @@ def test_a_type_asked_for_first_answers_as_in_a_fully_parsed_profile(release: st
 
 
 @pytest.mark.parametrize("release", PROFILES)
+def test_whether_a_release_has_a_type_is_told_without_parsing_it(
+    release: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """As a fully parsed profile knows it, also for the types only other releases have."""
+    complete = {name: Profile(name) for name in PROFILES}
+    messages = {name: set(message_names(profile)) for name, profile in complete.items()}
+    services = {name: set(profile.service_names()) for name, profile in complete.items()}
+    fresh = Profile(release)
+
+    def parse(text: str, name: str) -> object:
+        raise AssertionError(f"{name} parsed")
+
+    monkeypatch.setattr(profile_module, "get_types_from_msg", parse)
+    for name in sorted(set().union(*messages.values())):
+        assert fresh.has_message(name) == (name in messages[release]), name
+    for name in sorted(set().union(*services.values())):
+        assert fresh.has_service(name) == (name in services[release]), name
+
+
+@pytest.mark.parametrize("release", PROFILES)
 def test_unknown_types_are_reported_alike_before_and_after_every_type_is_parsed(
     release: str,
 ) -> None:

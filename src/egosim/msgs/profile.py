@@ -139,9 +139,9 @@ class Profile:
         ros_name = denormalize_msgtype(normalize_msgtype(name))
         with self._parsing:
             if ros_name not in self._messages:
-                store_name = normalize_msgtype(ros_name)
-                if store_name not in self._texts and store_name not in self._store.fielddefs:
+                if not self.has_message(ros_name):
                     raise UnknownTypeError(f"no message type {name!r} in profile {self.name}")
+                store_name = normalize_msgtype(ros_name)
                 self._require([store_name])
                 self._messages[ros_name] = MessageType(
                     name=ros_name,
@@ -152,9 +152,19 @@ class Profile:
             self._messages[name] = self._messages[ros_name]
         return self._messages[name]
 
+    def has_message(self, name: str) -> bool:
+        """Whether the release has the message type `name` (as `message` takes it), told
+        without parsing it."""
+        store_name = normalize_msgtype(name)
+        return store_name in self._texts or store_name in self._store.fielddefs
+
+    def has_service(self, name: str) -> bool:
+        """Whether the release has the service type `pkg/Name`, told without parsing it."""
+        return name in self._services
+
     def service(self, name: str) -> ServiceType[object, object]:
         """The service type `pkg/Name`."""
-        if name not in self._services:
+        if not self.has_service(name):
             raise UnknownTypeError(f"no service type {name!r} in profile {self.name}")
         request, response = self.message(f"{name}Request"), self.message(f"{name}Response")
         srv = self._services[name]

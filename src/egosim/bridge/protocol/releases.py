@@ -8,11 +8,17 @@ fields are copied (recursively, through nested types), renamed fields follow
 RENAMED_FIELDS, moved fields follow MOVED_FIELDS, and a field the other side lacks
 is dropped on the way out and, on the way in, takes the value IMPLIED_FIELDS gives
 (what the older release meant without it) or else its ROS default.
+
+A release's view of a type is built (its definitions parsed) when first used: whether a
+release has the type is told from its profile's names alone, and negotiation tries the
+default release first, so a process no peer of an older release connects to never
+parses that release's types.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import functools
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Final, TypeVar, cast
 
@@ -20,7 +26,7 @@ from rosbags.interfaces import Nodetype
 from rosbags.interfaces.typing import FieldDesc
 from rosbags.typesys.store import Typestore
 
-from ...msgs import PROFILES, MessageType, ServiceType, UnknownTypeError, get_profile
+from ...msgs import PROFILES, MessageType, ServiceType, get_profile
 from ...msgs.defaults import default_message
 from ...msgs.fulltext import BUILTIN_TIME_TYPES, element_desc
 from ...msgs.message_type import TypedMessageType
@@ -61,30 +67,39 @@ SERVICE_NAMES: dict[str, dict[str, str]] = {
 }
 
 
+def _search_order(default: str) -> Iterator[str]:
+    """Every release, `default` first, then the others newest first."""
+    yield default
+    yield from (name for name in PROFILES if name != default)
+
+
 @dataclass(frozen=True)
 class ServiceRelease:
-    """One release's view of one service type."""
+    """One release's view of one service type, built on first use."""
 
     profile_name: str
-    service_type: ServiceType[object, object]
+    type_name: str  # the service's name in this release
+
+    @functools.cached_property
+    def service_type(self) -> ServiceType[object, object]:
+        return get_profile(self.profile_name).service(self.type_name)
 
 
 def service_releases_of(type_name: str, default: str) -> tuple[ServiceRelease, ...]:
     """Every release that has the service `type_name` (under its name there), default first."""
     found = []
-    for name in (default, *(p for p in PROFILES if p != default)):
+    for name in _search_order(default):
         local_name = SERVICE_NAMES.get(type_name, {}).get(name, type_name)
-        try:
-            found.append(ServiceRelease(name, get_profile(name).service(local_name)))
-        except UnknownTypeError:
-            continue
+        if get_profile(name).has_service(local_name):
+            found.append(ServiceRelease(name, local_name))
     return tuple(found)
 
 
 def service_release_for_md5(
     releases: tuple[ServiceRelease, ...], md5sum: str
 ) -> ServiceRelease | None:
-    """The release a client's md5sum asks for (`*`: the default, first one)."""
+    """The release a client's md5sum asks for (`*`: the default, first one); the releases
+    after the one that matches are not built."""
     if md5sum == "*":
         return releases[0]
     return next((r for r in releases if r.service_type.md5sum == md5sum), None)
@@ -92,25 +107,28 @@ def service_release_for_md5(
 
 @dataclass(frozen=True)
 class Release:
-    """One release's view of one type."""
+    """One release's view of one message type, built on first use."""
 
     profile_name: str
-    message_type: MessageType[object]
+    type_name: str
+
+    @functools.cached_property
+    def message_type(self) -> MessageType[object]:
+        return get_profile(self.profile_name).message(self.type_name)
 
 
 def releases_of(type_name: str, default: str) -> tuple[Release, ...]:
     """Every release that has `type_name`, `default` first."""
-    found = []
-    for name in (default, *(p for p in PROFILES if p != default)):
-        try:
-            found.append(Release(name, get_profile(name).message(type_name)))
-        except UnknownTypeError:
-            continue
-    return tuple(found)
+    return tuple(
+        Release(name, type_name)
+        for name in _search_order(default)
+        if get_profile(name).has_message(type_name)
+    )
 
 
 def release_for_md5(releases: tuple[Release, ...], md5sum: str) -> Release | None:
-    """The first release whose type has `md5sum` (the default wins when several share it)."""
+    """The first release whose type has `md5sum` (the default wins when several share it);
+    the releases after it are not built."""
     return next((r for r in releases if r.message_type.md5sum == md5sum), None)
 
 
