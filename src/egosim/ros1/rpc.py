@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
-import functools
 import http.client
 import logging
-import socketserver
+import socket
 import threading
 import xmlrpc.client
 from collections.abc import Callable
@@ -14,8 +13,8 @@ from typing import TYPE_CHECKING, Any
 from urllib.parse import urlsplit
 from xmlrpc.server import SimpleXMLRPCServer
 
+from .accepting_threads import AcceptingThreads
 from .errors import PeerUnreachableError
-from .handler_threads import HandlerThreads
 from .rpc_handler import RequestHandler
 
 if TYPE_CHECKING:
@@ -95,12 +94,10 @@ def _in_process(uri: str) -> XmlRpcServer | None:
         return _serving.get(address)
 
 
-class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
-    """Serves one handler object's public methods on a daemon thread, each request in a
-    thread of its own (handler_threads: one whose last request ended, if one waits)."""
+class XmlRpcServer(SimpleXMLRPCServer):
+    """Serves one handler object's public methods, each connection in the thread that
+    accepted it (accepting_threads), its request read and answered by rpc_handler."""
 
-    daemon_threads = True
-    block_on_close = False
     allow_reuse_address = True
     # socketserver's default backlog of 5 resets connections when many nodes start at once.
     request_queue_size = 128
@@ -110,9 +107,8 @@ class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
         self._name = name
         super().__init__(address, requestHandler=RequestHandler, logRequests=False)
         self.register_multicall_functions()
-        self._thread: threading.Thread | None = None
         self._address = (str(self.server_address[0]), self.port)
-        self._handlers = HandlerThreads()
+        self._threads = AcceptingThreads(self.socket, self._serve_connection, name)
 
     @property
     def port(self) -> int:
@@ -123,10 +119,7 @@ class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
             self.register_function(function, method)
 
     def start(self) -> None:
-        self._thread = threading.Thread(
-            target=self.serve_forever, kwargs={"poll_interval": 0.05}, name=self._name, daemon=True
-        )
-        self._thread.start()
+        self._threads.start()
         with _serving_lock:
             _serving[self._address] = self
 
@@ -134,15 +127,17 @@ class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
         with _serving_lock:
             if _serving.get(self._address) is self:
                 del _serving[self._address]
-        if self._thread is not None:
-            self.shutdown()
-            self._thread.join()
+        self._threads.close()
         self.server_close()
-        self._handlers.close()
 
-    def process_request(self, request: Any, client_address: Any) -> None:
-        job = functools.partial(self.process_request_thread, request, client_address)
-        self._handlers.run(job, self._name)
+    def _serve_connection(self, request: socket.socket, client_address: Any) -> None:
+        # As socketserver's threading servers serve a connection.
+        try:
+            self.finish_request(request, client_address)
+        except Exception:
+            self.handle_error(request, client_address)
+        finally:
+            self.shutdown_request(request)
 
     def answer(self, request: str | bytes, peer: Any) -> bytes:
         """The encoded reply to an XML-RPC request from `peer` (its address)."""
