@@ -41,9 +41,6 @@ class Headers:
     def __getitem__(self, name: str) -> str | None:
         return self._values.get(name.lower())
 
-    def __contains__(self, name: str) -> bool:
-        return name.lower() in self._values
-
 
 def read_headers(rfile: LineReader) -> Headers:
     """The headers from `rfile` up to the blank line that ends them (or the end of input).
