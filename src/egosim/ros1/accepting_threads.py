@@ -4,11 +4,12 @@ accepted.
 A server whose one thread accepts and hands each connection to another pays, for every
 connection, for waking both (its select, the hand-over, the two taking turns at the
 GIL): for a connection that carries one small request, as every XML-RPC client's does,
-that is a quarter of the server's CPU. Here the threads wait in accept() themselves and
-the kernel wakes one per connection, which serves it: nothing is handed over. Whenever the
-last waiting thread takes a connection, another starts accepting (from handler_threads:
-one whose serving ended, if one waits), so a connection never waits for a slow one to end.
-A thread that has served accepts again, unless KEEP_ACCEPTING others already do.
+that is a sixth of the server's CPU (docs/BENCHMARKS.md). Here the threads wait in
+accept() themselves and the kernel wakes one per connection, which serves it: nothing is
+handed over. Whenever the last waiting thread takes a connection, another starts
+accepting (from handler_threads: one whose serving ended, if one waits), so a connection
+never waits for a slow one to end. A thread that has served accepts again, unless
+KEEP_ACCEPTING others already do.
 """
 
 from __future__ import annotations
