@@ -24,6 +24,33 @@ def peer(script: str) -> str:
     return str(PEERS / script)
 
 
+def drain(sock: socket.socket) -> bytes:
+    """Half-close, then read what the server answers until it hangs up (a reset counts:
+    a server closing on unread input resets the connection)."""
+    chunks = []
+    try:
+        sock.shutdown(socket.SHUT_WR)
+        while chunk := sock.recv(65536):
+            chunks.append(chunk)
+    except (ConnectionResetError, BrokenPipeError, OSError):
+        pass
+    return b"".join(chunks)
+
+
+def send_raw(address: tuple[str, int], data: bytes) -> bytes:
+    with socket.create_connection(address, timeout=EVENT_TIMEOUT_S) as sock:
+        try:
+            sock.sendall(data)
+        except (ConnectionResetError, BrokenPipeError):
+            return b""
+        return drain(sock)
+
+
+def uri_address(uri: str) -> tuple[str, int]:
+    host, port = uri.removeprefix("http://").rstrip("/").split(":")
+    return host, int(port)
+
+
 def wait_until(condition: Callable[[], object], timeout: float = EVENT_TIMEOUT_S) -> None:
     """Poll ``condition`` until true; fail the test if it never becomes true."""
     deadline = time.monotonic() + timeout

@@ -24,39 +24,20 @@ from tests.conftest import EVENT_TIMEOUT_S
 from tests.ros1.helpers import (
     PROFILE,
     STRING,
+    drain,
     raw_subscribe,
     read_frame,
+    send_raw,
     slave_call,
     string_bytes,
     string_text,
+    uri_address,
     wait_until,
 )
 
 
 def _open_fds() -> int:
     return len(os.listdir("/proc/self/fd"))
-
-
-def _drain(sock: socket.socket) -> bytes:
-    """Half-close, then read what the server answers until it hangs up (a reset counts:
-    a server closing on unread input resets the connection)."""
-    chunks = []
-    try:
-        sock.shutdown(socket.SHUT_WR)
-        while chunk := sock.recv(65536):
-            chunks.append(chunk)
-    except (ConnectionResetError, BrokenPipeError, OSError):
-        pass
-    return b"".join(chunks)
-
-
-def _send_raw(address: tuple[str, int], data: bytes) -> bytes:
-    with socket.create_connection(address, timeout=EVENT_TIMEOUT_S) as sock:
-        try:
-            sock.sendall(data)
-        except (ConnectionResetError, BrokenPipeError):
-            return b""
-        return _drain(sock)
 
 
 def _warnings_naming(caplog: pytest.LogCaptureFixture, peer: str) -> list[str]:
@@ -88,7 +69,7 @@ def test_bad_headers_are_logged_once_and_the_node_keeps_serving(
     with socket.create_connection(node.tcpros_address, timeout=EVENT_TIMEOUT_S) as sock:
         peer = "{}:{}".format(*sock.getsockname())
         sock.sendall(data)
-        _drain(sock)
+        drain(sock)
     wait_until(lambda: _warnings_naming(caplog, peer))
     assert len(_warnings_naming(caplog, peer)) == 1, name
     sock, _header = raw_subscribe(node, "/chatter", STRING.md5sum)
@@ -98,7 +79,7 @@ def test_bad_headers_are_logged_once_and_the_node_keeps_serving(
 
 def test_header_naming_neither_topic_nor_service_is_refused(embedded_master, make_node):
     node = make_node("pub", master_uri=embedded_master.uri)
-    reply = _send_raw(node.tcpros_address, encode_header({"callerid": "/x"}))
+    reply = send_raw(node.tcpros_address, encode_header({"callerid": "/x"}))
     assert b"error=connection header names neither a topic nor a service" in reply
 
 
@@ -121,7 +102,7 @@ def test_oversized_service_request_is_refused_and_service_keeps_serving(
         sock.sendall(encode_header(fields))
         read_header(sock, 1 << 16)
         sock.sendall(struct.pack("<I", 2048) + b"x" * 2048)
-        assert _drain(sock) == b""
+        assert drain(sock) == b""
     wait_until(lambda: _warnings_naming(caplog, peer))
     assert "exceeds the limit of 1024" in _warnings_naming(caplog, peer)[0]
     assert node.service_proxy("/echo", srv).call(b"small") == b"small"
@@ -209,8 +190,7 @@ def test_subscriber_survives_broken_publishers(
 def test_xmlrpc_garbage_gets_faults_and_servers_keep_answering(embedded_master, make_node):
     node = make_node("sim", master_uri=embedded_master.uri)
     for uri in (node.uri, embedded_master.uri):
-        host, port = uri.removeprefix("http://").rstrip("/").split(":")
-        address = (host, int(port))
+        address = uri_address(uri)
         connection = http.client.HTTPConnection(*address, timeout=EVENT_TIMEOUT_S)
         connection.request(
             "POST", "/", body=b"<methodCall><oops", headers={"Content-Type": "text/xml"}
@@ -223,9 +203,9 @@ def test_xmlrpc_garbage_gets_faults_and_servers_keep_answering(embedded_master, 
             proxy.noSuchMethod("/x")
         with pytest.raises(xmlrpc.client.Fault):
             proxy.getPid()  # missing caller_id
-        assert b"400" in _send_raw(address, b"\x00\x01\x02 garbage\r\n\r\n")
+        assert b"400" in send_raw(address, b"\x00\x01\x02 garbage\r\n\r\n")
         huge = b"POST / HTTP/1.0\r\nContent-Length: 1000000000000\r\n\r\n<methodCall>"
-        assert b" 413 " in _send_raw(address, huge)
+        assert b" 413 " in send_raw(address, huge)
         assert proxy.getPid("/x")[0] == 1
 
 
@@ -234,9 +214,9 @@ def test_no_threads_or_sockets_leak_after_bad_peers(embedded_master, make_node):
     pub = node.advertise("/chatter", STRING)
     baseline_threads, baseline_fds = threading.active_count(), _open_fds()
     for _ in range(20):
-        _send_raw(node.tcpros_address, struct.pack("<I", 0xFFFFFFFF))
-        _send_raw(node.tcpros_address, encode_header({"topic": "/chatter"}))
-        _send_raw(
+        send_raw(node.tcpros_address, struct.pack("<I", 0xFFFFFFFF))
+        send_raw(node.tcpros_address, encode_header({"topic": "/chatter"}))
+        send_raw(
             node.tcpros_address,
             encode_header({"callerid": "/x", "topic": "/chatter", "md5sum": "bad"}),
         )
@@ -270,7 +250,7 @@ def test_a_parameter_xmlrpc_cannot_send_back_is_refused(embedded_master):
     body = xmlrpc.client.dumps(("/x", "/cfg/big", 0), "setParam").replace(
         "<int>0</int>", f"<i8>{2**40}</i8>"
     )
-    connection = http.client.HTTPConnection(*_address(embedded_master.uri), timeout=5)
+    connection = http.client.HTTPConnection(*uri_address(embedded_master.uri), timeout=5)
     connection.request("POST", "/", body=body, headers={"Content-Type": "text/xml"})
     code, message, _ = xmlrpc.client.loads(connection.getresponse().read())[0][0]
     connection.close()
@@ -282,7 +262,7 @@ def test_a_parameter_xmlrpc_cannot_send_back_is_refused(embedded_master):
 def test_a_method_response_posted_as_a_call_gets_a_fault_and_is_logged(embedded_master, caplog):
     caplog.set_level(logging.WARNING, logger="egosim.ros1")
     body = xmlrpc.client.dumps(([1, "ok", 0],), methodresponse=True)
-    connection = http.client.HTTPConnection(*_address(embedded_master.uri), timeout=5)
+    connection = http.client.HTTPConnection(*uri_address(embedded_master.uri), timeout=5)
     connection.request("POST", "/", body=body, headers={"Content-Type": "text/xml"})
     reply = connection.getresponse().read()
     connection.close()
@@ -358,11 +338,6 @@ def _connected_chatter(embedded_master, make_node) -> tuple[Node, Node, Any, lis
     return listener, talker, pub, received
 
 
-def _address(uri: str) -> tuple[str, int]:
-    host, port = uri.removeprefix("http://").rstrip("/").split(":")
-    return host, int(port)
-
-
 class _ListenerOutOfDescriptors:
     """A listening socket whose first accepts fail as when the process has no fds left."""
 
@@ -426,11 +401,12 @@ def test_a_service_client_breaking_off_mid_request_is_logged(embedded_master, ma
 
 def test_an_xmlrpc_request_without_a_length_is_logged(embedded_master, caplog):
     caplog.set_level(logging.WARNING, logger="egosim.ros1")
-    with socket.create_connection(_address(embedded_master.uri), timeout=EVENT_TIMEOUT_S) as sock:
+    address = uri_address(embedded_master.uri)
+    with socket.create_connection(address, timeout=EVENT_TIMEOUT_S) as sock:
         sock.sendall(
             b"POST / HTTP/1.0\r\nTransfer-Encoding: chunked\r\n\r\n5\r\nhello\r\n0\r\n\r\n"
         )
-        assert b" 500 " in _drain(sock)
+        assert b" 500 " in drain(sock)
     wait_until(lambda: any('" 500' in r.getMessage() for r in caplog.records))
     assert xmlrpc.client.ServerProxy(embedded_master.uri).getPid("/x")[0] == 1
 

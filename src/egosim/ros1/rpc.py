@@ -2,20 +2,20 @@
 
 from __future__ import annotations
 
-import functools
 import http.client
 import logging
-import socketserver
+import socket
 import threading
 import xmlrpc.client
 from collections.abc import Callable
 from enum import IntEnum
 from typing import TYPE_CHECKING, Any
 from urllib.parse import urlsplit
-from xmlrpc.server import SimpleXMLRPCRequestHandler, SimpleXMLRPCServer
+from xmlrpc.server import SimpleXMLRPCServer
 
+from .accepting_threads import AcceptingThreads
 from .errors import PeerUnreachableError
-from .handler_threads import HandlerThreads
+from .rpc_handler import RequestHandler
 
 if TYPE_CHECKING:
     from _typeshed import ReadableBuffer
@@ -44,9 +44,6 @@ def reply(code: StatusCode, message: str, value: Any) -> Reply:
 
 IN_PROCESS = ("this process", 0)
 """The peer address of a call made in the server's own process."""
-
-#: Largest XML-RPC request body accepted (the largest ROS calls carry parameter trees).
-MAX_REQUEST_BYTES = 64 * 1024 * 1024
 
 
 class _TimeoutTransport(xmlrpc.client.Transport):
@@ -97,39 +94,10 @@ def _in_process(uri: str) -> XmlRpcServer | None:
         return _serving.get(address)
 
 
-class _RequestHandler(SimpleXMLRPCRequestHandler):
-    # Any path is accepted: roscpp posts to "/RPC2", rospy to "/".
-    rpc_paths = ()
-    # A peer that opens a connection and never finishes its request is dropped.
-    timeout = 10
+class XmlRpcServer(SimpleXMLRPCServer):
+    """Serves one handler object's public methods, each connection in the thread that
+    accepted it (accepting_threads), its request read and answered by rpc_handler."""
 
-    def do_POST(self) -> None:  # noqa: N802 (name given by BaseHTTPRequestHandler)
-        self.server.peer.address = self.client_address  # type: ignore[attr-defined]
-        try:
-            length = int(self.headers.get("content-length", 0))
-        except ValueError:
-            length = -1
-        if not 0 <= length <= MAX_REQUEST_BYTES:
-            self.send_error(413 if length > 0 else 400, "bad or oversized Content-Length")
-            return
-        super().do_POST()
-
-    def log_message(self, format: str, *args: Any) -> None:
-        log.warning("XML-RPC peer %s: %s", self.address_string(), format % args)
-
-    def log_request(self, code: int | str = "-", size: int | str = "-") -> None:
-        # Answered requests stay quiet; a request the server failed on (such as a chunked
-        # body, which it cannot read) is logged.
-        if str(code).isdigit() and int(code) >= 500:
-            self.log_message('"%s" %s', self.requestline, code)
-
-
-class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
-    """Serves one handler object's public methods on a daemon thread, each request in a
-    thread of its own (handler_threads: one whose last request ended, if one waits)."""
-
-    daemon_threads = True
-    block_on_close = False
     allow_reuse_address = True
     # socketserver's default backlog of 5 resets connections when many nodes start at once.
     request_queue_size = 128
@@ -137,11 +105,10 @@ class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
     def __init__(self, address: tuple[str, int], name: str) -> None:
         self.peer = threading.local()
         self._name = name
-        super().__init__(address, requestHandler=_RequestHandler, logRequests=False)
+        super().__init__(address, requestHandler=RequestHandler, logRequests=False)
         self.register_multicall_functions()
-        self._thread: threading.Thread | None = None
         self._address = (str(self.server_address[0]), self.port)
-        self._handlers = HandlerThreads()
+        self._threads = AcceptingThreads(self.socket, self._serve_connection, name)
 
     @property
     def port(self) -> int:
@@ -152,10 +119,7 @@ class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
             self.register_function(function, method)
 
     def start(self) -> None:
-        self._thread = threading.Thread(
-            target=self.serve_forever, kwargs={"poll_interval": 0.05}, name=self._name, daemon=True
-        )
-        self._thread.start()
+        self._threads.start()
         with _serving_lock:
             _serving[self._address] = self
 
@@ -163,20 +127,26 @@ class XmlRpcServer(socketserver.ThreadingMixIn, SimpleXMLRPCServer):
         with _serving_lock:
             if _serving.get(self._address) is self:
                 del _serving[self._address]
-        if self._thread is not None:
-            self.shutdown()
-            self._thread.join()
+        self._threads.close()
         self.server_close()
-        self._handlers.close()
 
-    def process_request(self, request: Any, client_address: Any) -> None:
-        job = functools.partial(self.process_request_thread, request, client_address)
-        self._handlers.run(job, self._name)
+    def _serve_connection(self, request: socket.socket, client_address: Any) -> None:
+        # As socketserver's threading servers serve a connection.
+        try:
+            self.finish_request(request, client_address)
+        except Exception:
+            self.handle_error(request, client_address)
+        finally:
+            self.shutdown_request(request)
+
+    def answer(self, request: str | bytes, peer: Any) -> bytes:
+        """The encoded reply to an XML-RPC request from `peer` (its address)."""
+        self.peer.address = peer
+        return self._marshaled_dispatch(request)
 
     def answer_in_process(self, request: str) -> bytes:
         """The reply to an XML-RPC request made in this process, as a peer would get it."""
-        self.peer.address = IN_PROCESS
-        return self._marshaled_dispatch(request)
+        return self.answer(request, IN_PROCESS)
 
     # typeshed declares str, but CPython's dispatcher returns the encoded body (bytes),
     # which is what the request handler writes.
