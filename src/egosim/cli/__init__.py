@@ -91,4 +91,3 @@ def command() -> NoReturn:
     status = main()
     gc.freeze()
     sys.exit(status)
-
