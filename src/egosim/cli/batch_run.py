@@ -41,6 +41,31 @@ REPORT_MODULE = "egosim.batch.html_report"
 """The HTML report's module: matplotlib and the maps, about 1 s of CPU to import."""
 
 
+class ReportImports:
+    """The report's imports, made in a thread of their own once no case is left to start
+    and a slot is idle: that slot's core imports them while the last cases end, instead
+    of the batch's start (whose cores the simulator workers' own imports keep busy) or
+    its end."""
+
+    def __init__(self) -> None:
+        self._thread: threading.Thread | None = None
+
+    def begin(self) -> None:
+        if self._thread is None:
+            self._thread = threading.Thread(
+                target=importlib.import_module,
+                args=(REPORT_MODULE,),
+                name="report imports",
+                daemon=True,
+            )
+            self._thread.start()
+
+    def finish(self) -> None:
+        """Once done (so that no import is left half made when the batch exits)."""
+        if self._thread is not None:
+            self._thread.join()
+
+
 def selected(cases: list[CaseSpec], patterns: list[str]) -> list[CaseSpec]:
     if not patterns:
         return cases
@@ -76,7 +101,11 @@ def run_batch(args: argparse.Namespace, workers: int, early: EarlyWorkers) -> in
     interrupt = Interrupt()
     with interrupted_by_signals(interrupt) as reinstall:
         started = time.monotonic()
-        new = _run_cases(args, to_run, out_dir, workers, early, interrupt, reinstall)
+        report_imports = ReportImports()
+        new = _run_cases(
+            args, to_run, out_dir, workers, early, interrupt, reinstall, report_imports
+        )
+        report_imports.finish()
         return _report(args, cases, to_run, results, new, out_dir, workers, interrupt, started)
 
 
@@ -88,27 +117,18 @@ def _run_cases(
     early: EarlyWorkers,
     interrupt: Interrupt,
     reinstall: Callable[[], None],
+    report_imports: ReportImports,
 ) -> dict[str, Result]:
     done = failures = 0
     new: dict[str, Result] = {}
-    report_imports: threading.Thread | None = None
     with BatchProgress(len(to_run)) as bar:
 
         def on_result(result: Result, running: int) -> None:
-            nonlocal done, failures, report_imports
+            nonlocal done, failures
             done += 1
             failures += failed(result)
-            if report_imports is None and done + running == len(to_run) and running < workers:
-                # No case is left to start and a slot is idle: its core imports what the
-                # report needs while the last cases end, instead of the batch's start (whose
-                # cores the simulators' imports keep busy) or its end.
-                report_imports = threading.Thread(
-                    target=importlib.import_module,
-                    args=(REPORT_MODULE,),
-                    name="report imports",
-                    daemon=True,
-                )
-                report_imports.start()
+            if done + running == len(to_run) and running < workers:
+                report_imports.begin()
             bar.log(f"{result['status'].upper():7} {result['name']}  {result.get('reason', '')}")
             for line in tail_report(result.get("log_tail")):
                 bar.log(f"        {line}")
@@ -146,7 +166,7 @@ def _report(
     if interrupt.hurry.is_set():
         print("egosim batch: stopped at once: no report.html", file=sys.stderr)
     else:
-        from ..batch.html_report import write_html_report  # noqa: PLC0415 (see REPORT_MODULE)
+        from ..batch.html_report import write_html_report  # noqa: PLC0415 (ReportImports)
 
         written.append(write_html_report(out_dir, f"egosim batch: {args.suite.name}", document))
     counts = summary(document["cases"])

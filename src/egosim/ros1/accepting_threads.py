@@ -19,7 +19,6 @@ import socket
 import threading
 import time
 from collections.abc import Callable
-from typing import Any
 
 from .handler_threads import HandlerThreads
 
@@ -33,7 +32,7 @@ ACCEPT_RETRY_S = 0.1
 CLOSE_WAIT_S = 2.0
 """How long close() waits for the threads to leave accept()."""
 
-Serve = Callable[[socket.socket, Any], None]
+Serve = Callable[[socket.socket, object], None]
 """Serves one accepted connection (the socket and the peer's address) and closes it."""
 
 

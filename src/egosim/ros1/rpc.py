@@ -130,7 +130,7 @@ class XmlRpcServer(SimpleXMLRPCServer):
         self._threads.close()
         self.server_close()
 
-    def _serve_connection(self, request: socket.socket, client_address: Any) -> None:
+    def _serve_connection(self, request: socket.socket, client_address: object) -> None:
         # As socketserver's threading servers serve a connection.
         try:
             self.finish_request(request, client_address)
@@ -139,7 +139,7 @@ class XmlRpcServer(SimpleXMLRPCServer):
         finally:
             self.shutdown_request(request)
 
-    def answer(self, request: str | bytes, peer: Any) -> bytes:
+    def answer(self, request: str | bytes, peer: object) -> bytes:
         """The encoded reply to an XML-RPC request from `peer` (its address)."""
         self.peer.address = peer
         return self._marshaled_dispatch(request)

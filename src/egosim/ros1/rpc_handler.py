@@ -15,13 +15,10 @@ import logging
 import time
 import xmlrpc.client
 from http import HTTPStatus
-from typing import TYPE_CHECKING, Any
+from typing import Protocol
 from xmlrpc.server import SimpleXMLRPCRequestHandler
 
 from .http_headers import Headers, read_headers
-
-if TYPE_CHECKING:
-    from .rpc import XmlRpcServer
 
 log = logging.getLogger(__name__)
 
@@ -33,8 +30,14 @@ GZIP_REPLIES_OVER_BYTES = 1400
 encode_threshold: a common MTU)."""
 
 
+class AnsweringServer(Protocol):
+    """The server a handler serves (rpc.XmlRpcServer): what it replies to a request."""
+
+    def answer(self, request: bytes, peer: object) -> bytes: ...
+
+
 class RequestHandler(SimpleXMLRPCRequestHandler):
-    server: XmlRpcServer
+    server: AnsweringServer  # type: ignore[assignment]  # an XmlRpcServer, which is one
     headers: Headers  # type: ignore[assignment]  # read by read_headers, not the email parser
     raw_requestline: bytes  # read by handle_one_request
 
@@ -139,7 +142,7 @@ class RequestHandler(SimpleXMLRPCRequestHandler):
             return super().date_time_string(timestamp)
         return _date_header.now()
 
-    def log_message(self, format: str, *args: Any) -> None:
+    def log_message(self, format: str, *args: object) -> None:
         log.warning("XML-RPC peer %s: %s", self.address_string(), format % args)
 
     def log_request(self, code: int | str = "-", size: int | str = "-") -> None:
