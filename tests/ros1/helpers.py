@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import errno
 import json
 import socket
 import threading
@@ -137,3 +138,20 @@ def read_frame(sock: socket.socket) -> bytes:
 
 def slave_call(node: Node, method: str, *args: object) -> list:
     return rpc.call(node.uri, method, "/test", *args)
+
+
+class ListenerOutOfDescriptors:
+    """A listening socket whose first accepts fail as when the process has no fds left."""
+
+    def __init__(self, real: socket.socket, failures: int) -> None:
+        self._real = real
+        self.failures = failures
+
+    def accept(self) -> tuple[socket.socket, object]:
+        if self.failures:
+            self.failures -= 1
+            raise OSError(errno.EMFILE, "Too many open files")
+        return self._real.accept()
+
+    def __getattr__(self, name: str) -> object:
+        return getattr(self._real, name)

@@ -4,7 +4,6 @@ none left once closed."""
 
 from __future__ import annotations
 
-import errno
 import socket
 import threading
 from collections.abc import Iterator
@@ -12,6 +11,7 @@ from collections.abc import Iterator
 import pytest
 
 from egosim.ros1.accepting_threads import KEEP_ACCEPTING, AcceptingThreads
+from tests.ros1.helpers import ListenerOutOfDescriptors
 from tests.waiting import until
 
 DEADLINE_S = 30.0
@@ -89,25 +89,8 @@ def test_closing_leaves_no_thread_in_accept(listener: socket.socket) -> None:
         socket.create_connection(address, timeout=DEADLINE_S).close()
 
 
-class _ListenerOutOfDescriptors:
-    """A listening socket whose first accepts fail as when the process has no fds left."""
-
-    def __init__(self, real: socket.socket, failures: int) -> None:
-        self._real = real
-        self.failures = failures
-
-    def accept(self) -> tuple[socket.socket, object]:
-        if self.failures:
-            self.failures -= 1
-            raise OSError(errno.EMFILE, "Too many open files")
-        return self._real.accept()
-
-    def __getattr__(self, name: str) -> object:
-        return getattr(self._real, name)
-
-
 def test_the_threads_outlive_failing_accepts(listener: socket.socket) -> None:
-    failing = _ListenerOutOfDescriptors(listener, 3)
+    failing = ListenerOutOfDescriptors(listener, 3)
     threads = AcceptingThreads(failing, EchoOnce(), NAME)
     threads.start()
     try:

@@ -3,7 +3,6 @@ vanish, XML-RPC garbage. The node logs each once with the peer's address and kee
 
 from __future__ import annotations
 
-import errno
 import http.client
 import logging
 import os
@@ -24,6 +23,7 @@ from tests.conftest import EVENT_TIMEOUT_S
 from tests.ros1.helpers import (
     PROFILE,
     STRING,
+    ListenerOutOfDescriptors,
     drain,
     raw_subscribe,
     read_frame,
@@ -338,29 +338,12 @@ def _connected_chatter(embedded_master, make_node) -> tuple[Node, Node, Any, lis
     return listener, talker, pub, received
 
 
-class _ListenerOutOfDescriptors:
-    """A listening socket whose first accepts fail as when the process has no fds left."""
-
-    def __init__(self, real: socket.socket, failures: int) -> None:
-        self._real = real
-        self.failures = failures
-
-    def accept(self) -> tuple[socket.socket, object]:
-        if self.failures:
-            self.failures -= 1
-            raise OSError(errno.EMFILE, "Too many open files")
-        return self._real.accept()
-
-    def __getattr__(self, name: str) -> object:
-        return getattr(self._real, name)
-
-
 def test_the_tcpros_listener_outlives_running_out_of_descriptors(monkeypatch, caplog):
     create_server = socket.create_server
-    listeners: list[_ListenerOutOfDescriptors] = []
+    listeners: list[ListenerOutOfDescriptors] = []
 
-    def failing_server(*args: object, **kwargs: object) -> _ListenerOutOfDescriptors:
-        listeners.append(_ListenerOutOfDescriptors(create_server(*args, **kwargs), 3))
+    def failing_server(*args: object, **kwargs: object) -> ListenerOutOfDescriptors:
+        listeners.append(ListenerOutOfDescriptors(create_server(*args, **kwargs), 3))
         return listeners[-1]
 
     monkeypatch.setattr(socket, "create_server", failing_server)
